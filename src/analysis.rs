@@ -1,0 +1,349 @@
+//! High-level 1D questions: is a configuration stable (`query`), its dispersion curve
+//! (`dispersion`), and its critical time step (`timestep`). Inputs are validated here so the
+//! library and the CLI give the same errors.
+
+use crate::error::{Error, Result, check_range};
+use crate::forms::{ArtificialViscosity, FormKind, ModelParams};
+use crate::kernel::Kernel;
+use crate::shape::{KernelParams, ShapeFamily};
+use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt, spectral_radius};
+use crate::vonneumann::classify::{GROWTH_TOL, Instability, Kind, ZERO_OMEGA2_TOL, branch, runs};
+use crate::vonneumann::linearise::{Lattice1D, Linearisation};
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// Allowed range of h/Δx.
+pub const H_RANGE: (f64, f64) = (0.05, 50.0);
+/// Allowed range of σ̄.
+pub const STRESS_RANGE: (f64, f64) = (-10.0, 10.0);
+
+/// A 1D stability question.
+#[derive(Clone, Copy, Debug)]
+pub struct Query1D {
+    /// Form.
+    pub form: FormKind,
+    /// Kernel.
+    pub kernel: &'static dyn Kernel,
+    /// Shape family.
+    pub shape: ShapeFamily,
+    /// h/Δx in the kernel's own convention.
+    pub h_over_dx: f64,
+    /// σ̄ = σ/C (positive in tension).
+    pub stress: f64,
+    /// Partition coefficient c of `lnl`/`cll`.
+    pub c_partition: f64,
+    /// Least-squares α_s.
+    pub alpha_s: f64,
+    /// Monaghan artificial viscosity (α, β), linearised (acting on all pairs).
+    pub av: Option<(f64, f64)>,
+    /// Time step Δt in Δx/c for the fully discrete check.
+    pub dt: Option<f64>,
+    /// Number of κ points in (0, π].
+    pub points: usize,
+    /// Physical lattice (results in normalised units do not depend on it).
+    pub lattice: Lattice1D,
+}
+
+impl Query1D {
+    /// A query with the defaults of the CLI.
+    pub fn new(form: FormKind, kernel: &'static dyn Kernel, h_over_dx: f64, stress: f64) -> Self {
+        Self {
+            form,
+            kernel,
+            shape: form.default_shape(),
+            h_over_dx,
+            stress,
+            c_partition: 0.5,
+            alpha_s: 0.0,
+            av: None,
+            dt: None,
+            points: 512,
+            lattice: Lattice1D::default(),
+        }
+    }
+
+    /// Validates every number (one-line errors naming the parameter and its range).
+    pub fn validate(&self) -> Result<()> {
+        check_range("--h", self.h_over_dx, H_RANGE.0, H_RANGE.1, true, true)?;
+        check_range("--stress", self.stress, STRESS_RANGE.0, STRESS_RANGE.1, true, true)?;
+        check_range("--c", self.c_partition, 0.0, 1.0, true, true)?;
+        check_range("--alpha-s", self.alpha_s, 0.0, 100.0, true, true)?;
+        if let Some((a, b)) = self.av {
+            check_range("--av-alpha", a, 0.0, 100.0, true, true)?;
+            check_range("--av-beta", b, 0.0, 100.0, true, true)?;
+        }
+        if let Some(dt) = self.dt {
+            check_range("--dt", dt, 0.0, 1e6, false, true)?;
+        }
+        if self.points < 2 || self.points > 10_000_000 {
+            return Err(Error::OutOfRange {
+                name: "--points",
+                value: self.points as f64,
+                range: "must be an integer in [2, 10000000]".into(),
+            });
+        }
+        check_range("lattice dx", self.lattice.dx, 0.0, f64::INFINITY, false, false)?;
+        self.form.check_shape(self.shape)
+    }
+
+    /// Support radius R/Δx.
+    pub fn support_over_dx(&self) -> f64 {
+        self.kernel.zeta() * self.h_over_dx
+    }
+
+    /// Model parameters in physical units of the lattice.
+    pub fn params(&self, stress: f64) -> ModelParams {
+        let lat = self.lattice;
+        let c = (lat.modulus / lat.rho0).sqrt();
+        ModelParams {
+            form: self.form,
+            shape: self.shape,
+            kp: KernelParams { kernel: self.kernel, h: self.h_over_dx * lat.dx },
+            modulus: lat.modulus,
+            rho0: lat.rho0,
+            sigma0: stress * lat.modulus,
+            c_partition: self.c_partition,
+            alpha_s: self.alpha_s,
+            av: self.av.map(|(alpha, beta)| ArtificialViscosity {
+                alpha,
+                beta,
+                sound_speed: c,
+                approaching_only: false,
+            }),
+            dx: lat.dx,
+        }
+    }
+
+    /// The κΔx grid π k / n, k = 1..n.
+    pub fn kappas(&self) -> Vec<f64> {
+        (1..=self.points).map(|k| PI * k as f64 / self.points as f64).collect()
+    }
+
+    /// Linearisation at the query's stress.
+    pub fn linearise(&self) -> Result<Linearisation> {
+        self.validate()?;
+        Linearisation::new(self.params(self.stress), self.lattice)
+    }
+}
+
+/// Header common to every report.
+#[derive(Clone, Debug, Serialize)]
+pub struct Header {
+    /// Form name.
+    pub form: &'static str,
+    /// Kernel name.
+    pub kernel: &'static str,
+    /// Shape family name.
+    pub shape: &'static str,
+    /// h/Δx.
+    pub h_over_dx: f64,
+    /// R/Δx (Belytschko's D_mx).
+    pub support_over_dx: f64,
+    /// σ̄.
+    pub stress: f64,
+    /// Partition coefficient c (mixed forms).
+    pub c_partition: f64,
+    /// α_s (least squares).
+    pub alpha_s: f64,
+}
+
+impl Header {
+    fn of(q: &Query1D) -> Self {
+        Self {
+            form: q.form.name(),
+            kernel: q.kernel.name(),
+            shape: q.shape.name(),
+            h_over_dx: q.h_over_dx,
+            support_over_dx: q.support_over_dx(),
+            stress: q.stress,
+            c_partition: q.c_partition,
+            alpha_s: q.alpha_s,
+        }
+    }
+}
+
+/// Verdict of `query`.
+#[derive(Clone, Debug, Serialize)]
+pub struct QueryReport {
+    /// Configuration.
+    #[serde(flatten)]
+    pub header: Header,
+    /// No exponentially growing mode (and no time-step amplification if Δt was given).
+    pub stable: bool,
+    /// Largest growth rate (c/Δx), 0 if stable.
+    pub max_growth_rate: f64,
+    /// κΔx of the largest growth rate (null if stable).
+    pub kappa_at_max: Option<f64>,
+    /// Every unstable or marginal branch.
+    pub instabilities: Vec<Instability>,
+    /// Zero-energy (rank-deficiency) modes exist.
+    pub has_zero_energy_modes: bool,
+    /// Critical leapfrog Δt in Δx/c (null if the semi-discrete system grows).
+    pub critical_dt: Option<f64>,
+    /// Critical CFL number c Δt_crit / h.
+    pub critical_cfl: Option<f64>,
+    /// The Δt checked (Δx/c), if any.
+    pub dt: Option<f64>,
+    /// Largest |λ| at that Δt.
+    pub max_amplification: Option<f64>,
+}
+
+/// Dispersion curve.
+#[derive(Clone, Debug, Serialize)]
+pub struct DispersionReport {
+    /// Configuration.
+    #[serde(flatten)]
+    pub header: Header,
+    /// κΔx grid.
+    pub kappa_dx: Vec<f64>,
+    /// ω²Δx²/c² of the mechanical branch.
+    pub omega2: Vec<f64>,
+    /// Growth rate (c/Δx) at each κ.
+    pub growth_rate: Vec<f64>,
+    /// Continuum ω²Δx²/c² = (1 + σ̄)(κΔx)² [B00 eq 32].
+    pub omega2_continuum: Vec<f64>,
+}
+
+/// Critical time step.
+#[derive(Clone, Debug, Serialize)]
+pub struct TimestepReport {
+    /// Configuration.
+    #[serde(flatten)]
+    pub header: Header,
+    /// Critical Δt (Δx/c) from the amplification matrices (null if the semi-discrete system grows).
+    pub critical_dt: Option<f64>,
+    /// 2/ω_max, the leapfrog limit [B00 eq 120, ξ = 0] (non-dissipative systems).
+    pub critical_dt_from_omega_max: Option<f64>,
+    /// c Δt_crit / h.
+    pub critical_cfl: Option<f64>,
+    /// max ω Δx/c.
+    pub omega_max: f64,
+}
+
+/// Growth rates and ω² on the grid.
+fn curve(lin: &Linearisation, kappas: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
+    let mut w2 = Vec::with_capacity(kappas.len());
+    let mut g = Vec::with_capacity(kappas.len());
+    let dissipative = lin.is_dissipative();
+    for &k in kappas {
+        let (o, _) = lin.omega2(k);
+        if !o.is_finite() {
+            return Err(Error::NonFinite("ω²"));
+        }
+        w2.push(o);
+        g.push(if dissipative { lin.growth(k)? } else { (-o).max(0.0).sqrt() });
+    }
+    Ok((w2, g))
+}
+
+/// Answers a stability query.
+pub fn query(q: &Query1D) -> Result<QueryReport> {
+    let lin = q.linearise()?;
+    let kappas = q.kappas();
+    let (w2, g) = curve(&lin, &kappas)?;
+    let growing: Vec<bool> = g.iter().map(|&x| x > GROWTH_TOL).collect();
+    let mut inst = Vec::new();
+    let cbar = 1.0 + q.stress;
+    let runs_g = runs(&growing);
+    let lin0 = if !runs_g.is_empty() && cbar > 0.0 && q.stress != 0.0 {
+        Some(Linearisation::new(q.params(0.0), q.lattice)?)
+    } else {
+        None
+    };
+    for r in runs_g {
+        let b = branch(Kind::Material, &kappas, &g, r);
+        let kind = if cbar <= 0.0 {
+            Kind::Material
+        } else if let Some(l0) = &lin0 {
+            let g0 = l0.growth(b.kappa_at_max)?;
+            if g0 > GROWTH_TOL {
+                Kind::RankDeficiency
+            } else if q.stress > 0.0 {
+                Kind::Tensile
+            } else {
+                Kind::Compressive
+            }
+        } else {
+            Kind::RankDeficiency
+        };
+        inst.push(Instability { kind, ..b });
+    }
+    let scale = w2.iter().fold(0.0f64, |m, &x| m.max(x.abs()));
+    let zero: Vec<bool> =
+        w2.iter().zip(&growing).map(|(&o, &gr)| !gr && o.abs() <= ZERO_OMEGA2_TOL * scale.max(1e-300)).collect();
+    let zero_runs = runs(&zero);
+    let has_zero = !zero_runs.is_empty();
+    for r in zero_runs {
+        let zeros = vec![0.0; kappas.len()];
+        inst.push(branch(Kind::RankDeficiency, &kappas, &zeros, r));
+    }
+    let semi_stable = !growing.iter().any(|&x| x);
+    let (cdt, cfl) = if semi_stable {
+        let dt = critical_dt(&lin, &kappas)?;
+        (Some(dt), Some(dt / q.h_over_dx))
+    } else {
+        (None, None)
+    };
+    let mut max_amp = None;
+    let mut ts_unstable = false;
+    if let Some(dt) = q.dt {
+        let mut rho = Vec::with_capacity(kappas.len());
+        for &k in &kappas {
+            rho.push(spectral_radius(&lin, k, dt)?);
+        }
+        max_amp = Some(rho.iter().fold(0.0f64, |m, &x| m.max(x)));
+        let flags: Vec<bool> =
+            rho.iter().zip(&growing).map(|(&r, &gr)| !gr && r > 1.0 + AMPLIFICATION_TOL).collect();
+        let rate: Vec<f64> = rho.iter().map(|r| r.ln().max(0.0) / dt).collect();
+        for r in runs(&flags) {
+            ts_unstable = true;
+            inst.push(branch(Kind::TimeStep, &kappas, &rate, r));
+        }
+    }
+    let (mut gmax, mut kmax) = (0.0, None);
+    for (&gi, &k) in g.iter().zip(&kappas) {
+        if gi > GROWTH_TOL && gi > gmax {
+            gmax = gi;
+            kmax = Some(k);
+        }
+    }
+    Ok(QueryReport {
+        header: Header::of(q),
+        stable: semi_stable && !ts_unstable,
+        max_growth_rate: gmax,
+        kappa_at_max: kmax,
+        instabilities: inst,
+        has_zero_energy_modes: has_zero,
+        critical_dt: cdt,
+        critical_cfl: cfl,
+        dt: q.dt,
+        max_amplification: max_amp,
+    })
+}
+
+/// The dispersion curve ω²(κ).
+pub fn dispersion(q: &Query1D) -> Result<DispersionReport> {
+    let lin = q.linearise()?;
+    let kappas = q.kappas();
+    let (w2, g) = curve(&lin, &kappas)?;
+    let cont = kappas.iter().map(|k| (1.0 + q.stress) * k * k).collect();
+    Ok(DispersionReport { header: Header::of(q), kappa_dx: kappas, omega2: w2, growth_rate: g, omega2_continuum: cont })
+}
+
+/// The critical time step.
+pub fn timestep(q: &Query1D) -> Result<TimestepReport> {
+    let lin = q.linearise()?;
+    let kappas = q.kappas();
+    let (w2, g) = curve(&lin, &kappas)?;
+    let wmax = w2.iter().fold(0.0f64, |m, &x| m.max(x)).sqrt();
+    let grows = g.iter().any(|&x| x > GROWTH_TOL);
+    let cdt = if grows { None } else { Some(critical_dt(&lin, &kappas)?) };
+    let from_w = if lin.is_dissipative() || grows || wmax == 0.0 { None } else { Some(2.0 / wmax) };
+    Ok(TimestepReport {
+        header: Header::of(q),
+        critical_dt: cdt,
+        critical_dt_from_omega_max: from_w,
+        critical_cfl: cdt.map(|d| d / q.h_over_dx),
+        omega_max: wmax,
+    })
+}

@@ -1,0 +1,47 @@
+//! `sphstab` command-line interface (thin: argument parsing and printing only).
+
+mod common;
+mod dispersion;
+mod kernels;
+mod query;
+mod timestep;
+
+use clap::{Parser, Subcommand};
+
+/// Stability of SPH forms, kernels, smoothing lengths, stress states and time steps.
+///
+/// Units: lengths in Δx, wave numbers as κΔx ∈ (0, π], frequencies and growth rates in c/Δx,
+/// time steps in Δx/c, stress σ̄ = σ/C (positive in tension). Bad input exits with status 2.
+#[derive(Parser)]
+#[command(name = "sphstab", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Is this configuration stable? Names and classifies every instability.
+    Query(query::Args),
+    /// Dispersion curve ω²(κ) of the mechanical branch, with the continuum overlaid.
+    Dispersion(dispersion::Args),
+    /// Critical leapfrog time step and CFL number.
+    Timestep(timestep::Args),
+    /// The kernel table.
+    Kernels(kernels::Args),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let res = match cli.cmd {
+        Cmd::Query(a) => query::run(a),
+        Cmd::Dispersion(a) => dispersion::run(a),
+        Cmd::Timestep(a) => timestep::run(a),
+        Cmd::Kernels(a) => kernels::run(a),
+    };
+    if let Err(e) = res {
+        let msg = format!("{e:#}").replace('\n', " ");
+        eprintln!("error: {msg}");
+        std::process::exit(2);
+    }
+}

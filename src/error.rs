@@ -1,0 +1,78 @@
+//! Library error type. Every variant names where the problem is and the allowed range,
+//! so the binary can print it as a one-line message and exit with status 2.
+
+/// Errors raised by the library.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Error {
+    /// A name (kernel, form, shape family, ...) that is not known.
+    #[error("unknown {what} `{given}`; valid: {valid}")]
+    UnknownName {
+        /// What kind of name (e.g. "kernel").
+        what: &'static str,
+        /// The name given.
+        given: String,
+        /// Comma-separated list of valid names.
+        valid: String,
+    },
+    /// A number outside its allowed range (or NaN).
+    #[error("{name} = {value} is out of range: {range}")]
+    OutOfRange {
+        /// Parameter (flag or field) name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range, in words.
+        range: String,
+    },
+    /// A combination of options that has no meaning (e.g. a shape family a form cannot use).
+    #[error("{0}")]
+    Incompatible(String),
+    /// A moment matrix (MLS / corrected derivative) that cannot be inverted.
+    #[error("singular {what} at x = {x} (determinant {det:e}): the support covers too few neighbours")]
+    SingularMoment {
+        /// Which matrix.
+        what: &'static str,
+        /// Evaluation point (in the system's length units).
+        x: f64,
+        /// Determinant found.
+        det: f64,
+    },
+    /// A numerical result that is not finite.
+    #[error("non-finite result in {0}")]
+    NonFinite(&'static str),
+}
+
+/// Library result type.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Checks that `value` is finite and inside `[lo, hi]` (inclusive bounds as flagged).
+pub fn check_range(
+    name: &'static str,
+    value: f64,
+    lo: f64,
+    hi: f64,
+    lo_inclusive: bool,
+    hi_inclusive: bool,
+) -> Result<f64> {
+    let ok_lo = if lo_inclusive { value >= lo } else { value > lo };
+    let ok_hi = if hi_inclusive { value <= hi } else { value < hi };
+    if value.is_finite() && ok_lo && ok_hi {
+        Ok(value)
+    } else {
+        let l = if lo_inclusive { "[" } else { "(" };
+        let r = if hi_inclusive { "]" } else { ")" };
+        let fmt = |v: f64| {
+            if v.is_infinite() {
+                if v > 0.0 { "inf".to_string() } else { "-inf".to_string() }
+            } else {
+                format!("{v}")
+            }
+        };
+        Err(Error::OutOfRange {
+            name,
+            value,
+            range: format!("must be a finite number in {l}{}, {}{r}", fmt(lo), fmt(hi)),
+        })
+    }
+}

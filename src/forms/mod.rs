@@ -1,0 +1,152 @@
+//! SPH forms (SPEC §4). Each form is ONE rate function of its semi-discrete particle system;
+//! the solver integrates it and the von Neumann engine linearises the same function.
+//!
+//! Material law (all forms): hypo-elastic with the Truesdell rate and tangent modulus C, as
+//! in [B00 §2]; in 1D `σ̇ = (C + σ) ∂v/∂x`, so the continuum modulus is `C̄ = C + σ`
+//! ([B00] eq 29/75) and a compressive pre-stress σ̄ = σ/C ≤ −1 is a material instability.
+//! The total-Lagrangian forms integrate the same law: `P(F) = (σ0 + C) F − C` in 1D, whose
+//! tangent at F = 1 is `C̄^{SE} = C + σ0` ([B00] eq 81).
+
+mod classical;
+mod eulerian_common;
+mod least_squares;
+mod lnl;
+mod local;
+mod model;
+mod nonlocal;
+mod stress_points;
+mod total_lagrangian;
+
+pub use model::{ArtificialViscosity, Field, FieldKind, MassOperator, Model1D, ModelParams, State1D};
+
+use crate::error::{Error, Result};
+use crate::shape::ShapeFamily;
+
+/// The nine SPH forms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FormKind {
+    /// Eulerian kernel, collocation, Monaghan's symmetric "sum" momentum form [V21 eq 55].
+    Classical,
+    /// Eulerian kernel, "difference" momentum form [V21 eq 54].
+    Nonlocal,
+    /// Normalised corrected SPH [V21 eq 43–44].
+    Local,
+    /// Mixed local–nonlocal with partition coefficient c [V21 eq 50–56].
+    Lnl,
+    /// Mixed classical–local with coefficient c [V21 §7.2].
+    Cll,
+    /// Lagrangian kernel, nodal integration [B00 eq 77–81].
+    TotalLagrangian,
+    /// Stress points at mid-intervals, Eulerian kernel [B00 eq 83–92].
+    EulerianStressPoints,
+    /// Stress points at mid-intervals, Lagrangian kernel [B00 eq 99–102].
+    LagrangianStressPoints,
+    /// Beissel–Belytschko least-squares stabilised nodal integration [B00 eq 104–107].
+    LeastSquares,
+    /// Eulerian kernel, nodal integration of the Galerkin weak form [B00 §4.1.1, eq 65–68]:
+    /// the system whose linearisation is [B00 eq 74]. Not one of SPEC's nine names; added
+    /// because the sum-form `classical` differs from eq 74 (analysis/ERRATA.md).
+    EulerianNodal,
+}
+
+impl FormKind {
+    /// All forms with their CLI names.
+    pub const ALL: [(FormKind, &'static str); 10] = [
+        (FormKind::Classical, "classical"),
+        (FormKind::Nonlocal, "nonlocal"),
+        (FormKind::Local, "local"),
+        (FormKind::Lnl, "lnl"),
+        (FormKind::Cll, "cll"),
+        (FormKind::TotalLagrangian, "total-lagrangian"),
+        (FormKind::EulerianStressPoints, "eulerian-stress-points"),
+        (FormKind::LagrangianStressPoints, "lagrangian-stress-points"),
+        (FormKind::LeastSquares, "least-squares"),
+        (FormKind::EulerianNodal, "eulerian-nodal"),
+    ];
+
+    /// CLI name.
+    pub fn name(self) -> &'static str {
+        Self::ALL.iter().find(|(f, _)| *f == self).map(|(_, n)| *n).unwrap_or("?")
+    }
+
+    /// Looks a form up by CLI name.
+    pub fn by_name(name: &str) -> Result<Self> {
+        Self::ALL.iter().find(|(_, n)| *n == name).map(|(f, _)| *f).ok_or_else(|| {
+            Error::UnknownName {
+                what: "form",
+                given: name.to_string(),
+                valid: Self::ALL.iter().map(|(_, n)| *n).collect::<Vec<_>>().join(", "),
+            }
+        })
+    }
+
+    /// Lagrangian kernel (reference-configuration shape functions, fixed neighbours).
+    pub fn is_lagrangian(self) -> bool {
+        matches!(
+            self,
+            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints | FormKind::LeastSquares
+        )
+    }
+
+    /// Default shape family: `sph` for the SPH (V21) forms, `corrected` for the local form,
+    /// and `mls` (EFG, the choice of [B00]) for the B00 forms.
+    pub fn default_shape(self) -> ShapeFamily {
+        match self {
+            FormKind::Classical | FormKind::Nonlocal | FormKind::Lnl | FormKind::Cll => ShapeFamily::Sph,
+            FormKind::Local => ShapeFamily::Corrected,
+            FormKind::TotalLagrangian
+            | FormKind::EulerianStressPoints
+            | FormKind::LagrangianStressPoints
+            | FormKind::LeastSquares
+            | FormKind::EulerianNodal => ShapeFamily::Mls,
+        }
+    }
+
+    /// Checks that `shape` is meaningful for this form.
+    pub fn check_shape(self, shape: ShapeFamily) -> Result<()> {
+        if self == FormKind::Local && !shape.linear_consistent_gradient() {
+            return Err(Error::Incompatible(format!(
+                "--shape {} is not allowed with --form local: the local form needs a first-order \
+                 corrected gradient (allowed: corrected, mls)",
+                shape.name()
+            )));
+        }
+        Ok(())
+    }
+
+    /// The state fields this form carries.
+    pub fn fields(self) -> &'static [Field] {
+        use Field::*;
+        match self {
+            FormKind::Classical | FormKind::Nonlocal | FormKind::Local | FormKind::EulerianNodal => &[X, V, Rho, Sigma],
+            FormKind::Lnl | FormKind::Cll => &[X, V, Rho, Sigma, Tau],
+            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints | FormKind::LeastSquares => &[X, V],
+            FormKind::EulerianStressPoints => &[X, V, Rho, Sigma, SpX, SpSigma, SpVol],
+        }
+    }
+
+    /// Whether the form has stress points.
+    pub fn has_stress_points(self) -> bool {
+        matches!(self, FormKind::EulerianStressPoints | FormKind::LagrangianStressPoints)
+    }
+}
+
+impl Model1D {
+    /// The rate function of the semi-discrete system: fills `out` with the time derivatives of
+    /// every field of `z`. For [`MassOperator::Lumped`] the `v` rate is the acceleration; for
+    /// [`MassOperator::Consistent`] it is the generalised force `f` of `M a = f`.
+    pub fn rate<S: crate::scalar::Scalar>(&self, z: &State1D<S>, out: &mut State1D<S>) -> Result<()> {
+        out.resize_like(z);
+        match self.p.form {
+            FormKind::Classical => classical::rate(self, z, out),
+            FormKind::Nonlocal => nonlocal::rate(self, z, out),
+            FormKind::Local => local::rate(self, z, out),
+            FormKind::Lnl => lnl::rate(self, z, out, lnl::Mix::LocalNonlocal),
+            FormKind::Cll => lnl::rate(self, z, out, lnl::Mix::ClassicalLocal),
+            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints => total_lagrangian::rate(self, z, out),
+            FormKind::EulerianStressPoints | FormKind::EulerianNodal => stress_points::rate(self, z, out),
+            FormKind::LeastSquares => least_squares::rate(self, z, out),
+        }
+    }
+}

@@ -1,0 +1,318 @@
+//! The constant part of a 1D particle system (model) and its state.
+
+use super::FormKind;
+use crate::error::Result;
+use crate::scalar::Scalar;
+use crate::shape::{self, KernelParams, ShapeFamily};
+
+/// Monaghan artificial viscosity Π_IJ = (−α c μ_IJ + β μ_IJ²)/ρ̄_IJ,
+/// μ_IJ = h v_IJ·x_IJ / (x_IJ² + 0.01 h²).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArtificialViscosity {
+    /// Linear coefficient α.
+    pub alpha: f64,
+    /// Quadratic coefficient β (vanishes in a linearisation about rest).
+    pub beta: f64,
+    /// Sound speed used in Π (physical units).
+    pub sound_speed: f64,
+    /// `true`: act only on approaching pairs (v_IJ·x_IJ < 0), as in running codes.
+    /// `false`: act on all pairs — the linearisation used by [V21 App. B] (Q ≈ −α Δẋ).
+    pub approaching_only: bool,
+}
+
+/// Physical parameters of a 1D model (everything but the particle set).
+#[derive(Clone, Copy, Debug)]
+pub struct ModelParams {
+    /// The form.
+    pub form: FormKind,
+    /// Shape-function family.
+    pub shape: ShapeFamily,
+    /// Kernel and smoothing length.
+    pub kp: KernelParams,
+    /// Tangent modulus C (Truesdell rate), physical units.
+    pub modulus: f64,
+    /// Reference density ρ0.
+    pub rho0: f64,
+    /// Initial (pre-)stress σ0, physical units; used by the total-Lagrangian P(F).
+    pub sigma0: f64,
+    /// Partition-of-unity coefficient c of `lnl`/`cll` (c = 1: fully local).
+    pub c_partition: f64,
+    /// Least-squares stabilisation α_s (β = α_s l_c², l_c = Δx).
+    pub alpha_s: f64,
+    /// Optional artificial viscosity.
+    pub av: Option<ArtificialViscosity>,
+    /// Characteristic spacing Δx (for β of the least-squares form).
+    pub dx: f64,
+}
+
+/// Mass operator of the semi-discrete system.
+#[derive(Clone, Debug)]
+pub enum MassOperator {
+    /// Diagonal (lumped) masses: the `v` rate is the acceleration.
+    Lumped,
+    /// Consistent mass rows `M_IK` (sparse): the `v` rate is the force of `M a = f`.
+    Consistent(Vec<Vec<(usize, f64)>>),
+}
+
+/// Shape functions of the masters near one evaluation point, on the reference configuration.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct RefStencil {
+    /// Master index, φ, φ', φ''.
+    pub(crate) entries: Vec<(usize, [f64; 3])>,
+}
+
+/// A 1D particle model: parameters plus the constant per-particle data.
+#[derive(Clone, Debug)]
+pub struct Model1D {
+    /// Parameters.
+    pub p: ModelParams,
+    /// Period of a periodic chain (None: open chain).
+    pub period: Option<f64>,
+    /// Master masses.
+    pub mass: Vec<f64>,
+    /// Master reference positions X.
+    pub x_ref: Vec<f64>,
+    /// Master reference volumes V0.
+    pub vol_ref: Vec<f64>,
+    /// Stress-point reference positions (stress-point forms only).
+    pub sp_x_ref: Vec<f64>,
+    /// Stress-point reference volumes.
+    pub sp_vol_ref: Vec<f64>,
+    /// Master-node integration weights of the stress-point forms (V0/2 in [B00 eq 84/100]).
+    pub(crate) master_weight_ref: Vec<f64>,
+    /// Reference stencils at masters (Lagrangian forms).
+    pub(crate) ref_master: Vec<RefStencil>,
+    /// Reference stencils at stress points (Lagrangian stress points).
+    pub(crate) ref_sp: Vec<RefStencil>,
+    /// Least-squares stiffness rows K_IK.
+    pub(crate) ls_stiffness: Vec<Vec<(usize, f64)>>,
+    /// Mass operator.
+    pub mass_op: MassOperator,
+}
+
+/// State fields.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Field {
+    /// Master positions.
+    X,
+    /// Master velocities.
+    V,
+    /// Master densities.
+    Rho,
+    /// Master (nonlocal / classical) stress.
+    Sigma,
+    /// Master local stress τ (mixed forms).
+    Tau,
+    /// Stress-point positions.
+    SpX,
+    /// Stress-point stress.
+    SpSigma,
+    /// Stress-point volume.
+    SpVol,
+}
+
+/// What a field is, mechanically.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FieldKind {
+    /// Master position (translation invariance applies).
+    Position,
+    /// Master velocity.
+    Velocity,
+    /// Any other state (its rate vanishes at rest).
+    Auxiliary,
+}
+
+impl Field {
+    /// Mechanical role.
+    pub fn kind(self) -> FieldKind {
+        match self {
+            Field::X => FieldKind::Position,
+            Field::V => FieldKind::Velocity,
+            _ => FieldKind::Auxiliary,
+        }
+    }
+    /// Lives on stress points (else on masters).
+    pub fn on_stress_points(self) -> bool {
+        matches!(self, Field::SpX | Field::SpSigma | Field::SpVol)
+    }
+}
+
+/// State of a 1D particle system. Fields a form does not carry are empty.
+#[derive(Clone, Debug, Default)]
+pub struct State1D<S> {
+    /// Master positions.
+    pub x: Vec<S>,
+    /// Master velocities.
+    pub v: Vec<S>,
+    /// Master densities.
+    pub rho: Vec<S>,
+    /// Master stress σ.
+    pub sigma: Vec<S>,
+    /// Master local stress τ.
+    pub tau: Vec<S>,
+    /// Stress-point positions.
+    pub sp_x: Vec<S>,
+    /// Stress-point stress.
+    pub sp_sigma: Vec<S>,
+    /// Stress-point volumes.
+    pub sp_vol: Vec<S>,
+}
+
+impl<S: Scalar> State1D<S> {
+    /// The vector of one field.
+    pub fn field(&self, f: Field) -> &Vec<S> {
+        match f {
+            Field::X => &self.x,
+            Field::V => &self.v,
+            Field::Rho => &self.rho,
+            Field::Sigma => &self.sigma,
+            Field::Tau => &self.tau,
+            Field::SpX => &self.sp_x,
+            Field::SpSigma => &self.sp_sigma,
+            Field::SpVol => &self.sp_vol,
+        }
+    }
+    /// The vector of one field, mutable.
+    pub fn field_mut(&mut self, f: Field) -> &mut Vec<S> {
+        match f {
+            Field::X => &mut self.x,
+            Field::V => &mut self.v,
+            Field::Rho => &mut self.rho,
+            Field::Sigma => &mut self.sigma,
+            Field::Tau => &mut self.tau,
+            Field::SpX => &mut self.sp_x,
+            Field::SpSigma => &mut self.sp_sigma,
+            Field::SpVol => &mut self.sp_vol,
+        }
+    }
+    /// Makes every field of `self` as long as in `other`, filled with zeros.
+    pub fn resize_like<T>(&mut self, other: &State1D<T>) {
+        let fit = |v: &mut Vec<S>, n: usize| {
+            v.clear();
+            v.resize(n, S::zero());
+        };
+        fit(&mut self.x, other.x.len());
+        fit(&mut self.v, other.v.len());
+        fit(&mut self.rho, other.rho.len());
+        fit(&mut self.sigma, other.sigma.len());
+        fit(&mut self.tau, other.tau.len());
+        fit(&mut self.sp_x, other.sp_x.len());
+        fit(&mut self.sp_sigma, other.sp_sigma.len());
+        fit(&mut self.sp_vol, other.sp_vol.len());
+    }
+    /// Converts every entry with `f`.
+    pub fn map<T: Scalar>(&self, f: impl Fn(S) -> T) -> State1D<T> {
+        let m = |v: &Vec<S>| v.iter().map(|&a| f(a)).collect();
+        State1D {
+            x: m(&self.x),
+            v: m(&self.v),
+            rho: m(&self.rho),
+            sigma: m(&self.sigma),
+            tau: m(&self.tau),
+            sp_x: m(&self.sp_x),
+            sp_sigma: m(&self.sp_sigma),
+            sp_vol: m(&self.sp_vol),
+        }
+    }
+}
+
+impl Model1D {
+    /// Builds a model for masters at reference positions `x_ref` with volumes `vol_ref`
+    /// (masses ρ0 V0). Stress points (for the stress-point forms) are placed at the
+    /// mid-points of consecutive masters (and of the last and first for a periodic chain).
+    pub fn new(p: ModelParams, x_ref: Vec<f64>, vol_ref: Vec<f64>, period: Option<f64>) -> Result<Self> {
+        p.form.check_shape(p.shape)?;
+        let n = x_ref.len();
+        let mass = vol_ref.iter().map(|v| p.rho0 * v).collect();
+        let (mut sp_x_ref, mut sp_vol_ref) = (Vec::new(), Vec::new());
+        let mut master_weight_ref = vol_ref.clone();
+        if p.form.has_stress_points() {
+            let m = if period.is_some() { n } else { n.saturating_sub(1) };
+            for i in 0..m {
+                let j = (i + 1) % n;
+                let mut xj = x_ref[j];
+                if let Some(l) = period {
+                    if j == 0 {
+                        xj += l;
+                    }
+                }
+                sp_x_ref.push(0.5 * (x_ref[i] + xj));
+                sp_vol_ref.push(0.25 * (vol_ref[i] + vol_ref[j]));
+            }
+            master_weight_ref = vol_ref.iter().map(|v| 0.5 * v).collect();
+        }
+        let mut model = Model1D {
+            p,
+            period,
+            mass,
+            x_ref,
+            vol_ref,
+            sp_x_ref,
+            sp_vol_ref,
+            master_weight_ref,
+            ref_master: Vec::new(),
+            ref_sp: Vec::new(),
+            ls_stiffness: Vec::new(),
+            mass_op: MassOperator::Lumped,
+        };
+        if p.form.is_lagrangian() {
+            model.ref_master = (0..n).map(|i| model.ref_stencil(model.x_ref[i])).collect::<Result<_>>()?;
+            if p.form == FormKind::LagrangianStressPoints {
+                model.ref_sp =
+                    model.sp_x_ref.clone().iter().map(|&x| model.ref_stencil(x)).collect::<Result<_>>()?;
+            }
+            if p.form == FormKind::LeastSquares {
+                super::least_squares::assemble(&mut model);
+            }
+        }
+        Ok(model)
+    }
+
+    /// Minimum-image relative position `b − a`.
+    #[inline]
+    pub fn rel<S: Scalar>(&self, a: S, b: S) -> S {
+        let d = b - a;
+        match self.period {
+            Some(l) => {
+                let k = (d.re() / l).round();
+                if k != 0.0 { d - k * l } else { d }
+            }
+            None => d,
+        }
+    }
+
+    /// Shape functions of all masters within the support of reference point `x`.
+    fn ref_stencil(&self, x: f64) -> Result<RefStencil> {
+        let r = self.p.kp.support();
+        let mut nodes = Vec::new();
+        let mut idx = Vec::new();
+        for (j, (&xj, &vj)) in self.x_ref.iter().zip(&self.vol_ref).enumerate() {
+            let d = self.rel(x, xj);
+            if d.abs() < r {
+                nodes.push((d, vj));
+                idx.push(j);
+            }
+        }
+        let vals = shape::eval_with_second(self.p.shape, self.p.kp, &nodes, x)?;
+        Ok(RefStencil { entries: idx.into_iter().zip(vals).collect() })
+    }
+
+    /// The state at rest in the reference configuration with uniform density ρ0 and
+    /// stress σ0 (the linearisation base state, and a solver's initial state).
+    pub fn rest_state(&self) -> State1D<f64> {
+        let n = self.x_ref.len();
+        let mut z = State1D { x: self.x_ref.clone(), v: vec![0.0; n], ..Default::default() };
+        for &f in self.p.form.fields() {
+            match f {
+                Field::Rho => z.rho = vec![self.p.rho0; n],
+                Field::Sigma => z.sigma = vec![self.p.sigma0; n],
+                Field::Tau => z.tau = vec![self.p.sigma0; n],
+                Field::SpX => z.sp_x = self.sp_x_ref.clone(),
+                Field::SpSigma => z.sp_sigma = vec![self.p.sigma0; self.sp_x_ref.len()],
+                Field::SpVol => z.sp_vol = self.sp_vol_ref.clone(),
+                Field::X | Field::V => {}
+            }
+        }
+        z
+    }
+}

@@ -1,0 +1,27 @@
+//! `nonlocal`: Eulerian kernel, difference form [V21 eq 53–54].
+//!
+//! ```text
+//! ρ̇_I = −ρ_I (∂v/∂x)_I,  σ̇_I = (C + σ_I)(∂v/∂x)_I,  (∂v/∂x)_I = Σ_J (v_J − v_I) ∂φ_J(x_I)
+//! v̇_I = (1/ρ_I) Σ_J (σ_J − σ_I) ∂φ_J(x_I) − Σ_J m_J Π_IJ ∇_I W_IJ
+//! ```
+//! The stress difference vanishes on a uniformly stressed lattice, so the kernel-variation
+//! (tensile) term of the sum form is absent.
+
+use super::eulerian_common::{av_accel, div_difference, grad_v, kinematics, stencils, volumes};
+use super::model::{Model1D, State1D};
+use crate::error::Result;
+use crate::scalar::Scalar;
+
+pub(crate) fn rate<S: Scalar>(m: &Model1D, z: &State1D<S>, out: &mut State1D<S>) -> Result<()> {
+    let vol = volumes(m, z);
+    let st = stencils(m, z, &z.x, m.p.shape, &vol)?;
+    kinematics(z, out);
+    let c = m.p.modulus;
+    for (i, sti) in st.iter().enumerate() {
+        let g = grad_v(z, i, sti);
+        out.rho[i] = -z.rho[i] * g;
+        out.sigma[i] = (z.sigma[i] + c) * g;
+        out.v[i] = div_difference(&z.sigma, z.rho[i], i, sti) + av_accel(m, z, i, sti);
+    }
+    Ok(())
+}

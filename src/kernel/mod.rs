@@ -1,0 +1,130 @@
+//! Smoothing kernels (SPEC §2).
+//!
+//! Convention: `W(r, h) = σ_d h^(-d) f(q)`, `q = r / h`, support radius `R = ζ h`.
+//! `f`, `f'`, `f''` are derivatives with respect to `q`. A kernel is picked at run time from
+//! its name and used as a `&'static dyn Kernel`.
+//!
+//! Every kernel is a zero-sized type with analytic `f`, `f'`, `f''`. All three are exactly zero
+//! for `q ≥ ζ`; a negative `q` is read as `|q|` (the kernels are even). The dimension argument
+//! `dim` is 1, 2 or 3; other values are clamped into that range. `σ_d` is a closed form where
+//! one exists, otherwise a Gauss–Legendre quadrature evaluated once and cached; the inflection
+//! point `q*` is a closed form or a bisection on the analytic `f''` to full double precision,
+//! also cached.
+//!
+//! | name | f(q) for q < ζ | ζ | σ_1 | σ_2 | σ_3 |
+//! |---|---|---|---|---|---|
+//! | [`m4`](M4) | ¼(2−q)³ − (1−q)³₊ | 2 | 2/3 | 10/(7π) | 1/π |
+//! | [`m5`](M5) | (5/2−q)⁴ − 5(3/2−q)⁴₊ + 10(1/2−q)⁴₊ | 2.5 | 1/24 | 96/(1199π) | 1/(20π) |
+//! | [`m6`](M6) | (3−q)⁵ − 6(2−q)⁵₊ + 15(1−q)⁵₊ | 3 | 1/120 | 7/(478π) | 1/(120π) |
+//! | [`wendland-c2`](WendlandC2) | ψ_{2,1}(q/2) (1D), ψ_{3,1}(q/2) (2D, 3D) | 2 | 5/8 | 7/(4π) | 21/(16π) |
+//! | [`wendland-c4`](WendlandC4) | ψ_{2,2}(q/2) (1D), ψ_{3,2}(q/2) (2D, 3D) | 2 | 3/4 | 9/(4π) | 495/(256π) |
+//! | [`wendland-c6`](WendlandC6) | ψ_{2,3}(q/2) (1D), ψ_{3,3}(q/2) (2D, 3D) | 2 | 55/64 | 39/(14π) | 1365/(512π) |
+//! | [`gaussian`](Gaussian) | exp(−q²), truncated | 3 | 0.564202… | 0.318349… | 0.179666… |
+//! | [`lucy`](Lucy) | (1+3q)(1−q)³ | 1 | 5/4 | 5/π | 105/(16π) |
+//! | [`efg-cubic`](EfgCubic) | 2/3 − 4q² + 4q³ (q ≤ ½), (4/3)(1−q)³ | 1 | 2 | 60/(7π) | 12/π |
+//! | [`efg-quartic`](EfgQuartic) | 1 − 6q² + 8q³ − 3q⁴ | 1 | 5/4 | 5/π | 105/(16π) |
+//! | [`mollifier`](Mollifier) | exp(−1/(1−q²)) (1−q²)⁸ | 1 | 4.80967… | 8.74622… | 16.3222… |
+
+use crate::error::{Error, Result};
+use crate::scalar::Scalar;
+
+mod bspline;
+mod efg;
+mod gaussian;
+mod lucy;
+mod mollifier;
+mod numeric;
+mod wendland;
+
+pub use bspline::{M4, M5, M6};
+pub use efg::{EfgCubic, EfgQuartic};
+pub use gaussian::Gaussian;
+pub use lucy::Lucy;
+pub use mollifier::Mollifier;
+pub use wendland::{WendlandC2, WendlandC4, WendlandC6};
+
+/// A radially symmetric smoothing kernel with compact support.
+pub trait Kernel: Send + Sync + std::fmt::Debug {
+    /// CLI name, e.g. `"m4"`.
+    fn name(&self) -> &'static str;
+    /// Support radius in units of h (ζ).
+    fn zeta(&self) -> f64;
+    /// Shape function f(q) in dimension `dim` (1, 2, 3). Zero for q ≥ ζ.
+    fn f(&self, dim: usize, q: f64) -> f64;
+    /// df/dq. Zero for q ≥ ζ.
+    fn df(&self, dim: usize, q: f64) -> f64;
+    /// d²f/dq². Zero for q ≥ ζ.
+    fn d2f(&self, dim: usize, q: f64) -> f64;
+    /// Normalisation σ_d such that ∫ σ_d h^-d f(|x|/h) dx = 1 in dimension `dim`.
+    fn sigma(&self, dim: usize) -> f64;
+    /// Inflection point q* in (0, ζ) where f''(q*) = 0 (the first sign change of f'').
+    fn inflection(&self, dim: usize) -> f64;
+    /// Literature reference (short).
+    fn reference(&self) -> &'static str;
+    /// Customary range of h/Δx used with this kernel (inclusive).
+    fn customary_h(&self) -> (f64, f64);
+}
+
+/// W(r, h) in dimension `dim` for a scalar distance `r ≥ 0` of any [`Scalar`] type
+/// (value and exact derivative for dual numbers).
+#[inline]
+pub fn w<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
+    let q = r.re() / h;
+    let s = k.sigma(dim) / h.powi(dim as i32);
+    r.lift(s * k.f(dim, q), s * k.df(dim, q) / h)
+}
+
+/// dW/dr(r, h) in dimension `dim`.
+#[inline]
+pub fn dw<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
+    let q = r.re() / h;
+    let s = k.sigma(dim) / h.powi(dim as i32 + 1);
+    r.lift(s * k.df(dim, q), s * k.d2f(dim, q) / h)
+}
+
+/// d²W/dr²(r, h) in dimension `dim` (value only; its derivative is not available).
+#[inline]
+pub fn d2w(k: &dyn Kernel, dim: usize, r: f64, h: f64) -> f64 {
+    k.sigma(dim) / h.powi(dim as i32 + 2) * k.d2f(dim, r / h)
+}
+
+/// All kernels, in the order of SPEC §2.
+pub fn all() -> &'static [&'static dyn Kernel] {
+    ALL
+}
+
+static ALL: &[&dyn Kernel] = &[
+    &M4,
+    &M5,
+    &M6,
+    &WendlandC2,
+    &WendlandC4,
+    &WendlandC6,
+    &Gaussian,
+    &Lucy,
+    &EfgCubic,
+    &EfgQuartic,
+    &Mollifier,
+];
+
+/// Looks a kernel up by its CLI name.
+pub fn by_name(name: &str) -> Result<&'static dyn Kernel> {
+    all()
+        .iter()
+        .copied()
+        .find(|k| k.name() == name)
+        .ok_or_else(|| Error::UnknownName {
+            what: "kernel",
+            given: name.to_string(),
+            valid: all()
+                .iter()
+                .map(|k| k.name())
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+}
+
+/// Index 0, 1, 2 of a per-dimension table for `dim` = 1, 2, 3 (other values clamped).
+fn dim_index(dim: usize) -> usize {
+    dim.clamp(1, 3) - 1
+}

@@ -1,0 +1,9 @@
+pub mod analysis;
+pub mod error;
+pub mod forms;
+pub mod integrator;
+pub mod kernel;
+pub mod plot;
+pub mod scalar;
+pub mod shape;
+pub mod vonneumann;

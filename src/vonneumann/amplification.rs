@@ -1,0 +1,114 @@
+//! Fully discrete analysis: the leapfrog step of [`crate::integrator::kdk_step`] applied to
+//! one Fourier mode of the linearised system gives the amplification matrix G(κ, Δt);
+//! its spectral radius decides time-step stability.
+
+use super::linearise::{Linearisation, eigen};
+use crate::error::Result;
+use crate::forms::FieldKind;
+use crate::integrator::{Scratch, SecondOrderSystem, kdk_step};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+
+/// |λ| above 1 + this is amplification.
+pub const AMPLIFICATION_TOL: f64 = 1e-9;
+
+/// The linear system of one mode: J(κ) split into x, v and auxiliary blocks.
+struct ModeSystem {
+    j: DMatrix<Complex64>,
+    ix: usize,
+    iv: usize,
+    iq: Vec<usize>,
+}
+
+impl ModeSystem {
+    fn row(&self, a: usize, x: &[Complex64], v: &[Complex64], q: &[Complex64]) -> Complex64 {
+        let mut s = self.j[(a, self.ix)] * x[0] + self.j[(a, self.iv)] * v[0];
+        for (k, &b) in self.iq.iter().enumerate() {
+            s += self.j[(a, b)] * q[k];
+        }
+        s
+    }
+}
+
+impl SecondOrderSystem<Complex64> for ModeSystem {
+    fn accel(&self, x: &[Complex64], v: &[Complex64], q: &[Complex64], a: &mut [Complex64]) {
+        a[0] = self.row(self.iv, x, v, q);
+    }
+    fn qrate(&self, x: &[Complex64], v: &[Complex64], q: &[Complex64], r: &mut [Complex64]) {
+        for (k, &b) in self.iq.iter().enumerate() {
+            r[k] = self.row(b, x, v, q);
+        }
+    }
+}
+
+/// Amplification matrix G(κ, Δt) of one leapfrog step; `dt` in Δx/c.
+pub fn amplification_matrix(lin: &Linearisation, kappa: f64, dt: f64) -> DMatrix<Complex64> {
+    let (dx, c) = lin.units();
+    let dt_phys = dt * dx / c;
+    let dofs = &lin.dofs;
+    let ix = dofs.iter().position(|d| d.field.kind() == FieldKind::Position).unwrap_or(0);
+    let iv = dofs.iter().position(|d| d.field.kind() == FieldKind::Velocity).unwrap_or(1);
+    let iq: Vec<usize> = (0..dofs.len()).filter(|&k| k != ix && k != iv).collect();
+    let sys = ModeSystem { j: lin.jacobian(kappa), ix, iv, iq: iq.clone() };
+    let n = dofs.len();
+    let mut g = DMatrix::<Complex64>::zeros(n, n);
+    let mut scratch = Scratch::default();
+    for col in 0..n {
+        let mut x = [Complex64::new((col == ix) as u8 as f64, 0.0)];
+        let mut v = [Complex64::new((col == iv) as u8 as f64, 0.0)];
+        let mut q: Vec<Complex64> = iq.iter().map(|&k| Complex64::new((k == col) as u8 as f64, 0.0)).collect();
+        kdk_step(&sys, &mut x, &mut v, &mut q, dt_phys, &mut scratch);
+        g[(ix, col)] = x[0];
+        g[(iv, col)] = v[0];
+        for (k, &b) in iq.iter().enumerate() {
+            g[(b, col)] = q[k];
+        }
+    }
+    g
+}
+
+/// Spectral radius of G(κ, Δt).
+pub fn spectral_radius(lin: &Linearisation, kappa: f64, dt: f64) -> Result<f64> {
+    let ev = eigen(amplification_matrix(lin, kappa, dt))?;
+    Ok(ev.iter().map(|l| l.norm()).fold(0.0, f64::max))
+}
+
+/// Largest spectral radius over the κ grid.
+pub fn max_spectral_radius(lin: &Linearisation, kappas: &[f64], dt: f64) -> Result<(f64, f64)> {
+    let mut best = (0.0, 0.0);
+    for &k in kappas {
+        let r = spectral_radius(lin, k, dt)?;
+        if r > best.0 {
+            best = (r, k);
+        }
+    }
+    Ok(best)
+}
+
+/// Critical time step (Δx/c): the largest Δt with max_κ |λ| ≤ 1 + tol, found by bisection
+/// between 0 and an upper bound. For a non-dissipative system it equals 2/ω_max
+/// ([B00] eq 120 with ξ = 0).
+pub fn critical_dt(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
+    let stable = |dt: f64| -> Result<bool> { Ok(max_spectral_radius(lin, kappas, dt)?.0 <= 1.0 + AMPLIFICATION_TOL) };
+    let mut lo = 0.0;
+    let mut hi = 1.0;
+    while stable(hi)? {
+        lo = hi;
+        hi *= 2.0;
+        if hi > 1e6 {
+            return Ok(f64::INFINITY);
+        }
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if stable(mid)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo <= 1e-12 * hi {
+            break;
+        }
+    }
+    Ok(lo)
+}

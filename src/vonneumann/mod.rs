@@ -1,0 +1,8 @@
+//! The von Neumann engine: closed forms from the papers and the numeric linearisation of the
+//! forms' rate functions.
+
+pub mod amplification;
+pub mod classify;
+pub mod closed_form;
+pub mod linearise;
+pub mod transform;
