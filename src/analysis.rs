@@ -65,7 +65,14 @@ impl Query1D {
     /// Validates every number (one-line errors naming the parameter and its range).
     pub fn validate(&self) -> Result<()> {
         check_range("--h", self.h_over_dx, H_RANGE.0, H_RANGE.1, true, true)?;
-        check_range("--stress", self.stress, STRESS_RANGE.0, STRESS_RANGE.1, true, true)?;
+        check_range(
+            "--stress",
+            self.stress,
+            STRESS_RANGE.0,
+            STRESS_RANGE.1,
+            true,
+            true,
+        )?;
         check_range("--c", self.c_partition, 0.0, 1.0, true, true)?;
         check_range("--alpha-s", self.alpha_s, 0.0, 100.0, true, true)?;
         if let Some((a, b)) = self.av {
@@ -82,7 +89,14 @@ impl Query1D {
                 range: "must be an integer in [2, 10000000]".into(),
             });
         }
-        check_range("lattice dx", self.lattice.dx, 0.0, f64::INFINITY, false, false)?;
+        check_range(
+            "lattice dx",
+            self.lattice.dx,
+            0.0,
+            f64::INFINITY,
+            false,
+            false,
+        )?;
         self.form.check_shape(self.shape)
     }
 
@@ -98,7 +112,10 @@ impl Query1D {
         ModelParams {
             form: self.form,
             shape: self.shape,
-            kp: KernelParams { kernel: self.kernel, h: self.h_over_dx * lat.dx },
+            kp: KernelParams {
+                kernel: self.kernel,
+                h: self.h_over_dx * lat.dx,
+            },
             modulus: lat.modulus,
             rho0: lat.rho0,
             sigma0: stress * lat.modulus,
@@ -116,7 +133,9 @@ impl Query1D {
 
     /// The κΔx grid π k / n, k = 1..n.
     pub fn kappas(&self) -> Vec<f64> {
-        (1..=self.points).map(|k| PI * k as f64 / self.points as f64).collect()
+        (1..=self.points)
+            .map(|k| PI * k as f64 / self.points as f64)
+            .collect()
     }
 
     /// Linearisation at the query's stress.
@@ -231,7 +250,11 @@ fn curve(lin: &Linearisation, kappas: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
             return Err(Error::NonFinite("ω²"));
         }
         w2.push(o);
-        g.push(if dissipative { lin.growth(k)? } else { (-o).max(0.0).sqrt() });
+        g.push(if dissipative {
+            lin.growth(k)?
+        } else {
+            (-o).max(0.0).sqrt()
+        });
     }
     Ok((w2, g))
 }
@@ -269,8 +292,11 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
         inst.push(Instability { kind, ..b });
     }
     let scale = w2.iter().fold(0.0f64, |m, &x| m.max(x.abs()));
-    let zero: Vec<bool> =
-        w2.iter().zip(&growing).map(|(&o, &gr)| !gr && o.abs() <= ZERO_OMEGA2_TOL * scale.max(1e-300)).collect();
+    let zero: Vec<bool> = w2
+        .iter()
+        .zip(&growing)
+        .map(|(&o, &gr)| !gr && o.abs() <= ZERO_OMEGA2_TOL * scale.max(1e-300))
+        .collect();
     let zero_runs = runs(&zero);
     let has_zero = !zero_runs.is_empty();
     for r in zero_runs {
@@ -292,8 +318,11 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
             rho.push(spectral_radius(&lin, k, dt)?);
         }
         max_amp = Some(rho.iter().fold(0.0f64, |m, &x| m.max(x)));
-        let flags: Vec<bool> =
-            rho.iter().zip(&growing).map(|(&r, &gr)| !gr && r > 1.0 + AMPLIFICATION_TOL).collect();
+        let flags: Vec<bool> = rho
+            .iter()
+            .zip(&growing)
+            .map(|(&r, &gr)| !gr && r > 1.0 + AMPLIFICATION_TOL)
+            .collect();
         let rate: Vec<f64> = rho.iter().map(|r| r.ln().max(0.0) / dt).collect();
         for r in runs(&flags) {
             ts_unstable = true;
@@ -327,7 +356,13 @@ pub fn dispersion(q: &Query1D) -> Result<DispersionReport> {
     let kappas = q.kappas();
     let (w2, g) = curve(&lin, &kappas)?;
     let cont = kappas.iter().map(|k| (1.0 + q.stress) * k * k).collect();
-    Ok(DispersionReport { header: Header::of(q), kappa_dx: kappas, omega2: w2, growth_rate: g, omega2_continuum: cont })
+    Ok(DispersionReport {
+        header: Header::of(q),
+        kappa_dx: kappas,
+        omega2: w2,
+        growth_rate: g,
+        omega2_continuum: cont,
+    })
 }
 
 /// The critical time step.
@@ -337,8 +372,16 @@ pub fn timestep(q: &Query1D) -> Result<TimestepReport> {
     let (w2, g) = curve(&lin, &kappas)?;
     let wmax = w2.iter().fold(0.0f64, |m, &x| m.max(x)).sqrt();
     let grows = g.iter().any(|&x| x > GROWTH_TOL);
-    let cdt = if grows { None } else { Some(critical_dt(&lin, &kappas)?) };
-    let from_w = if lin.is_dissipative() || grows || wmax == 0.0 { None } else { Some(2.0 / wmax) };
+    let cdt = if grows {
+        None
+    } else {
+        Some(critical_dt(&lin, &kappas)?)
+    };
+    let from_w = if lin.is_dissipative() || grows || wmax == 0.0 {
+        None
+    } else {
+        Some(2.0 / wmax)
+    };
     Ok(TimestepReport {
         header: Header::of(q),
         critical_dt: cdt,

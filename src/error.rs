@@ -29,7 +29,9 @@ pub enum Error {
     #[error("{0}")]
     Incompatible(String),
     /// A moment matrix (MLS / corrected derivative) that cannot be inverted.
-    #[error("singular {what} at x = {x} (determinant {det:e}): the support covers too few neighbours")]
+    #[error(
+        "singular {what} at x = {x} (determinant {det:e}): the support covers too few neighbours"
+    )]
     SingularMoment {
         /// Which matrix.
         what: &'static str,
@@ -55,8 +57,16 @@ pub fn check_range(
     lo_inclusive: bool,
     hi_inclusive: bool,
 ) -> Result<f64> {
-    let ok_lo = if lo_inclusive { value >= lo } else { value > lo };
-    let ok_hi = if hi_inclusive { value <= hi } else { value < hi };
+    let ok_lo = if lo_inclusive {
+        value >= lo
+    } else {
+        value > lo
+    };
+    let ok_hi = if hi_inclusive {
+        value <= hi
+    } else {
+        value < hi
+    };
     if value.is_finite() && ok_lo && ok_hi {
         Ok(value)
     } else {
@@ -64,7 +74,11 @@ pub fn check_range(
         let r = if hi_inclusive { "]" } else { ")" };
         let fmt = |v: f64| {
             if v.is_infinite() {
-                if v > 0.0 { "inf".to_string() } else { "-inf".to_string() }
+                if v > 0.0 {
+                    "inf".to_string()
+                } else {
+                    "-inf".to_string()
+                }
             } else {
                 format!("{v}")
             }

@@ -10,7 +10,11 @@ pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
     {
         let root = SVGBackend::with_string(&mut svg, (800, 560)).into_drawing_area();
         root.fill(&WHITE).map_err(|_| Error::NonFinite("plot"))?;
-        let xs: Vec<f64> = r.kappa_dx.iter().map(|k| k / std::f64::consts::PI).collect();
+        let xs: Vec<f64> = r
+            .kappa_dx
+            .iter()
+            .map(|k| k / std::f64::consts::PI)
+            .collect();
         let all = r.omega2.iter().chain(&r.omega2_continuum);
         let (mut lo, mut hi) = all.fold((0.0f64, 0.0f64), |(a, b), &y| (a.min(y), b.max(y)));
         // Keep the discrete curve readable: clip the continuum at 1.3× the discrete maximum.
@@ -26,7 +30,12 @@ pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
         hi += pad;
         let title = format!(
             "{} / {} / {}  h = {:.3}Δx (R = {:.3}Δx), σ̄ = {}",
-            r.header.form, r.header.kernel, r.header.shape, r.header.h_over_dx, r.header.support_over_dx, r.header.stress
+            r.header.form,
+            r.header.kernel,
+            r.header.shape,
+            r.header.h_over_dx,
+            r.header.support_over_dx,
+            r.header.stress
         );
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 20))
@@ -46,14 +55,20 @@ pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
             .map_err(|_| Error::NonFinite("plot"))?;
         chart
             .draw_series(LineSeries::new(
-                xs.iter().zip(&r.omega2_continuum).filter(|(_, y)| **y <= hi).map(|(&x, &y)| (x, y)),
+                xs.iter()
+                    .zip(&r.omega2_continuum)
+                    .filter(|(_, y)| **y <= hi)
+                    .map(|(&x, &y)| (x, y)),
                 BLUE.stroke_width(2),
             ))
             .map_err(|_| Error::NonFinite("plot"))?
             .label("continuum (1 + σ̄)(κΔx)²  [B00 eq 32]")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(2)));
         chart
-            .draw_series(LineSeries::new(xs.iter().zip(&r.omega2).map(|(&x, &y)| (x, y)), RED.stroke_width(2)))
+            .draw_series(LineSeries::new(
+                xs.iter().zip(&r.omega2).map(|(&x, &y)| (x, y)),
+                RED.stroke_width(2),
+            ))
             .map_err(|_| Error::NonFinite("plot"))?
             .label(format!("{} (numeric engine)", r.header.form))
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));

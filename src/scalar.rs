@@ -35,7 +35,16 @@ pub trait Scalar:
     /// Absolute value (derivative sign(x), 0 at 0).
     fn abs(self) -> Self {
         let v = self.re();
-        self.lift(v.abs(), if v > 0.0 { 1.0 } else if v < 0.0 { -1.0 } else { 0.0 })
+        self.lift(
+            v.abs(),
+            if v > 0.0 {
+                1.0
+            } else if v < 0.0 {
+                -1.0
+            } else {
+                0.0
+            },
+        )
     }
     /// Natural logarithm.
     fn ln(self) -> Self {
@@ -90,7 +99,10 @@ impl Scalar for Dual {
     }
     #[inline]
     fn lift(self, g0: f64, g1: f64) -> Self {
-        Self { v: g0, d: g1 * self.d }
+        Self {
+            v: g0,
+            d: g1 * self.d,
+        }
     }
 }
 
@@ -98,21 +110,30 @@ impl Add for Dual {
     type Output = Self;
     #[inline]
     fn add(self, o: Self) -> Self {
-        Self { v: self.v + o.v, d: self.d + o.d }
+        Self {
+            v: self.v + o.v,
+            d: self.d + o.d,
+        }
     }
 }
 impl Sub for Dual {
     type Output = Self;
     #[inline]
     fn sub(self, o: Self) -> Self {
-        Self { v: self.v - o.v, d: self.d - o.d }
+        Self {
+            v: self.v - o.v,
+            d: self.d - o.d,
+        }
     }
 }
 impl Mul for Dual {
     type Output = Self;
     #[inline]
     fn mul(self, o: Self) -> Self {
-        Self { v: self.v * o.v, d: self.d * o.v + self.v * o.d }
+        Self {
+            v: self.v * o.v,
+            d: self.d * o.v + self.v * o.d,
+        }
     }
 }
 impl Div for Dual {
@@ -120,14 +141,20 @@ impl Div for Dual {
     #[inline]
     fn div(self, o: Self) -> Self {
         let v = self.v / o.v;
-        Self { v, d: (self.d - v * o.d) / o.v }
+        Self {
+            v,
+            d: (self.d - v * o.d) / o.v,
+        }
     }
 }
 impl Neg for Dual {
     type Output = Self;
     #[inline]
     fn neg(self) -> Self {
-        Self { v: -self.v, d: -self.d }
+        Self {
+            v: -self.v,
+            d: -self.d,
+        }
     }
 }
 impl AddAssign for Dual {
@@ -152,28 +179,40 @@ impl Add<f64> for Dual {
     type Output = Self;
     #[inline]
     fn add(self, o: f64) -> Self {
-        Self { v: self.v + o, d: self.d }
+        Self {
+            v: self.v + o,
+            d: self.d,
+        }
     }
 }
 impl Sub<f64> for Dual {
     type Output = Self;
     #[inline]
     fn sub(self, o: f64) -> Self {
-        Self { v: self.v - o, d: self.d }
+        Self {
+            v: self.v - o,
+            d: self.d,
+        }
     }
 }
 impl Mul<f64> for Dual {
     type Output = Self;
     #[inline]
     fn mul(self, o: f64) -> Self {
-        Self { v: self.v * o, d: self.d * o }
+        Self {
+            v: self.v * o,
+            d: self.d * o,
+        }
     }
 }
 impl Div<f64> for Dual {
     type Output = Self;
     #[inline]
     fn div(self, o: f64) -> Self {
-        Self { v: self.v / o, d: self.d / o }
+        Self {
+            v: self.v / o,
+            d: self.d / o,
+        }
     }
 }
 

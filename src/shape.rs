@@ -42,18 +42,28 @@ impl ShapeFamily {
 
     /// CLI name.
     pub fn name(self) -> &'static str {
-        Self::ALL.iter().find(|(f, _)| *f == self).map(|(_, n)| *n).unwrap_or("?")
+        Self::ALL
+            .iter()
+            .find(|(f, _)| *f == self)
+            .map(|(_, n)| *n)
+            .unwrap_or("?")
     }
 
     /// Looks a family up by CLI name.
     pub fn by_name(name: &str) -> Result<Self> {
-        Self::ALL.iter().find(|(_, n)| *n == name).map(|(f, _)| *f).ok_or_else(|| {
-            Error::UnknownName {
+        Self::ALL
+            .iter()
+            .find(|(_, n)| *n == name)
+            .map(|(f, _)| *f)
+            .ok_or_else(|| Error::UnknownName {
                 what: "shape family",
                 given: name.to_string(),
-                valid: Self::ALL.iter().map(|(_, n)| *n).collect::<Vec<_>>().join(", "),
-            }
-        })
+                valid: Self::ALL
+                    .iter()
+                    .map(|(_, n)| *n)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })
     }
 
     /// Whether the family reproduces linear functions' derivatives exactly
@@ -125,7 +135,11 @@ pub fn eval<S: Scalar>(
                 out.push((vol * w, vol * wx));
             }
             if s0.re() <= 0.0 {
-                return Err(Error::SingularMoment { what: "Shepard sum Σ V W", x: x_abs, det: s0.re() });
+                return Err(Error::SingularMoment {
+                    what: "Shepard sum Σ V W",
+                    x: x_abs,
+                    det: s0.re(),
+                });
             }
             // ψ_J = V W / s0, ψ'_J = (V W' s0 − V W s1) / s0²
             for p in out.iter_mut() {
@@ -170,7 +184,11 @@ pub fn eval<S: Scalar>(
             let det = m0 * m2 - m1 * m1;
             let scale = (m0.re() * m2.re()).abs();
             if det.re() <= SINGULAR_MOMENT_TOL * scale.max(f64::MIN_POSITIVE) {
-                return Err(Error::SingularMoment { what: "MLS moment matrix", x: x_abs, det: det.re() });
+                return Err(Error::SingularMoment {
+                    what: "MLS moment matrix",
+                    x: x_abs,
+                    det: det.re(),
+                });
             }
             let detx = m0x * m2 + m0 * m2x - m1 * m1x * 2.0;
             for (p, &(d, _)) in out.iter_mut().zip(nodes) {
@@ -195,7 +213,10 @@ pub fn eval_with_second(
     x_abs: f64,
 ) -> Result<Vec<[f64; 3]>> {
     // Moving x by +ε moves every relative position d_J by −ε.
-    let dn: Vec<(Dual, Dual)> = nodes.iter().map(|&(d, v)| (Dual::new(d, -1.0), Dual::cst(v))).collect();
+    let dn: Vec<(Dual, Dual)> = nodes
+        .iter()
+        .map(|&(d, v)| (Dual::new(d, -1.0), Dual::cst(v)))
+        .collect();
     let mut out = Vec::with_capacity(nodes.len());
     eval(family, kp, &dn, x_abs, &mut out)?;
     Ok(out.iter().map(|(p, dp)| [p.v, dp.v, dp.d]).collect())

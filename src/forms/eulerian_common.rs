@@ -55,7 +55,11 @@ pub(crate) fn stencils<S: Scalar>(
 
 /// Current master volumes V_J = m_J / ρ_J.
 pub(crate) fn volumes<S: Scalar>(m: &Model1D, z: &State1D<S>) -> Vec<S> {
-    z.rho.iter().zip(&m.mass).map(|(&rho, &mass)| S::cst(mass) / rho).collect()
+    z.rho
+        .iter()
+        .zip(&m.mass)
+        .map(|(&rho, &mass)| S::cst(mass) / rho)
+        .collect()
 }
 
 /// Velocity gradient at master I from its stencil: Σ_J (v_J − v_I) ∂φ_J(x_I) [V21 eq 53].

@@ -11,7 +11,9 @@
 //! ```
 //! where a^nl is the difference form (lnl) or Monaghan's sum form (cll).
 
-use super::eulerian_common::{av_accel, div_difference, div_sum, grad_v, kinematics, stencils, volumes};
+use super::eulerian_common::{
+    av_accel, div_difference, div_sum, grad_v, kinematics, stencils, volumes,
+};
 use super::model::{Model1D, State1D};
 use crate::error::Result;
 use crate::scalar::Scalar;
@@ -24,7 +26,12 @@ pub(crate) enum Mix {
     ClassicalLocal,
 }
 
-pub(crate) fn rate<S: Scalar>(m: &Model1D, z: &State1D<S>, out: &mut State1D<S>, mix: Mix) -> Result<()> {
+pub(crate) fn rate<S: Scalar>(
+    m: &Model1D,
+    z: &State1D<S>,
+    out: &mut State1D<S>,
+    mix: Mix,
+) -> Result<()> {
     let vol = volumes(m, z);
     let st_nl = stencils(m, z, &z.x, m.p.shape, &vol)?;
     let st_loc = stencils(m, z, &z.x, ShapeFamily::Corrected, &vol)?;

@@ -17,7 +17,9 @@ mod nonlocal;
 mod stress_points;
 mod total_lagrangian;
 
-pub use model::{ArtificialViscosity, Field, FieldKind, MassOperator, Model1D, ModelParams, State1D};
+pub use model::{
+    ArtificialViscosity, Field, FieldKind, MassOperator, Model1D, ModelParams, State1D,
+};
 
 use crate::error::{Error, Result};
 use crate::shape::ShapeFamily;
@@ -67,18 +69,28 @@ impl FormKind {
 
     /// CLI name.
     pub fn name(self) -> &'static str {
-        Self::ALL.iter().find(|(f, _)| *f == self).map(|(_, n)| *n).unwrap_or("?")
+        Self::ALL
+            .iter()
+            .find(|(f, _)| *f == self)
+            .map(|(_, n)| *n)
+            .unwrap_or("?")
     }
 
     /// Looks a form up by CLI name.
     pub fn by_name(name: &str) -> Result<Self> {
-        Self::ALL.iter().find(|(_, n)| *n == name).map(|(f, _)| *f).ok_or_else(|| {
-            Error::UnknownName {
+        Self::ALL
+            .iter()
+            .find(|(_, n)| *n == name)
+            .map(|(f, _)| *f)
+            .ok_or_else(|| Error::UnknownName {
                 what: "form",
                 given: name.to_string(),
-                valid: Self::ALL.iter().map(|(_, n)| *n).collect::<Vec<_>>().join(", "),
-            }
-        })
+                valid: Self::ALL
+                    .iter()
+                    .map(|(_, n)| *n)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })
     }
 
     /// Lagrangian kernel (reference-configuration shape functions, fixed neighbours).
@@ -93,7 +105,9 @@ impl FormKind {
     /// and `mls` (EFG, the choice of [B00]) for the B00 forms.
     pub fn default_shape(self) -> ShapeFamily {
         match self {
-            FormKind::Classical | FormKind::Nonlocal | FormKind::Lnl | FormKind::Cll => ShapeFamily::Sph,
+            FormKind::Classical | FormKind::Nonlocal | FormKind::Lnl | FormKind::Cll => {
+                ShapeFamily::Sph
+            }
             FormKind::Local => ShapeFamily::Corrected,
             FormKind::TotalLagrangian
             | FormKind::EulerianStressPoints
@@ -119,16 +133,24 @@ impl FormKind {
     pub fn fields(self) -> &'static [Field] {
         use Field::*;
         match self {
-            FormKind::Classical | FormKind::Nonlocal | FormKind::Local | FormKind::EulerianNodal => &[X, V, Rho, Sigma],
+            FormKind::Classical
+            | FormKind::Nonlocal
+            | FormKind::Local
+            | FormKind::EulerianNodal => &[X, V, Rho, Sigma],
             FormKind::Lnl | FormKind::Cll => &[X, V, Rho, Sigma, Tau],
-            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints | FormKind::LeastSquares => &[X, V],
+            FormKind::TotalLagrangian
+            | FormKind::LagrangianStressPoints
+            | FormKind::LeastSquares => &[X, V],
             FormKind::EulerianStressPoints => &[X, V, Rho, Sigma, SpX, SpSigma, SpVol],
         }
     }
 
     /// Whether the form has stress points.
     pub fn has_stress_points(self) -> bool {
-        matches!(self, FormKind::EulerianStressPoints | FormKind::LagrangianStressPoints)
+        matches!(
+            self,
+            FormKind::EulerianStressPoints | FormKind::LagrangianStressPoints
+        )
     }
 }
 
@@ -136,7 +158,11 @@ impl Model1D {
     /// The rate function of the semi-discrete system: fills `out` with the time derivatives of
     /// every field of `z`. For [`MassOperator::Lumped`] the `v` rate is the acceleration; for
     /// [`MassOperator::Consistent`] it is the generalised force `f` of `M a = f`.
-    pub fn rate<S: crate::scalar::Scalar>(&self, z: &State1D<S>, out: &mut State1D<S>) -> Result<()> {
+    pub fn rate<S: crate::scalar::Scalar>(
+        &self,
+        z: &State1D<S>,
+        out: &mut State1D<S>,
+    ) -> Result<()> {
         out.resize_like(z);
         match self.p.form {
             FormKind::Classical => classical::rate(self, z, out),
@@ -144,8 +170,12 @@ impl Model1D {
             FormKind::Local => local::rate(self, z, out),
             FormKind::Lnl => lnl::rate(self, z, out, lnl::Mix::LocalNonlocal),
             FormKind::Cll => lnl::rate(self, z, out, lnl::Mix::ClassicalLocal),
-            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints => total_lagrangian::rate(self, z, out),
-            FormKind::EulerianStressPoints | FormKind::EulerianNodal => stress_points::rate(self, z, out),
+            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints => {
+                total_lagrangian::rate(self, z, out)
+            }
+            FormKind::EulerianStressPoints | FormKind::EulerianNodal => {
+                stress_points::rate(self, z, out)
+            }
             FormKind::LeastSquares => least_squares::rate(self, z, out),
         }
     }

@@ -220,21 +220,28 @@ impl Model1D {
     /// Builds a model for masters at reference positions `x_ref` with volumes `vol_ref`
     /// (masses ρ0 V0). Stress points (for the stress-point forms) are placed at the
     /// mid-points of consecutive masters (and of the last and first for a periodic chain).
-    pub fn new(p: ModelParams, x_ref: Vec<f64>, vol_ref: Vec<f64>, period: Option<f64>) -> Result<Self> {
+    pub fn new(
+        p: ModelParams,
+        x_ref: Vec<f64>,
+        vol_ref: Vec<f64>,
+        period: Option<f64>,
+    ) -> Result<Self> {
         p.form.check_shape(p.shape)?;
         let n = x_ref.len();
         let mass = vol_ref.iter().map(|v| p.rho0 * v).collect();
         let (mut sp_x_ref, mut sp_vol_ref) = (Vec::new(), Vec::new());
         let mut master_weight_ref = vol_ref.clone();
         if p.form.has_stress_points() {
-            let m = if period.is_some() { n } else { n.saturating_sub(1) };
+            let m = if period.is_some() {
+                n
+            } else {
+                n.saturating_sub(1)
+            };
             for i in 0..m {
                 let j = (i + 1) % n;
                 let mut xj = x_ref[j];
-                if let Some(l) = period {
-                    if j == 0 {
-                        xj += l;
-                    }
+                if let (Some(l), 0) = (period, j) {
+                    xj += l;
                 }
                 sp_x_ref.push(0.5 * (x_ref[i] + xj));
                 sp_vol_ref.push(0.25 * (vol_ref[i] + vol_ref[j]));
@@ -256,10 +263,16 @@ impl Model1D {
             mass_op: MassOperator::Lumped,
         };
         if p.form.is_lagrangian() {
-            model.ref_master = (0..n).map(|i| model.ref_stencil(model.x_ref[i])).collect::<Result<_>>()?;
+            model.ref_master = (0..n)
+                .map(|i| model.ref_stencil(model.x_ref[i]))
+                .collect::<Result<_>>()?;
             if p.form == FormKind::LagrangianStressPoints {
-                model.ref_sp =
-                    model.sp_x_ref.clone().iter().map(|&x| model.ref_stencil(x)).collect::<Result<_>>()?;
+                model.ref_sp = model
+                    .sp_x_ref
+                    .clone()
+                    .iter()
+                    .map(|&x| model.ref_stencil(x))
+                    .collect::<Result<_>>()?;
             }
             if p.form == FormKind::LeastSquares {
                 super::least_squares::assemble(&mut model);
@@ -294,14 +307,20 @@ impl Model1D {
             }
         }
         let vals = shape::eval_with_second(self.p.shape, self.p.kp, &nodes, x)?;
-        Ok(RefStencil { entries: idx.into_iter().zip(vals).collect() })
+        Ok(RefStencil {
+            entries: idx.into_iter().zip(vals).collect(),
+        })
     }
 
     /// The state at rest in the reference configuration with uniform density ρ0 and
     /// stress σ0 (the linearisation base state, and a solver's initial state).
     pub fn rest_state(&self) -> State1D<f64> {
         let n = self.x_ref.len();
-        let mut z = State1D { x: self.x_ref.clone(), v: vec![0.0; n], ..Default::default() };
+        let mut z = State1D {
+            x: self.x_ref.clone(),
+            v: vec![0.0; n],
+            ..Default::default()
+        };
         for &f in self.p.form.fields() {
             match f {
                 Field::Rho => z.rho = vec![self.p.rho0; n],

@@ -44,7 +44,11 @@ pub(crate) fn rate<S: Scalar>(m: &Model1D, z: &State1D<S>, out: &mut State1D<S>)
         let (_, g) = interp(z, st);
         out.rho[i] = -z.rho[i] * g;
         out.sigma[i] = (z.sigma[i] + c) * g;
-        let w = if m.p.form.has_stress_points() { vol[i] * 0.5 } else { vol[i] };
+        let w = if m.p.form.has_stress_points() {
+            vol[i] * 0.5
+        } else {
+            vol[i]
+        };
         for nb in st {
             out.v[nb.j] -= w * nb.dphi * z.sigma[i];
         }

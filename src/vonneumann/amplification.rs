@@ -46,17 +46,31 @@ pub fn amplification_matrix(lin: &Linearisation, kappa: f64, dt: f64) -> DMatrix
     let (dx, c) = lin.units();
     let dt_phys = dt * dx / c;
     let dofs = &lin.dofs;
-    let ix = dofs.iter().position(|d| d.field.kind() == FieldKind::Position).unwrap_or(0);
-    let iv = dofs.iter().position(|d| d.field.kind() == FieldKind::Velocity).unwrap_or(1);
+    let ix = dofs
+        .iter()
+        .position(|d| d.field.kind() == FieldKind::Position)
+        .unwrap_or(0);
+    let iv = dofs
+        .iter()
+        .position(|d| d.field.kind() == FieldKind::Velocity)
+        .unwrap_or(1);
     let iq: Vec<usize> = (0..dofs.len()).filter(|&k| k != ix && k != iv).collect();
-    let sys = ModeSystem { j: lin.jacobian(kappa), ix, iv, iq: iq.clone() };
+    let sys = ModeSystem {
+        j: lin.jacobian(kappa),
+        ix,
+        iv,
+        iq: iq.clone(),
+    };
     let n = dofs.len();
     let mut g = DMatrix::<Complex64>::zeros(n, n);
     let mut scratch = Scratch::default();
     for col in 0..n {
         let mut x = [Complex64::new((col == ix) as u8 as f64, 0.0)];
         let mut v = [Complex64::new((col == iv) as u8 as f64, 0.0)];
-        let mut q: Vec<Complex64> = iq.iter().map(|&k| Complex64::new((k == col) as u8 as f64, 0.0)).collect();
+        let mut q: Vec<Complex64> = iq
+            .iter()
+            .map(|&k| Complex64::new((k == col) as u8 as f64, 0.0))
+            .collect();
         kdk_step(&sys, &mut x, &mut v, &mut q, dt_phys, &mut scratch);
         g[(ix, col)] = x[0];
         g[(iv, col)] = v[0];
@@ -89,7 +103,9 @@ pub fn max_spectral_radius(lin: &Linearisation, kappas: &[f64], dt: f64) -> Resu
 /// between 0 and an upper bound. For a non-dissipative system it equals 2/ω_max
 /// ([B00] eq 120 with ξ = 0).
 pub fn critical_dt(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
-    let stable = |dt: f64| -> Result<bool> { Ok(max_spectral_radius(lin, kappas, dt)?.0 <= 1.0 + AMPLIFICATION_TOL) };
+    let stable = |dt: f64| -> Result<bool> {
+        Ok(max_spectral_radius(lin, kappas, dt)?.0 <= 1.0 + AMPLIFICATION_TOL)
+    };
     let mut lo = 0.0;
     let mut hi = 1.0;
     while stable(hi)? {

@@ -74,5 +74,11 @@ pub fn branch(kind: Kind, kappas: &[f64], rate: &[f64], (a, b): (usize, usize)) 
             km = kappas[i];
         }
     }
-    Instability { kind, kappa_min: kappas[a], kappa_max: kappas[b], growth_rate: g, kappa_at_max: km }
+    Instability {
+        kind,
+        kappa_min: kappas[a],
+        kappa_max: kappas[b],
+        growth_rate: g,
+        kappa_at_max: km,
+    }
 }

@@ -62,7 +62,11 @@ pub struct Lattice1D {
 
 impl Default for Lattice1D {
     fn default() -> Self {
-        Self { dx: 1.0, rho0: 1.0, modulus: 1.0 }
+        Self {
+            dx: 1.0,
+            rho0: 1.0,
+            modulus: 1.0,
+        }
     }
 }
 
@@ -82,16 +86,29 @@ impl Linearisation {
         let fields: Vec<Field> = p.form.fields().to_vec();
         let dofs: Vec<Dof> = fields.iter().map(|&field| Dof { field }).collect();
         let nd = dofs.len();
-        let ix = fields.iter().position(|f| f.kind() == FieldKind::Position).ok_or(Error::NonFinite("layout"))?;
-        let iv = fields.iter().position(|f| f.kind() == FieldKind::Velocity).ok_or(Error::NonFinite("layout"))?;
-        let offset = |i: usize| -> i64 { if i <= n / 2 { i as i64 } else { i as i64 - n as i64 } };
+        let ix = fields
+            .iter()
+            .position(|f| f.kind() == FieldKind::Position)
+            .ok_or(Error::NonFinite("layout"))?;
+        let iv = fields
+            .iter()
+            .position(|f| f.kind() == FieldKind::Velocity)
+            .ok_or(Error::NonFinite("layout"))?;
+        let offset = |i: usize| -> i64 {
+            if i <= n / 2 {
+                i as i64
+            } else {
+                i as i64 - n as i64
+            }
+        };
         let mut cols = Vec::with_capacity(nd);
         let mut out = State1D::<Dual>::default();
         for b in &dofs {
             let mut z: State1D<Dual> = base.map(Dual::cst);
             z.field_mut(b.field)[0].d = 1.0;
             model.rate(&z, &mut out)?;
-            let mut col: Vec<(i64, Vec<f64>)> = (0..n).map(|i| (offset(i), vec![0.0; nd])).collect();
+            let mut col: Vec<(i64, Vec<f64>)> =
+                (0..n).map(|i| (offset(i), vec![0.0; nd])).collect();
             for (a, da) in dofs.iter().enumerate() {
                 for (i, val) in out.field(da.field).iter().enumerate() {
                     if !val.d.is_finite() {
@@ -105,7 +122,9 @@ impl Linearisation {
         }
         let mass = match &model.mass_op {
             MassOperator::Lumped => Vec::new(),
-            MassOperator::Consistent(rows) => rows[0].iter().map(|&(k, mk)| (offset(k), mk)).collect(),
+            MassOperator::Consistent(rows) => {
+                rows[0].iter().map(|&(k, mk)| (offset(k), mk)).collect()
+            }
         };
         let mut zero_sum = vec![vec![false; nd]; nd];
         for (b, col) in cols.iter().enumerate() {
@@ -157,7 +176,9 @@ impl Linearisation {
             }
         }
         if bad > REST_RATE_TOL * big {
-            return Err(Error::NonFinite("rest-state structure (auxiliary rate depends on positions)"));
+            return Err(Error::NonFinite(
+                "rest-state structure (auxiliary rate depends on positions)",
+            ));
         }
         Ok(())
     }
@@ -194,7 +215,10 @@ impl Linearisation {
         if self.mass.is_empty() {
             return Complex64::new(1.0, 0.0);
         }
-        self.mass.iter().map(|&(k, m)| Complex64::from_polar(m, kappa * k as f64)).sum()
+        self.mass
+            .iter()
+            .map(|&(k, m)| Complex64::from_polar(m, kappa * k as f64))
+            .sum()
     }
 
     /// Whether the velocity rows depend on velocities (artificial viscosity): then only the
@@ -236,15 +260,27 @@ impl Linearisation {
     }
 }
 
-/// Eigenvalues of a small complex matrix by the complex Schur decomposition (bounded
-/// iterations; an error, never a hang, if it does not converge).
+/// Eigenvalues of a small complex matrix by the complex Schur decomposition, with bounded
+/// iterations (an error, never a hang, if it does not converge). nalgebra deflates when
+/// |h_{i+1,i}| ≤ ε(|h_ii| + |h_{i+1,i+1}|), which never fires for zero eigenvalues on a zero
+/// diagonal (our Jacobians are mostly zeros), so the matrix is shifted by μ = ‖J‖₁ + 1 first and
+/// the eigenvalues shifted back; the absolute error stays O(ε‖J‖).
 pub fn eigen(m: DMatrix<Complex64>) -> Result<Vec<Complex64>> {
-    if m.nrows() == 1 {
+    let n = m.nrows();
+    if n == 1 {
         return Ok(vec![m[(0, 0)]]);
     }
-    let schur = nalgebra::linalg::Schur::try_new(m, 1e-15, 10_000).ok_or(Error::NonFinite("Schur decomposition"))?;
-    let ev = schur.eigenvalues().ok_or(Error::NonFinite("Schur eigenvalues"))?;
-    Ok(ev.iter().copied().collect())
+    let mu = (0..n)
+        .map(|j| m.column(j).iter().map(|z| z.norm()).sum::<f64>())
+        .fold(0.0, f64::max)
+        + 1.0;
+    let shifted = m + DMatrix::<Complex64>::identity(n, n) * Complex64::new(mu, 0.0);
+    let schur = nalgebra::linalg::Schur::try_new(shifted, 4.0 * f64::EPSILON, 100 * n * n)
+        .ok_or(Error::NonFinite("Schur decomposition (no convergence)"))?;
+    let ev = schur
+        .eigenvalues()
+        .ok_or(Error::NonFinite("Schur eigenvalues"))?;
+    Ok(ev.iter().map(|&z| z - mu).collect())
 }
 
 /// Convenience: does this form use a consistent mass?

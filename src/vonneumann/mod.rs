@@ -4,5 +4,6 @@
 pub mod amplification;
 pub mod classify;
 pub mod closed_form;
+pub mod derived;
 pub mod linearise;
 pub mod transform;

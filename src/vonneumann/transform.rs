@@ -1,0 +1,246 @@
+//! Continuous Fourier transform of a 1D kernel, \[V21\] Appendix A; SPEC §5.4.
+//!
+//! Convention: W*(k) = ∫ e^{−ikx} W(x) dx, which for an even kernel is the real cosine
+//! transform 2∫₀^ζ W(x) cos(kx) dx. The kernel is passed as a closure `W(x)` with x in units of
+//! the kernel's h (so k is in units of 1/h) and compact support |x| ≤ ζ; W*(0) = ∫W, 1 for a
+//! normalised kernel. \[V21\] requires |W*(k)|² > 0 for k ≠ 0 (eq. A.72, nonlocal continuum
+//! stability) and W*(0) > 0 (Requirement I); since W*(0) > 0 and W* is continuous, both amount to
+//! W*(k) > 0 for all k.
+//!
+//! Three evaluations, each checking the others:
+//! - [`kernel_ft_fft`]: rustfft on a zero-padded uniform grid (fast, many k at once);
+//! - [`kernel_ft_at`]: composite Gauss–Legendre quadrature (slow, obviously correct reference);
+//! - analytic transforms: [`m4_ft`], [`gaussian_ft`], [`lucy_ft`] (= EFG quartic),
+//!   [`efg_cubic_ft`].
+
+use rustfft::FftPlanner;
+use rustfft::num_complex::Complex;
+
+/// Zero-padding factor of [`kernel_ft_fft`]: the periodic FFT window is `FFT_PADDING` times the
+/// support diameter 2ζ, so dk = π/(FFT_PADDING · ζ).
+pub const FFT_PADDING: usize = 8;
+
+/// Smallest number of sampling intervals across [−ζ, ζ] accepted by [`kernel_ft_fft`].
+pub const FFT_MIN_INTERVALS: usize = 8;
+
+/// Relative tolerance of the positivity tests: a sample counts as non-positive when
+/// W*(k) ≤ `FT_ZERO_TOL` · W*(0). It sits well above the round-off and aliasing floor of
+/// [`kernel_ft_fft`] at the default resolutions (≲ 1e-12 for n ≥ 256, see there) and well below
+/// any physically meaningful value.
+pub const FT_ZERO_TOL: f64 = 1.0e-9;
+
+/// erfc(3) = ∫_{|x|>3} e^{−x²}/√π dx: the mass of the unit Gaussian (1/√π)e^{−x²} beyond the
+/// truncation radius ζ = 3. Bound on |W*_trunc(k) − e^{−k²/4}| for the truncated, not
+/// renormalised kernel; 2·erfc(3)/(1 − erfc(3)) ≈ 4.42e-5 bounds it for the renormalised one.
+pub const GAUSSIAN_TRUNCATION_ERROR_ZETA3: f64 = 2.209_049_699_858_544e-5;
+
+/// W*(k) of an even kernel by FFT. Returns `(k, W*(k))` for k = 0, dk, …, k_Nyquist.
+///
+/// Sampling: `n` intervals across the support diameter (rounded up to an even number ≥
+/// [`FFT_MIN_INTERVALS`]), dx = 2ζ/n, samples x_m = m·dx with |m| ≤ n/2, so that x = ±ζ are grid
+/// points and carry the trapezoid weight ½ (this matters only for kernels truncated with a jump,
+/// like the Gaussian). The samples are zero-padded to N = [`FFT_PADDING`]·n points (window
+/// 16ζ), placed in wrap-around order (x ≥ 0 first, x < 0 at the end) so that the transform of an
+/// even kernel is real; the real part of dx·FFT is returned. k_j = j·dk, dk = 2π/(N dx) =
+/// π/(8ζ), j = 0 … N/2, so k_Nyquist = π/dx = nπ/(2ζ).
+///
+/// Accuracy: by Poisson summation the value returned at k_j is exactly
+/// Σ_p W*(k_j + 2πp/dx) (the trapezoid rule on a compactly supported function; padding adds no
+/// error), so the error is the aliasing Σ_{p≠0} W*(k_j + 2πp/dx). For a kernel whose r-th
+/// derivative jumps, W*(k) = O(k^{−r−1}) and the error is O(dx^{r+1}) — e.g. m4 (r = 3):
+/// ≤ 2.2·16·(dx/(2π − k dx))⁴, ≈ 2e-9 at n = 256, ζ = 2, k ≤ 20 — and grows towards k_Nyquist,
+/// where it is as large as W* itself. For a jump in W at ±ζ (truncated Gaussian) the half
+/// weights make the rule second order: the Euler–Maclaurin error is (dx²/12)|g'(ζ) − g'(−ζ)| ≤
+/// (dx²/6)(|W'(ζ)| + |k| W(ζ)), g = W cos kx (≈ 7e-9 at ζ = 3, dx = 0.01, k = 0). Only k well
+/// below k_Nyquist should be trusted.
+///
+/// Invalid input (ζ not finite and positive) gives two empty vectors.
+pub fn kernel_ft_fft(f: &dyn Fn(f64) -> f64, zeta: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+    if !(zeta.is_finite() && zeta > 0.0) {
+        return (Vec::new(), Vec::new());
+    }
+    let n = n.max(FFT_MIN_INTERVALS);
+    let n = n + n % 2;
+    let half = n / 2;
+    let big_n = FFT_PADDING * n;
+    let dx = 2.0 * zeta / n as f64;
+    let mut buf = vec![Complex::new(0.0, 0.0); big_n];
+    for m in 0..=half {
+        let x = m as f64 * dx;
+        let w = if m == half { 0.5 } else { 1.0 };
+        buf[m] = Complex::new(w * f(x), 0.0);
+        if m > 0 {
+            buf[big_n - m] = Complex::new(w * f(-x), 0.0);
+        }
+    }
+    let mut planner = FftPlanner::<f64>::new();
+    let fft = planner.plan_fft_forward(big_n);
+    fft.process(&mut buf);
+    let dk = 2.0 * std::f64::consts::PI / (big_n as f64 * dx);
+    let len = big_n / 2 + 1;
+    let k = (0..len).map(|j| j as f64 * dk).collect();
+    let w = buf[..len].iter().map(|c| c.re * dx).collect();
+    (k, w)
+}
+
+/// Gauss–Legendre nodes on [−1, 1], 8 points (positive half; the rule is symmetric).
+const GL8_X: [f64; 4] = [
+    0.183_434_642_495_649_8,
+    0.525_532_409_916_329,
+    0.796_666_477_413_626_7,
+    0.960_289_856_497_536_3,
+];
+/// Gauss–Legendre weights matching [`GL8_X`].
+const GL8_W: [f64; 4] = [
+    0.362_683_783_378_362,
+    0.313_706_645_877_887_3,
+    0.222_381_034_453_374_5,
+    0.101_228_536_290_376_3,
+];
+
+/// Base panel width of [`kernel_ft_at`]: every multiple of 1/64 (hence every integer and
+/// half-integer breakpoint of the piecewise-polynomial kernels) is a panel edge.
+const QUAD_PANEL: f64 = 1.0 / 64.0;
+
+/// Largest panel count of [`kernel_ft_at`] (bounds the cost for huge ζ or k).
+const QUAD_MAX_PANELS: usize = 1 << 22;
+
+/// W*(k) = 2∫₀^ζ W(x) cos(kx) dx by composite 8-point Gauss–Legendre quadrature.
+///
+/// Panels have width 2^{−s}/64 with s ≥ 0 the smallest making k·width ≤ 1, the last one cut at
+/// ζ; all multiples of 1/64 are panel edges, so kernels that are polynomial between
+/// (half-)integer breakpoints are integrated piecewise-smoothly. The 8-point rule is exact for
+/// polynomials of degree 15; with k·width ≤ 1 the cosine factor contributes an error of order
+/// (k·width)^16/16! per unit length, below round-off. This is the slow reference for
+/// [`kernel_ft_fft`] and the analytic transforms. Returns NaN for a non-finite ζ or k.
+pub fn kernel_ft_at(f: &dyn Fn(f64) -> f64, zeta: f64, k: f64) -> f64 {
+    if !(zeta.is_finite() && k.is_finite()) {
+        return f64::NAN;
+    }
+    if zeta <= 0.0 {
+        return 0.0;
+    }
+    let mut width = QUAD_PANEL;
+    while k.abs() * width > 1.0 && zeta / width < QUAD_MAX_PANELS as f64 / 2.0 {
+        width *= 0.5;
+    }
+    let panels = (zeta / width).ceil() as usize;
+    let mut sum = 0.0;
+    for p in 0..panels {
+        let a = p as f64 * width;
+        let b = (a + width).min(zeta);
+        if b <= a {
+            continue;
+        }
+        let mid = 0.5 * (a + b);
+        let hw = 0.5 * (b - a);
+        let mut s = 0.0;
+        for (xi, wi) in GL8_X.iter().zip(GL8_W.iter()) {
+            for x in [mid - hw * xi, mid + hw * xi] {
+                s += wi * f(x) * (k * x).cos();
+            }
+        }
+        sum += s * hw;
+    }
+    2.0 * sum
+}
+
+/// sin(y)/y, with its Taylor series near 0.
+fn sinc(y: f64) -> f64 {
+    if y.abs() < 0.1 {
+        let y2 = y * y;
+        // 1 − y²/6 + y⁴/120 − y⁶/5040 + y⁸/362880; next term < 3e-18 for |y| < 0.1.
+        1.0 - y2 / 6.0 * (1.0 - y2 / 20.0 * (1.0 - y2 / 42.0 * (1.0 - y2 / 72.0)))
+    } else {
+        y.sin() / y
+    }
+}
+
+/// Cubic B-spline m4, W(x) = (2/3) f(|x|), f = 1 − 1.5q² + 0.75q³ (q < 1), 0.25(2 − q)³
+/// (1 ≤ q < 2): W*(k) = (sin(k/2)/(k/2))⁴.
+///
+/// Derivation: W is the cubic B-spline M₄ = B₀∗B₀∗B₀∗B₀ of the unit box B₀ = 1 on [−½, ½]
+/// (M₄(0) = 2/3, M₄(1) = 1/6 = (2/3)·0.25), and B₀* = sin(k/2)/(k/2). W* ≥ 0 with zeros at
+/// k = 2πn, n ≠ 0 (so |W*|² is not strictly positive there).
+pub fn m4_ft(k: f64) -> f64 {
+    let s = sinc(0.5 * k);
+    let s2 = s * s;
+    s2 * s2
+}
+
+/// EFG cubic spline weight of \[B00\] (ζ = 1) normalised to unit integral,
+/// W(x) = (4/3) f_m4(2|x|) = 2(2/3 − 4x² + 4|x|³) (|x| ≤ ½), (8/3)(1 − |x|)³ (½ < |x| ≤ 1):
+/// the m4 shape compressed by 2, so W*(k) = (sin(k/4)/(k/4))⁴.
+pub fn efg_cubic_ft(k: f64) -> f64 {
+    m4_ft(0.5 * k)
+}
+
+/// Untruncated Gaussian W(x) = (1/√π) e^{−x²}: W*(k) = e^{−k²/4}.
+///
+/// The SPEC kernel is truncated at ζ = 3 (and renormalised): its transform differs from this by
+/// at most [`GAUSSIAN_TRUNCATION_ERROR_ZETA3`] (truncated) or 2·erfc(3)/(1 − erfc(3)) ≈ 4.4e-5
+/// (renormalised). The truncation adds an oscillating tail ≈ 2W(3) sin(3k)/k that dominates
+/// e^{−k²/4} for k ≳ 6, so the truncated kernel's W* changes sign although e^{−k²/4} does not.
+pub fn gaussian_ft(k: f64) -> f64 {
+    (-0.25 * k * k).exp()
+}
+
+/// Lucy kernel W(x) = (5/4)(1 + 3|x|)(1 − |x|)³ (ζ = 1), identical to the \[B00\] EFG quartic
+/// spline 1 − 6q² + 8q³ − 3q⁴ normalised to unit integral:
+///
+/// ```text
+/// W*(k) = (60/k⁴) (2 + cos k − 3 sin k / k)
+/// ```
+///
+/// Derivation: with p(x) = 1 − 6x² + 8x³ − 3x⁴ (p(1) = p'(1) = p''(1) = 0, p'''(1) = −24,
+/// p(0) = 1, p''(0) = −12, p'''(0) = 48, p'''' = −72), repeated integration by parts gives
+/// ∫₀¹ p cos kx dx = (48 + 24 cos k − 72 sin k/k)/k⁴, times 2·(5/4). Small k (|k| < 2, where the
+/// bracket cancels as k⁴/60): the moment series Σₙ (−1)ⁿ k²ⁿ M₂ₙ/(2n)!,
+/// M₂ₙ = ∫ x²ⁿ W = (5/2)[1/(2n+1) − 6/(2n+3) + 8/(2n+4) − 3/(2n+5)] (W* = 1 − k²/21 + …).
+/// Positive for all k (2 + cos k − 3 sin k/k > 0).
+pub fn lucy_ft(k: f64) -> f64 {
+    let k = k.abs();
+    if k < 2.0 {
+        // Terms decay like 2^{2n}/(2n)!: n ≤ 14 leaves < 1e-19.
+        let k2 = k * k;
+        let mut term = 1.0; // k^{2n}/(2n)! with sign
+        let mut sum = 0.0;
+        for n in 0..=14u32 {
+            let nn = f64::from(2 * n);
+            let moment =
+                2.5 * (1.0 / (nn + 1.0) - 6.0 / (nn + 3.0) + 8.0 / (nn + 4.0) - 3.0 / (nn + 5.0));
+            sum += term * moment;
+            term *= -k2 / ((nn + 1.0) * (nn + 2.0));
+        }
+        sum
+    } else {
+        let k4 = k * k * k * k;
+        60.0 / k4 * (2.0 + k.cos() - 3.0 * k.sin() / k)
+    }
+}
+
+/// Index of the first sample with W*(k) ≤ [`FT_ZERO_TOL`]·W*(0) (index 0 if W*(0) ≤ 0).
+fn first_nonpositive_index(w_star: &[f64]) -> Option<usize> {
+    let w0 = *w_star.first()?;
+    if w0.is_nan() || w0 <= 0.0 {
+        return Some(0);
+    }
+    let floor = FT_ZERO_TOL * w0;
+    w_star.iter().position(|&w| w.is_nan() || w <= floor)
+}
+
+/// \[V21\] A.72 / Requirement I on sampled data: true when every sample, starting with W*(0),
+/// exceeds [`FT_ZERO_TOL`]·W*(0) (so |W*|² > 0 and W* > 0 on the grid). Pass only the resolved
+/// part of a transform: a kernel whose transform decays below the tolerance (Gaussian beyond
+/// k ≈ 9.1) cannot be shown positive there from samples, and is reported non-positive. An empty
+/// slice is not positive.
+pub fn autocorrelation_positive(w_star: &[f64]) -> bool {
+    !w_star.is_empty() && first_nonpositive_index(w_star).is_none()
+}
+
+/// The first k at which W*(k) ≤ [`FT_ZERO_TOL`]·W*(0), if any (`k` and `w_star` as returned by
+/// [`kernel_ft_fft`]; the shorter length is used). Same caveat as [`autocorrelation_positive`].
+pub fn first_nonpositive_k(k: &[f64], w_star: &[f64]) -> Option<f64> {
+    let len = k.len().min(w_star.len());
+    first_nonpositive_index(&w_star[..len]).map(|i| k[i])
+}

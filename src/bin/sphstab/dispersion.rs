@@ -24,14 +24,26 @@ pub fn run(a: Args) -> Result<()> {
     let r = sphstab::analysis::dispersion(&q)?;
     if let Some(path) = &a.plot {
         let svg = sphstab::plot::dispersion_svg(&r)?;
-        std::fs::write(path, svg).with_context(|| format!("--plot: cannot write {}", path.display()))?;
+        std::fs::write(path, svg)
+            .with_context(|| format!("--plot: cannot write {}", path.display()))?;
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
-    println!("# form {} kernel {} shape {} h/Δx {} R/Δx {} σ̄ {}", r.header.form, r.header.kernel, r.header.shape, r.header.h_over_dx, r.header.support_over_dx, r.header.stress);
-    println!("{:>12} {:>16} {:>16} {:>14}", "κΔx/π", "ω²Δx²/c²", "continuum", "growth c/Δx");
+    println!(
+        "# form {} kernel {} shape {} h/Δx {} R/Δx {} σ̄ {}",
+        r.header.form,
+        r.header.kernel,
+        r.header.shape,
+        r.header.h_over_dx,
+        r.header.support_over_dx,
+        r.header.stress
+    );
+    println!(
+        "{:>12} {:>16} {:>16} {:>14}",
+        "κΔx/π", "ω²Δx²/c²", "continuum", "growth c/Δx"
+    );
     for i in 0..r.kappa_dx.len() {
         println!(
             "{:>12.6} {:>16.9e} {:>16.9e} {:>14.6e}",

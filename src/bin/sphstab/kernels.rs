@@ -50,7 +50,16 @@ pub fn run(a: Args) -> Result<()> {
     for r in rows {
         println!(
             "{:<12} {:>5} {:>12.8} {:>12.8} {:>12.8} {:>9.6} {:>9.6} {:>5}–{:<6}  {}",
-            r.name, r.zeta, r.sigma_1, r.sigma_2, r.sigma_3, r.inflection_1d, r.inflection_2d, r.customary_h.0, r.customary_h.1, r.reference
+            r.name,
+            r.zeta,
+            r.sigma_1,
+            r.sigma_2,
+            r.sigma_3,
+            r.inflection_1d,
+            r.inflection_2d,
+            r.customary_h.0,
+            r.customary_h.1,
+            r.reference
         );
     }
     Ok(())

@@ -40,9 +40,15 @@ pub fn run(a: Args) -> Result<()> {
     if r.instabilities.is_empty() {
         println!("no unstable or marginal branch");
     } else {
-        println!("{:<16} {:>12} {:>12} {:>14}", "kind", "κΔx/π min", "κΔx/π max", "growth (c/Δx)");
+        println!(
+            "{:<16} {:>12} {:>12} {:>14}",
+            "kind", "κΔx/π min", "κΔx/π max", "growth (c/Δx)"
+        );
         for i in &r.instabilities {
-            let kind = serde_json::to_value(i.kind)?.as_str().unwrap_or("?").to_string();
+            let kind = serde_json::to_value(i.kind)?
+                .as_str()
+                .unwrap_or("?")
+                .to_string();
             println!(
                 "{:<16} {:>12.4} {:>12.4} {:>14.6}",
                 kind,
@@ -53,7 +59,9 @@ pub fn run(a: Args) -> Result<()> {
         }
     }
     match (r.critical_dt, r.critical_cfl) {
-        (Some(dt), Some(cfl)) => println!("critical leapfrog Δt = {dt:.6} Δx/c  (CFL c Δt/h = {cfl:.6})"),
+        (Some(dt), Some(cfl)) => {
+            println!("critical leapfrog Δt = {dt:.6} Δx/c  (CFL c Δt/h = {cfl:.6})")
+        }
         _ => println!("critical Δt: not computed (the semi-discrete system grows)"),
     }
     if let (Some(dt), Some(a)) = (r.dt, r.max_amplification) {

@@ -23,16 +23,28 @@ pub fn run(a: Args) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
-    println!("form {} kernel {} shape {} h = {}Δx R = {}Δx σ̄ = {}", r.header.form, r.header.kernel, r.header.shape, r.header.h_over_dx, r.header.support_over_dx, r.header.stress);
+    println!(
+        "form {} kernel {} shape {} h = {}Δx R = {}Δx σ̄ = {}",
+        r.header.form,
+        r.header.kernel,
+        r.header.shape,
+        r.header.h_over_dx,
+        r.header.support_over_dx,
+        r.header.stress
+    );
     println!("ω_max = {:.9} c/Δx", r.omega_max);
     match r.critical_dt {
         Some(dt) => println!(
             "critical leapfrog Δt = {:.9} Δx/c (amplification matrices); 2/ω_max = {}; CFL c Δt/h = {:.9}",
             dt,
-            r.critical_dt_from_omega_max.map(|v| format!("{v:.9}")).unwrap_or_else(|| "n/a".into()),
+            r.critical_dt_from_omega_max
+                .map(|v| format!("{v:.9}"))
+                .unwrap_or_else(|| "n/a".into()),
             r.critical_cfl.unwrap_or(f64::NAN)
         ),
-        None => println!("no critical Δt: the semi-discrete system already grows (see `sphstab query`)"),
+        None => {
+            println!("no critical Δt: the semi-discrete system already grows (see `sphstab query`)")
+        }
     }
     Ok(())
 }
