@@ -10,6 +10,8 @@ use sphstab::vonneumann::derived::{self, LatticeSums};
 use std::f64::consts::PI;
 
 const MLS: ShapeFamily = ShapeFamily::Mls;
+
+type ClosedForm = Box<dyn Fn(LatticeSums) -> f64>;
 const SPH: ShapeFamily = ShapeFamily::Sph;
 
 /// [B00] Table II: uniformly spaced particles, EFG (mls) with the quartic weight, D_mx = 1.5,
@@ -85,7 +87,7 @@ fn derived_closed_forms_agree_with_engine() {
             for sig in [-0.5, 0.0, 0.2, 0.9] {
                 let phi = shape_fn(SPH, kern, h);
                 let support = k(kern).zeta() * h;
-                let cases: [(FormKind, ShapeFamily, Box<dyn Fn(LatticeSums) -> f64>); 5] = [
+                let cases: [(FormKind, ShapeFamily, ClosedForm); 5] = [
                     (
                         FormKind::Classical,
                         SPH,

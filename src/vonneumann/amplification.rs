@@ -99,10 +99,27 @@ pub fn max_spectral_radius(lin: &Linearisation, kappas: &[f64], dt: f64) -> Resu
     Ok(best)
 }
 
-/// Critical time step (Δx/c): the largest Δt with max_κ |λ| ≤ 1 + tol, found by bisection
-/// between 0 and an upper bound. For a non-dissipative system it equals 2/ω_max
-/// ([B00] eq 120 with ξ = 0).
+/// Critical time step (Δx/c). Non-dissipative systems: the leapfrog limit 2/ω_max
+/// ([B00] eq 120 with ξ = 0; tests check it against the amplification matrices). Dissipative
+/// systems: the largest Δt with max_κ |λ| ≤ 1 + tol, by bisection.
 pub fn critical_dt(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
+    if !lin.is_dissipative() {
+        let wmax = kappas
+            .iter()
+            .map(|&k| lin.omega2(k).0)
+            .fold(0.0, f64::max)
+            .sqrt();
+        return Ok(if wmax > 0.0 {
+            2.0 / wmax
+        } else {
+            f64::INFINITY
+        });
+    }
+    critical_dt_bisection(lin, kappas)
+}
+
+/// Critical time step by bisection on the spectral radius of the amplification matrices.
+pub fn critical_dt_bisection(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
     let stable = |dt: f64| -> Result<bool> {
         Ok(max_spectral_radius(lin, kappas, dt)?.0 <= 1.0 + AMPLIFICATION_TOL)
     };

@@ -20,20 +20,17 @@ pub struct LatticeSums {
 }
 
 impl LatticeSums {
-    /// Computes S1, S2, M1 at κ for the lattice shape `phi` (`[φ, φ', φ'']` at x) with support
-    /// radius `support` (units of Δx).
+    /// Computes S1, S2 (via [`super::closed_form::lattice_sums`]) and M1 at κ for the lattice
+    /// shape `phi` (`[φ, φ', φ'']` at x) with support radius `support` (units of Δx).
     pub fn new(phi: &dyn Fn(f64) -> [f64; 3], support: f64, kappa: f64) -> Self {
+        let b = super::closed_form::lattice_sums(phi, support, kappa);
         let r = support.ceil() as i64 + 1;
-        let (mut s1, mut s2, mut m1) = (0.0, 0.0, 0.0);
-        for j in -r..=r {
-            let [_, d1, d2] = phi(j as f64);
-            let t = kappa * j as f64;
-            let h = (0.5 * t).sin();
-            s1 += d1 * t.sin();
-            s2 += d2 * 2.0 * h * h;
-            m1 -= d1 * j as f64;
+        let m1 = -(-r..=r).map(|j| j as f64 * phi(j as f64)[1]).sum::<f64>();
+        Self {
+            s1: b.s1_master,
+            s2: b.s2_master,
+            m1,
         }
-        Self { s1, s2, m1 }
     }
 }
 
