@@ -18,7 +18,7 @@ mod stress_points;
 mod total_lagrangian;
 
 pub use model::{
-    ArtificialViscosity, Field, FieldKind, MassOperator, Model1D, ModelParams, State1D,
+    ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,
 };
 
 use crate::error::{Error, Result};

@@ -335,3 +335,84 @@ impl Model1D {
         z
     }
 }
+
+/// The model as a [`crate::integrator::SecondOrderSystem`] over flat `f64` arrays: `x`, `v`
+/// the masters, `q` the auxiliary fields of the form concatenated in [`FormKind::fields`]
+/// order. Lumped-mass forms only (the consistent-mass solve belongs to the solver).
+pub struct FlatSystem<'a> {
+    model: &'a Model1D,
+    template: State1D<f64>,
+}
+
+impl<'a> FlatSystem<'a> {
+    /// Wraps `model`; `template` fixes the field lengths (e.g. [`Model1D::rest_state`]).
+    pub fn new(model: &'a Model1D, template: State1D<f64>) -> Result<Self> {
+        if !matches!(model.mass_op, MassOperator::Lumped) {
+            return Err(crate::error::Error::Incompatible(
+                "FlatSystem needs a lumped mass (least-squares uses a consistent mass)".into(),
+            ));
+        }
+        Ok(Self { model, template })
+    }
+
+    fn aux(&self) -> impl Iterator<Item = Field> + '_ {
+        self.model
+            .p
+            .form
+            .fields()
+            .iter()
+            .copied()
+            .filter(|f| f.kind() == FieldKind::Auxiliary)
+    }
+
+    /// Splits a state into (x, v, q).
+    pub fn flatten(&self, z: &State1D<f64>) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let q = self.aux().flat_map(|f| z.field(f).clone()).collect();
+        (z.x.clone(), z.v.clone(), q)
+    }
+
+    /// Rebuilds a state from (x, v, q).
+    pub fn unflatten(&self, x: &[f64], v: &[f64], q: &[f64]) -> State1D<f64> {
+        let mut z = self.template.clone();
+        z.x.copy_from_slice(x);
+        z.v.copy_from_slice(v);
+        let mut at = 0;
+        for f in self.aux().collect::<Vec<_>>() {
+            let dst = z.field_mut(f);
+            let n = dst.len();
+            dst.copy_from_slice(&q[at..at + n]);
+            at += n;
+        }
+        z
+    }
+
+    fn eval(&self, x: &[f64], v: &[f64], q: &[f64]) -> State1D<f64> {
+        let z = self.unflatten(x, v, q);
+        let mut out = State1D::default();
+        // The rate function only fails on singular moment matrices, which a lumped-mass
+        // system at a valid state does not have; a failure here is reported as NaN so the
+        // caller's divergence check (never NaN in output) stops the run.
+        if self.model.rate(&z, &mut out).is_err() {
+            out.resize_like(&z);
+            for a in out.v.iter_mut() {
+                *a = f64::NAN;
+            }
+        }
+        out
+    }
+}
+
+impl crate::integrator::SecondOrderSystem<f64> for FlatSystem<'_> {
+    fn accel(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64]) {
+        a.copy_from_slice(&self.eval(x, v, q).v);
+    }
+    fn qrate(&self, x: &[f64], v: &[f64], q: &[f64], r: &mut [f64]) {
+        let out = self.eval(x, v, q);
+        let mut at = 0;
+        for f in self.aux() {
+            let src = out.field(f);
+            r[at..at + src.len()].copy_from_slice(src);
+            at += src.len();
+        }
+    }
+}
