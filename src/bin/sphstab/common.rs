@@ -17,10 +17,10 @@ pub struct Config {
     #[arg(long, default_value = "m4")]
     pub kernel: String,
     /// Smoothing length h/Δx in the kernel's own convention (default 1.2 unless --support is given).
-    #[arg(long, conflicts_with = "support")]
+    #[arg(long, conflicts_with = "support", allow_hyphen_values = true)]
     pub h: Option<f64>,
     /// Support radius R/Δx = ζ h/Δx (Belytschko's dilation D_mx); alternative to --h.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub support: Option<f64>,
     /// Shape family: sph, shepard, mls, corrected. Default: sph for classical/nonlocal/lnl/cll,
     /// corrected for local, mls (EFG, as in Belytschko et al. 2000) for total-lagrangian, the
