@@ -97,6 +97,18 @@ impl Query1D {
             false,
             false,
         )?;
+        if self.support_over_dx() <= 1.0 {
+            return Err(Error::OutOfRange {
+                name: "--h",
+                value: self.h_over_dx,
+                range: format!(
+                    "the support ζh must exceed Δx so that particles have neighbours: h/Δx > {} for {} (ζ = {})",
+                    1.0 / self.kernel.zeta(),
+                    self.kernel.name(),
+                    self.kernel.zeta()
+                ),
+            });
+        }
         self.form.check_shape(self.shape)
     }
 
