@@ -40,6 +40,14 @@ pub enum Error {
         /// Determinant found.
         det: f64,
     },
+    /// A malformed configuration file (unknown field, bad value), with where it happened.
+    #[error("{file}: {msg}")]
+    Config {
+        /// File name.
+        file: String,
+        /// What is wrong (names the field).
+        msg: String,
+    },
     /// A numerical result that is not finite.
     #[error("non-finite result in {0}")]
     NonFinite(&'static str),

@@ -1,5 +1,6 @@
 pub mod analysis;
 pub mod error;
+pub mod figures;
 pub mod forms;
 pub mod integrator;
 pub mod kernel;

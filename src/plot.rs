@@ -4,82 +4,167 @@ use crate::analysis::DispersionReport;
 use crate::error::{Error, Result};
 use plotters::prelude::*;
 
-/// ω²Δx²/c² against κΔx/π with the continuum curve overlaid.
-pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
+/// One curve of a line plot.
+#[derive(Clone, Debug)]
+pub struct Curve {
+    /// Legend label.
+    pub label: String,
+    /// Abscissae.
+    pub x: Vec<f64>,
+    /// Ordinates.
+    pub y: Vec<f64>,
+    /// Dashed (e.g. a reference curve) rather than solid.
+    pub dashed: bool,
+}
+
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(213, 94, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+    RGBColor(240, 228, 66),
+];
+
+fn plot_err<E: std::fmt::Debug>(_: E) -> Error {
+    Error::NonFinite("plot")
+}
+
+/// A line plot of several curves with a zero line, axis descriptions and a legend.
+/// `y_range` clips the vertical axis (None: fit all data).
+pub fn lines_svg(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    curves: &[Curve],
+    y_range: Option<(f64, f64)>,
+) -> Result<String> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (800, 560)).into_drawing_area();
-        root.fill(&WHITE).map_err(|_| Error::NonFinite("plot"))?;
-        let xs: Vec<f64> = r
-            .kappa_dx
-            .iter()
-            .map(|k| k / std::f64::consts::PI)
-            .collect();
-        let all = r.omega2.iter().chain(&r.omega2_continuum);
-        let (mut lo, mut hi) = all.fold((0.0f64, 0.0f64), |(a, b), &y| (a.min(y), b.max(y)));
-        // Keep the discrete curve readable: clip the continuum at 1.3× the discrete maximum.
-        let dmax = r.omega2.iter().fold(0.0f64, |m, &y| m.max(y));
-        if dmax > 0.0 {
-            hi = hi.min(1.3 * dmax.max(lo.abs()));
-        }
+        let root = SVGBackend::with_string(&mut svg, (820, 580)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_err)?;
+        let xs = curves.iter().flat_map(|c| c.x.iter().copied());
+        let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+        let (mut lo, mut hi) = y_range.unwrap_or_else(|| {
+            curves
+                .iter()
+                .flat_map(|c| c.y.iter().copied())
+                .filter(|y| y.is_finite())
+                .fold((0.0f64, 0.0f64), |(a, b), y| (a.min(y), b.max(y)))
+        });
         if hi - lo < 1e-12 {
             hi = lo + 1.0;
         }
         let pad = 0.05 * (hi - lo);
         lo -= pad;
         hi += pad;
-        let title = format!(
-            "{} / {} / {}  h = {:.3}Δx (R = {:.3}Δx), σ̄ = {}",
-            r.header.form,
-            r.header.kernel,
-            r.header.shape,
-            r.header.h_over_dx,
-            r.header.support_over_dx,
-            r.header.stress
-        );
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 20))
+            .caption(title, ("sans-serif", 19))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(70)
-            .build_cartesian_2d(0.0..1.0f64, lo..hi)
-            .map_err(|_| Error::NonFinite("plot"))?;
+            .build_cartesian_2d(x0..x1, lo..hi)
+            .map_err(plot_err)?;
         chart
             .configure_mesh()
-            .x_desc("κΔx / π  (wave number, units of π/Δx)")
-            .y_desc("ω² Δx² / c²")
+            .x_desc(x_desc)
+            .y_desc(y_desc)
             .draw()
-            .map_err(|_| Error::NonFinite("plot"))?;
+            .map_err(plot_err)?;
         chart
-            .draw_series(LineSeries::new([(0.0, 0.0), (1.0, 0.0)], BLACK.mix(0.4)))
-            .map_err(|_| Error::NonFinite("plot"))?;
-        chart
-            .draw_series(LineSeries::new(
-                xs.iter()
-                    .zip(&r.omega2_continuum)
-                    .filter(|(_, y)| **y <= hi)
-                    .map(|(&x, &y)| (x, y)),
-                BLUE.stroke_width(2),
-            ))
-            .map_err(|_| Error::NonFinite("plot"))?
-            .label("continuum (1 + σ̄)(κΔx)²  [B00 eq 32]")
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(2)));
-        chart
-            .draw_series(LineSeries::new(
-                xs.iter().zip(&r.omega2).map(|(&x, &y)| (x, y)),
-                RED.stroke_width(2),
-            ))
-            .map_err(|_| Error::NonFinite("plot"))?
-            .label(format!("{} (numeric engine)", r.header.form))
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));
+            .draw_series(LineSeries::new([(x0, 0.0), (x1, 0.0)], BLACK.mix(0.4)))
+            .map_err(plot_err)?;
+        for (i, c) in curves.iter().enumerate() {
+            let color = PALETTE[i % PALETTE.len()];
+            let pts: Vec<(f64, f64)> =
+                c.x.iter()
+                    .zip(&c.y)
+                    .filter(|(_, y)| y.is_finite() && **y >= lo && **y <= hi)
+                    .map(|(&x, &y)| (x, y))
+                    .collect();
+            let style = color.stroke_width(2);
+            if c.dashed {
+                chart
+                    .draw_series(DashedLineSeries::new(pts, 8, 5, style))
+                    .map_err(plot_err)?
+                    .label(c.label.clone())
+                    .legend(move |(x, y)| {
+                        PathElement::new([(x, y), (x + 20, y)], color.stroke_width(2))
+                    });
+            } else {
+                chart
+                    .draw_series(LineSeries::new(pts, style))
+                    .map_err(plot_err)?
+                    .label(c.label.clone())
+                    .legend(move |(x, y)| {
+                        PathElement::new([(x, y), (x + 20, y)], color.stroke_width(2))
+                    });
+            }
+        }
         chart
             .configure_series_labels()
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .position(SeriesLabelPosition::UpperLeft)
             .draw()
-            .map_err(|_| Error::NonFinite("plot"))?;
-        root.present().map_err(|_| Error::NonFinite("plot"))?;
+            .map_err(plot_err)?;
+        root.present().map_err(plot_err)?;
     }
     Ok(svg)
+}
+
+/// Axis descriptions of every dispersion plot.
+pub const KAPPA_DESC: &str = "κΔx / π  (wave number, units of π/Δx)";
+/// Ordinate description of every dispersion plot.
+pub const OMEGA2_DESC: &str = "ω² Δx² / c²";
+
+/// ω²Δx²/c² against κΔx/π with the continuum curve overlaid (clipped at 1.3× the discrete
+/// maximum so the discrete curve stays readable).
+pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
+    let xs: Vec<f64> = r
+        .kappa_dx
+        .iter()
+        .map(|k| k / std::f64::consts::PI)
+        .collect();
+    let dmax = r.omega2.iter().fold(0.0f64, |m, &y| m.max(y));
+    let dmin = r.omega2.iter().fold(0.0f64, |m, &y| m.min(y));
+    let title = format!(
+        "{} / {} / {}  h = {:.3}Δx (R = {:.3}Δx), σ̄ = {}",
+        r.header.form,
+        r.header.kernel,
+        r.header.shape,
+        r.header.h_over_dx,
+        r.header.support_over_dx,
+        r.header.stress
+    );
+    let curves = [
+        Curve {
+            label: "continuum (1 + σ̄)(κΔx)²  [B00 eq 32]".into(),
+            x: xs.clone(),
+            y: r.omega2_continuum.clone(),
+            dashed: true,
+        },
+        Curve {
+            label: format!("{} (numeric engine)", r.header.form),
+            x: xs,
+            y: r.omega2.clone(),
+            dashed: false,
+        },
+    ];
+    let hi = if dmax > 0.0 {
+        1.3 * dmax.max(dmin.abs())
+    } else {
+        1.0
+    };
+    lines_svg(
+        &title,
+        KAPPA_DESC,
+        OMEGA2_DESC,
+        &curves,
+        Some((dmin.min(0.0), hi)),
+    )
 }

@@ -121,7 +121,9 @@ fn critical_time_step_is_where_amplification_starts() {
 /// Runs the real rate function on a periodic chain of `n` particles seeded with one Fourier
 /// mode (velocity amplitude `amp` c, wave number 2πm/n) and returns the displacement history
 /// of that mode (projection on it) every step.
-fn run_mode(
+#[allow(clippy::too_many_arguments)]
+fn run_mode_k(
+    kern: &str,
     form: FormKind,
     shape: ShapeFamily,
     h: f64,
@@ -132,7 +134,7 @@ fn run_mode(
     dt: f64,
     steps: usize,
 ) -> Vec<f64> {
-    let p = params(form, "m4", shape, h, sig);
+    let p = params(form, kern, shape, h, sig);
     let x_ref: Vec<f64> = (0..n).map(|i| i as f64).collect();
     let model = Model1D::new(p, x_ref.clone(), vec![1.0; n], Some(n as f64)).unwrap();
     let rest = model.rest_state();
@@ -162,6 +164,21 @@ fn run_mode(
     hist
 }
 
+#[allow(clippy::too_many_arguments)]
+fn run_mode(
+    form: FormKind,
+    shape: ShapeFamily,
+    h: f64,
+    sig: f64,
+    n: usize,
+    m: usize,
+    amp: f64,
+    dt: f64,
+    steps: usize,
+) -> Vec<f64> {
+    run_mode_k("m4", form, shape, h, sig, n, m, amp, dt, steps)
+}
+
 /// Stable forms: the seeded mode oscillates at the engine's frequency — measured through the
 /// leapfrog's exact discrete relation cos(ω_d Δt) = 1 − ω²Δt²/2 — to 1%.
 #[test]
@@ -172,6 +189,7 @@ fn single_mode_frequency_matches_engine() {
         (FormKind::Lnl, ShapeFamily::Sph, 0.2),
         (FormKind::TotalLagrangian, ShapeFamily::Mls, 0.2),
         (FormKind::EulerianStressPoints, ShapeFamily::Mls, 0.0),
+        (FormKind::EulerianNodal, ShapeFamily::Mls, 0.5),
     ] {
         let (n, m, dt) = (32, 5, 0.05);
         let kap = 2.0 * PI * m as f64 / n as f64;
@@ -265,4 +283,64 @@ fn no_growth_in_stable_compressed_run_up_to_critical_step() {
             "Δt = {frac} Δt_crit: {first:e} → {last:e}"
         );
     }
+}
+
+/// ERRATA E3 end to end: B00's eq 74 says Eulerian nodal EFG (mls, quartic weight, D_mx = 1.5)
+/// is unstable in tension above κΔx ≈ 0.61π at σ̄ = 0.5; the full linearisation says it is
+/// not. A time-domain run of the real (nonlinear) rate function with the mode κΔx = 3π/4 seeded
+/// decides: it oscillates at the engine's frequency (1%) and does not grow.
+#[test]
+fn eulerian_nodal_mls_in_tension_oscillates_as_the_engine_says() {
+    let (n, m, dt, sig) = (32, 12, 0.02, 0.5);
+    let kap = 2.0 * PI * m as f64 / n as f64;
+    let phi = shape_fn(ShapeFamily::Mls, "efg-quartic", 1.5);
+    assert!(
+        sphstab::vonneumann::closed_form::b00_eq74_eulerian_nodal(&phi, 1.5, sig, kap) < 0.0,
+        "eq 74 predicts growth here"
+    );
+    let w2 = lin(
+        FormKind::EulerianNodal,
+        "efg-quartic",
+        ShapeFamily::Mls,
+        1.5,
+        sig,
+    )
+    .omega2(kap)
+    .0;
+    assert!(w2 > 0.0);
+    let wd = (1.0 - 0.5 * w2 * dt * dt).acos() / dt;
+    let period = 2.0 * PI / wd;
+    let steps = (6.0 * period / dt) as usize;
+    let hist = run_mode_k(
+        "efg-quartic",
+        FormKind::EulerianNodal,
+        ShapeFamily::Mls,
+        1.5,
+        sig,
+        n,
+        m,
+        1e-7,
+        dt,
+        steps,
+    );
+    let mut cross = Vec::new();
+    for i in 1..hist.len() {
+        if hist[i - 1] > 0.0 && hist[i] <= 0.0 || hist[i - 1] < 0.0 && hist[i] >= 0.0 {
+            cross.push((i - 1) as f64 + hist[i - 1] / (hist[i - 1] - hist[i]));
+        }
+    }
+    let measured = 2.0 * (cross[cross.len() - 1] - cross[0]) / (cross.len() - 1) as f64 * dt;
+    let max_late = hist[hist.len() / 2..]
+        .iter()
+        .fold(0.0f64, |a, &b| a.max(b.abs()));
+    let max_early = hist[..hist.len() / 2]
+        .iter()
+        .fold(0.0f64, |a, &b| a.max(b.abs()));
+    eprintln!(
+        "eulerian-nodal/mls σ̄=0.5 κ=0.75π: period measured {measured:.5}, engine {period:.5}; amplitude {max_early:.3e} → {max_late:.3e}"
+    );
+    assert!((measured / period - 1.0).abs() < 0.01);
+    // sampled peaks vary by O((πΔt/T)²) ≈ 1e-3 between halves; eq 74's growth rate would
+    // multiply the amplitude by e^{γ t} ≫ 2 over this run
+    assert!(max_late <= max_early * 1.01);
 }

@@ -2,6 +2,7 @@
 
 mod common;
 mod dispersion;
+mod figures;
 mod kernels;
 mod query;
 mod timestep;
@@ -29,6 +30,8 @@ enum Cmd {
     Timestep(timestep::Args),
     /// The kernel table.
     Kernels(kernels::Args),
+    /// Regenerate the figures in figures/ from the configs in analysis/configs/.
+    Figures(figures::Args),
 }
 
 fn main() {
@@ -58,6 +61,7 @@ fn main() {
         Cmd::Dispersion(a) => dispersion::run(a),
         Cmd::Timestep(a) => timestep::run(a),
         Cmd::Kernels(a) => kernels::run(a),
+        Cmd::Figures(a) => figures::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");

@@ -1,0 +1,36 @@
+//! `sphstab figures`: regenerate every figure from its config.
+
+use anyhow::{Context, Result};
+use std::path::PathBuf;
+
+/// Flags of `figures`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Directory of figure configs (*.json).
+    #[arg(long, default_value = "analysis/configs")]
+    configs: PathBuf,
+    /// Output directory for the SVG files.
+    #[arg(long, default_value = "figures")]
+    out: PathBuf,
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&a.configs)
+        .with_context(|| format!("--configs: cannot read {}", a.configs.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    files.sort();
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("--out: cannot create {}", a.out.display()))?;
+    for f in files {
+        let name = f.display().to_string();
+        let text = std::fs::read_to_string(&f).with_context(|| format!("cannot read {name}"))?;
+        let cfg = sphstab::figures::parse(&name, &text)?;
+        let svg = sphstab::figures::render(&cfg).with_context(|| name.clone())?;
+        let out = a.out.join(&cfg.output);
+        std::fs::write(&out, svg).with_context(|| format!("cannot write {}", out.display()))?;
+        println!("{name} -> {}", out.display());
+    }
+    Ok(())
+}
