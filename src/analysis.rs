@@ -6,7 +6,9 @@ use crate::error::{Error, Result, check_range};
 use crate::forms::{ArtificialViscosity, FormKind, ModelParams};
 use crate::kernel::Kernel;
 use crate::shape::{KernelParams, ShapeFamily};
-use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt, spectral_radius};
+use crate::vonneumann::amplification::{
+    AMPLIFICATION_TOL, critical_dt, critical_dt_bisection, spectral_radius,
+};
 use crate::vonneumann::classify::{GROWTH_TOL, Instability, Kind, ZERO_OMEGA2_TOL, branch, runs};
 use crate::vonneumann::linearise::{Lattice1D, Linearisation};
 use serde::Serialize;
@@ -231,7 +233,7 @@ pub struct DispersionReport {
     pub omega2: Vec<f64>,
     /// Growth rate (c/Δx) at each κ.
     pub growth_rate: Vec<f64>,
-    /// Continuum ω²Δx²/c² = (1 + σ̄)(κΔx)² [B00 eq 32].
+    /// Continuum ω²Δx²/c² = (1 + σ̄)(κΔx)² \[B00 eq 32\].
     pub omega2_continuum: Vec<f64>,
 }
 
@@ -243,7 +245,7 @@ pub struct TimestepReport {
     pub header: Header,
     /// Critical Δt (Δx/c) from the amplification matrices (null if the semi-discrete system grows).
     pub critical_dt: Option<f64>,
-    /// 2/ω_max, the leapfrog limit [B00 eq 120, ξ = 0] (non-dissipative systems).
+    /// 2/ω_max, the leapfrog limit \[B00 eq 120, ξ = 0\] (non-dissipative systems).
     pub critical_dt_from_omega_max: Option<f64>,
     /// c Δt_crit / h.
     pub critical_cfl: Option<f64>,
@@ -387,7 +389,7 @@ pub fn timestep(q: &Query1D) -> Result<TimestepReport> {
     let cdt = if grows {
         None
     } else {
-        Some(critical_dt(&lin, &kappas)?)
+        Some(critical_dt_bisection(&lin, &kappas)?)
     };
     let from_w = if lin.is_dissipative() || grows || wmax == 0.0 {
         None

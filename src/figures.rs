@@ -1,6 +1,6 @@
 //! Figures regenerated from JSON configs (`analysis/configs/*.json`): each config lists
 //! series — a form at a kernel, smoothing length, shape and stress, computed either by the
-//! numeric engine or by one of [B00]'s closed forms — and is rendered to one SVG.
+//! numeric engine or by one of \[B00\]'s closed forms — and is rendered to one SVG.
 //!
 //! ```json
 //! { "output": "b00_fig3_eq74.svg", "title": "...", "note": "...",
@@ -26,17 +26,17 @@ pub enum Route {
     /// The numeric von Neumann engine (the form's rate function, linearised).
     #[default]
     Engine,
-    /// [B00] eq 32, the continuum.
+    /// \[B00\] eq 32, the continuum.
     B00Eq32,
-    /// [B00] eq 74.
+    /// \[B00\] eq 74.
     B00Eq74,
-    /// [B00] eq 82.
+    /// \[B00\] eq 82.
     B00Eq82,
-    /// [B00] eq 93 at F = 1.
+    /// \[B00\] eq 93 at F = 1.
     B00Eq93,
-    /// [B00] eq 103.
+    /// \[B00\] eq 103.
     B00Eq103,
-    /// [B00] eq 108.
+    /// \[B00\] eq 108.
     B00Eq108,
 }
 

@@ -1,3 +1,48 @@
+//! # sphstab — stability of SPH forms, kernels, smoothing lengths and time steps
+//!
+//! For a chosen SPH form ([`forms::FormKind`]), kernel ([`kernel`]), shape-function family
+//! ([`shape::ShapeFamily`]), smoothing length, pre-stress and time step, sphstab computes the
+//! dispersion relation ω²(κ), the leapfrog amplification factors and the critical time step, and
+//! names every instability ([`vonneumann::classify::Kind`]).
+//!
+//! ## The architecture rule
+//! Each form is defined once, as the rate function of its semi-discrete particle system
+//! ([`forms::Model1D::rate`]). A solver integrates it with [`integrator::kdk_step`]; the numeric
+//! von Neumann engine ([`vonneumann::linearise::Linearisation`]) linearises *the same function*
+//! exactly (forward-mode [`scalar::Dual`] numbers) about the uniformly pre-stressed periodic
+//! lattice and projects it onto Fourier modes; the amplification matrix is the same leapfrog
+//! step applied to one mode ([`vonneumann::amplification`]). The papers' closed forms
+//! ([`vonneumann::closed_form`]) and this project's derived ones ([`vonneumann::derived`]) are
+//! independent checks; disagreements are listed in `analysis/ERRATA.md`.
+//!
+//! ## Conventions
+//! - Lengths in units of the particle spacing Δx; wave number κΔx ∈ (0, π].
+//! - Material speed c = sqrt(C/ρ0), C the tangent modulus (Truesdell rate, as in \[B00\]: in 1D
+//!   σ̇ = (C + σ) ∂v/∂x, continuum modulus C̄ = C + σ). Frequencies and growth rates in c/Δx,
+//!   time steps in Δx/c.
+//! - Stress σ̄ = σ/C, positive in tension; pressure p = −σ.
+//! - Perturbation ~ exp(iκX + st); semi-discrete ω² = −s²; growth rate γ = max Re s ≥ 0.
+//!   Fully discrete: amplification factor λ per step, amplifying when |λ| > 1 + 1e-9
+//!   ([`vonneumann::amplification::AMPLIFICATION_TOL`]). Every tolerance is a named constant.
+//! - Kernels: W(r, h) = σ_d h^−d f(r/h), support radius R = ζh; `h` is in the kernel's own
+//!   convention and R/Δx is Belytschko's dilation D_mx.
+//! - Results in normalised units do not depend on the physical Δx, ρ0 or C
+//!   ([`vonneumann::linearise::Lattice1D`]).
+//!
+//! ## Catalogue
+//! | module | contents |
+//! |---|---|
+//! | [`kernel`] | the eleven kernels of SPEC §2 |
+//! | [`shape`] | `sph`, `shepard`, `mls`, `corrected` |
+//! | [`forms`] | the rate functions |
+//! | [`integrator`] | kick–drift–kick leapfrog |
+//! | [`vonneumann`] | linearisation, amplification, classification, closed forms, kernel transforms |
+//! | [`analysis`] | `query`, `dispersion`, `timestep` |
+//! | [`plot`], [`figures`] | SVG output |
+//!
+//! References: \[B00] Belytschko, Guo, Liu, Xiao 2000; [V21\] Vignjevic, De Vuyst, Campbell 2021;
+//! \[B98] Belytschko, Krongauz, Dolbow, Gerlach 1998; [T\] thesis on total-Lagrangian SPH.
+
 pub mod analysis;
 pub mod error;
 pub mod figures;

@@ -8,10 +8,10 @@
 //!
 //! | family | definition | reference |
 //! |---|---|---|
-//! | `sph` | φ_J = V_J W(x − x_J) | [B98 eq 33], [B00 eq 41] |
-//! | `shepard` | ψ_J = V_J W_J / Σ_K V_K W_K | [B98 §4.2], [V21 eq 40] |
-//! | `mls` | linear-basis moving least squares, origin shifted to x, no volumes | [B00 eq 36–38], [B98 eq 46] |
-//! | `corrected` | Shepard functions with Krongauz–Belytschko / Randles–Libersky corrected derivatives G_J = ψ'_J / Σ_K ψ'_K d_K | [B98 §4.4.3], [V21 eq 43] |
+//! | `sph` | φ_J = V_J W(x − x_J) | \[B98 eq 33\], \[B00 eq 41\] |
+//! | `shepard` | ψ_J = V_J W_J / Σ_K V_K W_K | \[B98 §4.2\], \[V21 eq 40\] |
+//! | `mls` | linear-basis moving least squares, origin shifted to x, no volumes | \[B00 eq 36–38\], \[B98 eq 46\] |
+//! | `corrected` | Shepard functions with Krongauz–Belytschko / Randles–Libersky corrected derivatives G_J = ψ'_J / Σ_K ψ'_K d_K | \[B98 §4.4.3\], \[V21 eq 43\] |
 
 use crate::error::{Error, Result};
 use crate::kernel::{self, Kernel};

@@ -30,7 +30,7 @@ fn amplification_matrix_reproduces_the_leapfrog_relation() {
             let dt = 0.5;
             let ev = eigen(amplification_matrix(&l, kap, dt)).unwrap();
             // the mechanical pair: the two eigenvalues farthest from 1
-            let mut mech: Vec<_> = ev.iter().copied().collect();
+            let mut mech: Vec<_> = ev.to_vec();
             mech.sort_by(|a, b| (b - 1.0).norm().partial_cmp(&(a - 1.0).norm()).unwrap());
             let want_re = 1.0 - 0.5 * w2 * dt * dt;
             for lam in &mech[..2] {

@@ -62,7 +62,7 @@ pub(crate) fn volumes<S: Scalar>(m: &Model1D, z: &State1D<S>) -> Vec<S> {
         .collect()
 }
 
-/// Velocity gradient at master I from its stencil: Σ_J (v_J − v_I) ∂φ_J(x_I) [V21 eq 53].
+/// Velocity gradient at master I from its stencil: Σ_J (v_J − v_I) ∂φ_J(x_I) \[V21 eq 53\].
 #[inline]
 pub(crate) fn grad_v<S: Scalar>(z: &State1D<S>, i: usize, st: &[Nb<S>]) -> S {
     let mut g = S::zero();
@@ -72,7 +72,7 @@ pub(crate) fn grad_v<S: Scalar>(z: &State1D<S>, i: usize, st: &[Nb<S>]) -> S {
     g
 }
 
-/// Difference-form stress divergence (1/ρ_I) Σ_J (s_J − s_I) ∂φ_J(x_I) [V21 eq 54].
+/// Difference-form stress divergence (1/ρ_I) Σ_J (s_J − s_I) ∂φ_J(x_I) \[V21 eq 54\].
 #[inline]
 pub(crate) fn div_difference<S: Scalar>(s: &[S], rho_i: S, i: usize, st: &[Nb<S>]) -> S {
     let mut a = S::zero();
@@ -82,7 +82,7 @@ pub(crate) fn div_difference<S: Scalar>(s: &[S], rho_i: S, i: usize, st: &[Nb<S>
     a / rho_i
 }
 
-/// Monaghan's sum form Σ_J (s_I/ρ_I² + s_J/ρ_J²) ρ_J ∂φ_J(x_I) [V21 eq 55]; for `sph`
+/// Monaghan's sum form Σ_J (s_I/ρ_I² + s_J/ρ_J²) ρ_J ∂φ_J(x_I) \[V21 eq 55\]; for `sph`
 /// shapes ρ_J ∂φ_J(x_I) = m_J ∇_I W_IJ.
 #[inline]
 pub(crate) fn div_sum<S: Scalar>(s: &[S], rho: &[S], i: usize, st: &[Nb<S>]) -> S {

@@ -1,4 +1,4 @@
-//! `least-squares`: Beissel–Belytschko stabilised nodal integration [B00 §4.3, eq 104–107],
+//! `least-squares`: Beissel–Belytschko stabilised nodal integration \[B00 §4.3, eq 104–107\],
 //! Lagrangian kernel. The weak form adds (β/E)∫δσ_{,x}(σ_{,x} − ρü) with β = α_s l_c²
 //! (l_c = Δx), giving constant matrices built once on the reference configuration:
 //! ```text

@@ -1,13 +1,13 @@
-//! Mixed forms with partition coefficient c: `lnl` (local–nonlocal, [V21 eq 50–56]) and `cll`
-//! (classical–local, [V21 §7.2]).
+//! Mixed forms with partition coefficient c: `lnl` (local–nonlocal, \[V21 eq 50–56\]) and `cll`
+//! (classical–local, \[V21 §7.2\]).
 //!
 //! The nonlocal (or classical) part uses the shape family of the model (default `sph`) and its
 //! own stress σ; the local part uses corrected derivatives and its own stress τ, both
-//! hypo-elastic ([V21 §7]: "calculated and stored separately"). With c_ρ = c:
+//! hypo-elastic (\[V21 §7\]: "calculated and stored separately"). With c_ρ = c:
 //! ```text
 //! ρ̇_I = −ρ_I [(1 − c) (∂v/∂x)^nl_I + c (∂v/∂x)^loc_I]
 //! σ̇_I = (C + σ_I) (∂v/∂x)^nl_I,   τ̇_I = (C + τ_I) (∂v/∂x)^loc_I
-//! v̇_I = (1 − c) a^nl_I(σ) + c a^loc_I(τ) − Σ_J m_J Π_IJ ∇_I W_IJ              [V21 eq 56]
+//! v̇_I = (1 − c) a^nl_I(σ) + c a^loc_I(τ) − Σ_J m_J Π_IJ ∇_I W_IJ              \[V21 eq 56\]
 //! ```
 //! where a^nl is the difference form (lnl) or Monaghan's sum form (cll).
 

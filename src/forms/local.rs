@@ -1,4 +1,4 @@
-//! `local`: normalised corrected SPH [V21 eq 40–44].
+//! `local`: normalised corrected SPH \[V21 eq 40–44\].
 //!
 //! Velocity gradient and stress divergence both use the first-order corrected derivative
 //! G_J(x_I) (shape family `corrected`, or `mls`), which reproduces derivatives of linear

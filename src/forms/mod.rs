@@ -2,10 +2,10 @@
 //! the solver integrates it and the von Neumann engine linearises the same function.
 //!
 //! Material law (all forms): hypo-elastic with the Truesdell rate and tangent modulus C, as
-//! in [B00 §2]; in 1D `σ̇ = (C + σ) ∂v/∂x`, so the continuum modulus is `C̄ = C + σ`
-//! ([B00] eq 29/75) and a compressive pre-stress σ̄ = σ/C ≤ −1 is a material instability.
+//! in \[B00 §2\]; in 1D `σ̇ = (C + σ) ∂v/∂x`, so the continuum modulus is `C̄ = C + σ`
+//! (\[B00\] eq 29/75) and a compressive pre-stress σ̄ = σ/C ≤ −1 is a material instability.
 //! The total-Lagrangian forms integrate the same law: `P(F) = (σ0 + C) F − C` in 1D, whose
-//! tangent at F = 1 is `C̄^{SE} = C + σ0` ([B00] eq 81).
+//! tangent at F = 1 is `C̄^{SE} = C + σ0` (\[B00\] eq 81).
 
 mod classical;
 mod eulerian_common;
@@ -28,26 +28,26 @@ use crate::shape::ShapeFamily;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FormKind {
-    /// Eulerian kernel, collocation, Monaghan's symmetric "sum" momentum form [V21 eq 55].
+    /// Eulerian kernel, collocation, Monaghan's symmetric "sum" momentum form \[V21 eq 55\].
     Classical,
-    /// Eulerian kernel, "difference" momentum form [V21 eq 54].
+    /// Eulerian kernel, "difference" momentum form \[V21 eq 54\].
     Nonlocal,
-    /// Normalised corrected SPH [V21 eq 43–44].
+    /// Normalised corrected SPH \[V21 eq 43–44\].
     Local,
-    /// Mixed local–nonlocal with partition coefficient c [V21 eq 50–56].
+    /// Mixed local–nonlocal with partition coefficient c \[V21 eq 50–56\].
     Lnl,
-    /// Mixed classical–local with coefficient c [V21 §7.2].
+    /// Mixed classical–local with coefficient c \[V21 §7.2\].
     Cll,
-    /// Lagrangian kernel, nodal integration [B00 eq 77–81].
+    /// Lagrangian kernel, nodal integration \[B00 eq 77–81\].
     TotalLagrangian,
-    /// Stress points at mid-intervals, Eulerian kernel [B00 eq 83–92].
+    /// Stress points at mid-intervals, Eulerian kernel \[B00 eq 83–92\].
     EulerianStressPoints,
-    /// Stress points at mid-intervals, Lagrangian kernel [B00 eq 99–102].
+    /// Stress points at mid-intervals, Lagrangian kernel \[B00 eq 99–102\].
     LagrangianStressPoints,
-    /// Beissel–Belytschko least-squares stabilised nodal integration [B00 eq 104–107].
+    /// Beissel–Belytschko least-squares stabilised nodal integration \[B00 eq 104–107\].
     LeastSquares,
-    /// Eulerian kernel, nodal integration of the Galerkin weak form [B00 §4.1.1, eq 65–68]:
-    /// the system whose linearisation is [B00 eq 74]. Not one of SPEC's nine names; added
+    /// Eulerian kernel, nodal integration of the Galerkin weak form \[B00 §4.1.1, eq 65–68\]:
+    /// the system whose linearisation is \[B00 eq 74\]. Not one of SPEC's nine names; added
     /// because the sum-form `classical` differs from eq 74 (analysis/ERRATA.md).
     EulerianNodal,
 }
@@ -102,7 +102,7 @@ impl FormKind {
     }
 
     /// Default shape family: `sph` for the SPH (V21) forms, `corrected` for the local form,
-    /// and `mls` (EFG, the choice of [B00]) for the B00 forms.
+    /// and `mls` (EFG, the choice of \[B00\]) for the B00 forms.
     pub fn default_shape(self) -> ShapeFamily {
         match self {
             FormKind::Classical | FormKind::Nonlocal | FormKind::Lnl | FormKind::Cll => {

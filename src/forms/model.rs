@@ -16,7 +16,7 @@ pub struct ArtificialViscosity {
     /// Sound speed used in Π (physical units).
     pub sound_speed: f64,
     /// `true`: act only on approaching pairs (v_IJ·x_IJ < 0), as in running codes.
-    /// `false`: act on all pairs — the linearisation used by [V21 App. B] (Q ≈ −α Δẋ).
+    /// `false`: act on all pairs — the linearisation used by \[V21 App. B\] (Q ≈ −α Δẋ).
     pub approaching_only: bool,
 }
 
@@ -78,7 +78,7 @@ pub struct Model1D {
     pub sp_x_ref: Vec<f64>,
     /// Stress-point reference volumes.
     pub sp_vol_ref: Vec<f64>,
-    /// Master-node integration weights of the stress-point forms (V0/2 in [B00 eq 84/100]).
+    /// Master-node integration weights of the stress-point forms (V0/2 in \[B00 eq 84/100\]).
     pub(crate) master_weight_ref: Vec<f64>,
     /// Reference stencils at masters (Lagrangian forms).
     pub(crate) ref_master: Vec<RefStencil>,

@@ -1,4 +1,4 @@
-//! `nonlocal`: Eulerian kernel, difference form [V21 eq 53–54].
+//! `nonlocal`: Eulerian kernel, difference form \[V21 eq 53–54\].
 //!
 //! ```text
 //! ρ̇_I = −ρ_I (∂v/∂x)_I,  σ̇_I = (C + σ_I)(∂v/∂x)_I,  (∂v/∂x)_I = Σ_J (v_J − v_I) ∂φ_J(x_I)

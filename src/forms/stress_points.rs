@@ -1,6 +1,6 @@
 //! `eulerian-stress-points`: Eulerian kernel with stress points at the mid-intervals
-//! [B00 §4.2.1, eq 83–92]; without stress points (`eulerian-nodal`) the same code is the
-//! Galerkin form with nodal integration [B00 §4.1.1, eq 65–68], master weight m_J/ρ_J.
+//! \[B00 §4.2.1, eq 83–92\]; without stress points (`eulerian-nodal`) the same code is the
+//! Galerkin form with nodal integration \[B00 §4.1.1, eq 65–68\], master weight m_J/ρ_J.
 //!
 //! Masters carry x, v, ρ, σ; stress points carry their position x^S, stress σ^S and volume V^S.
 //! Shape functions are built on the *current* master positions. With the interpolated velocity

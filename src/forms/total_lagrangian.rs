@@ -1,6 +1,6 @@
 //! `total-lagrangian` and `lagrangian-stress-points`: Lagrangian kernel (shape functions on
 //! the reference configuration, fixed neighbours), Galerkin form with nodal or stress-point
-//! integration [B00 eq 77–81, 99–102].
+//! integration \[B00 eq 77–81, 99–102\].
 //!
 //! ```text
 //! F_p = 1 + Σ_K φ'_K(X_p) (u_K − ū_p),   ū_p = Σ_K φ_K(X_p) u_K / Σ_K φ_K(X_p),   u = x − X

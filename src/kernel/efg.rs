@@ -1,4 +1,4 @@
-//! The EFG spline weight functions used with MLS shape functions in [B00] (Belytschko, Lu &
+//! The EFG spline weight functions used with MLS shape functions in \[B00\] (Belytschko, Lu &
 //! Gu 1994), with support radius h (ζ = 1, so `--h` equals the dilation D_mx).
 
 use std::f64::consts::PI;

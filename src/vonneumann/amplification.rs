@@ -100,7 +100,7 @@ pub fn max_spectral_radius(lin: &Linearisation, kappas: &[f64], dt: f64) -> Resu
 }
 
 /// Critical time step (Δx/c). Non-dissipative systems: the leapfrog limit 2/ω_max
-/// ([B00] eq 120 with ξ = 0; tests check it against the amplification matrices). Dissipative
+/// (\[B00\] eq 120 with ξ = 0; tests check it against the amplification matrices). Dissipative
 /// systems: the largest Δt with max_κ |λ| ≤ 1 + tol, by bisection.
 pub fn critical_dt(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
     if !lin.is_dissipative() {

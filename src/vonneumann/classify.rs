@@ -1,8 +1,8 @@
-//! Classification of unstable and marginal branches (SPEC §5.3, following [B00 §4]).
+//! Classification of unstable and marginal branches (SPEC §5.3, following \[B00 §4\]).
 //!
 //! | kind | criterion |
 //! |---|---|
-//! | `material` | C̄ = C + σ ≤ 0: the continuum itself is unstable ([B00] eq 33) |
+//! | `material` | C̄ = C + σ ≤ 0: the continuum itself is unstable (\[B00\] eq 33) |
 //! | `tensile` / `compressive` | growth (ω² < 0) with C̄ > 0 that disappears when the pre-stress is set to zero |
 //! | `rank-deficiency` | ω = 0 at κ ≠ 0 (zero-energy / hourglass mode, secular growth), or growth that persists at zero stress (the discrete operator itself is indefinite) |
 //! | `time-step` | semi-discrete stable but the leapfrog amplification |λ| > 1 |

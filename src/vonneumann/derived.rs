@@ -35,7 +35,7 @@ impl LatticeSums {
 }
 
 /// `classical` (Monaghan's sum form, continuity density, `sph` shape):
-/// ω² = C̃ S1² − 2σ̄ (S2 − S1²). Twice the stress term of [B00] eq 74 (ERRATA E1).
+/// ω² = C̃ S1² − 2σ̄ (S2 − S1²). Twice the stress term of \[B00\] eq 74 (ERRATA E1).
 pub fn classical_sum(s: LatticeSums, sigma_bar: f64) -> f64 {
     (1.0 + sigma_bar) * s.s1 * s.s1 - 2.0 * sigma_bar * (s.s2 - s.s1 * s.s1)
 }

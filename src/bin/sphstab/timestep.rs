@@ -35,7 +35,7 @@ pub fn run(a: Args) -> Result<()> {
     println!("ω_max = {:.9} c/Δx", r.omega_max);
     match r.critical_dt {
         Some(dt) => println!(
-            "critical leapfrog Δt = {:.9} Δx/c (amplification matrices); 2/ω_max = {}; CFL c Δt/h = {:.9}",
+            "critical leapfrog Δt = {:.9} Δx/c (bisection on the amplification matrices); 2/ω_max = {}; CFL c Δt/h = {:.9}",
             dt,
             r.critical_dt_from_omega_max
                 .map(|v| format!("{v:.9}"))
