@@ -180,6 +180,17 @@ pub struct Header {
     pub alpha_s: f64,
 }
 
+impl std::fmt::Display for Header {
+    /// One line: form / kernel / shape, h and R in Δx, σ̄.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}",
+            self.form, self.kernel, self.shape, self.h_over_dx, self.support_over_dx, self.stress
+        )
+    }
+}
+
 impl Header {
     fn of(q: &Query1D) -> Self {
         Self {

@@ -132,15 +132,7 @@ pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
         .collect();
     let dmax = r.omega2.iter().fold(0.0f64, |m, &y| m.max(y));
     let dmin = r.omega2.iter().fold(0.0f64, |m, &y| m.min(y));
-    let title = format!(
-        "{} / {} / {}  h = {:.3}Δx (R = {:.3}Δx), σ̄ = {}",
-        r.header.form,
-        r.header.kernel,
-        r.header.shape,
-        r.header.h_over_dx,
-        r.header.support_over_dx,
-        r.header.stress
-    );
+    let title = r.header.to_string();
     let curves = [
         Curve {
             label: "continuum (1 + σ̄)(κΔx)²  [B00 eq 32]".into(),

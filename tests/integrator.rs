@@ -164,21 +164,6 @@ fn run_mode_k(
     hist
 }
 
-#[allow(clippy::too_many_arguments)]
-fn run_mode(
-    form: FormKind,
-    shape: ShapeFamily,
-    h: f64,
-    sig: f64,
-    n: usize,
-    m: usize,
-    amp: f64,
-    dt: f64,
-    steps: usize,
-) -> Vec<f64> {
-    run_mode_k("m4", form, shape, h, sig, n, m, amp, dt, steps)
-}
-
 /// Stable forms: the seeded mode oscillates at the engine's frequency — measured through the
 /// leapfrog's exact discrete relation cos(ω_d Δt) = 1 − ω²Δt²/2 — to 1%.
 #[test]
@@ -197,7 +182,7 @@ fn single_mode_frequency_matches_engine() {
         let wd = (1.0 - 0.5 * w2 * dt * dt).acos() / dt;
         let period = 2.0 * PI / wd;
         let steps = (4.0 * period / dt) as usize;
-        let hist = run_mode(form, shape, 1.3, sig, n, m, 1e-7, dt, steps);
+        let hist = run_mode_k("m4", form, shape, 1.3, sig, n, m, 1e-7, dt, steps);
         // zero crossings (linear interpolation) → measured period
         let mut cross = Vec::new();
         for i in 1..hist.len() {
@@ -232,7 +217,8 @@ fn single_mode_growth_matches_engine() {
     let b = 1.0 + 0.5 * gamma * gamma * dt * dt;
     let gd = (b + (b * b - 1.0).sqrt()).ln() / dt;
     let steps = (12.0 / gamma / dt) as usize;
-    let hist = run_mode(
+    let hist = run_mode_k(
+        "m4",
         FormKind::Classical,
         ShapeFamily::Sph,
         1.2,
@@ -260,7 +246,8 @@ fn no_growth_in_stable_compressed_run_up_to_critical_step() {
     let l = lin(FormKind::Classical, "m4", ShapeFamily::Sph, 1.3, -0.05);
     let dtc = critical_dt(&l, &grid(512)).unwrap();
     for frac in [0.3, 0.99] {
-        let hist = run_mode(
+        let hist = run_mode_k(
+            "m4",
             FormKind::Classical,
             ShapeFamily::Sph,
             1.3,

@@ -31,15 +31,7 @@ pub fn run(a: Args) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
-    println!(
-        "# form {} kernel {} shape {} h/Δx {} R/Δx {} σ̄ {}",
-        r.header.form,
-        r.header.kernel,
-        r.header.shape,
-        r.header.h_over_dx,
-        r.header.support_over_dx,
-        r.header.stress
-    );
+    println!("# {}", r.header);
     println!(
         "{:>12} {:>16} {:>16} {:>14}",
         "κΔx/π", "ω²Δx²/c²", "continuum", "growth c/Δx"

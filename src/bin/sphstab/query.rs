@@ -23,11 +23,7 @@ pub fn run(a: Args) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
-    let h = &r.header;
-    println!(
-        "form {}  kernel {}  shape {}  h = {:.4}Δx  R = {:.4}Δx  σ̄ = {}",
-        h.form, h.kernel, h.shape, h.h_over_dx, h.support_over_dx, h.stress
-    );
+    println!("{}", r.header);
     if r.stable {
         println!("verdict: STABLE (no exponentially growing mode)");
     } else {
