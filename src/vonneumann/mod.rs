@@ -2,6 +2,7 @@
 //! forms' rate functions.
 
 pub mod amplification;
+pub mod antiplane;
 pub mod classify;
 pub mod closed_form;
 pub mod derived;
