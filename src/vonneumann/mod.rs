@@ -7,4 +7,5 @@ pub mod classify;
 pub mod closed_form;
 pub mod derived;
 pub mod linearise;
+pub mod timestep_bounds;
 pub mod transform;
