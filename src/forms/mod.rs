@@ -8,11 +8,13 @@
 //! tangent at F = 1 is `C̄^{SE} = C + σ0` (\[B00\] eq 81).
 
 mod classical;
+mod eulerian2d;
 mod eulerian_common;
 mod least_squares;
 mod lnl;
 mod local;
 mod model;
+mod model2d;
 mod nonlocal;
 mod stress_points;
 mod total_lagrangian;
@@ -20,6 +22,7 @@ mod total_lagrangian;
 pub use model::{
     ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,
 };
+pub use model2d::{Comp2, Material2D, Model2D, ModelParams2D, ObjectiveRate, State2D};
 
 use crate::error::{Error, Result};
 use crate::shape::ShapeFamily;

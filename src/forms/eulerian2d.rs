@@ -1,0 +1,366 @@
+//! The Eulerian-kernel forms in 2D (classical, nonlocal, local, lnl, cll): one routine whose
+//! momentum and continuity terms are chosen by the form, with the same definitions as in 1D:
+//!
+//! ```text
+//! L_I = Σ_J (v_J − v_I) ⊗ ∇φ_J(x_I),   ρ̇_I = −ρ_I tr L_I   (mixed forms: (1−c) tr L^nl + c tr L^loc)
+//! classical:  a_I = Σ_J (σ_I/ρ_I² + σ_J/ρ_J²) ρ_J · ∇φ_J(x_I)          [V21 eq 55]
+//! difference: a_I = (1/ρ_I) Σ_J (σ_J − σ_I) · ∇φ_J(x_I)                [V21 eq 54] (local: corrected ∇φ)
+//! lnl: (1 − c) a^diff(σ) + c a^loc(τ);  cll: (1 − c) a^classical(σ) + c a^loc(τ)
+//! ```
+//! plus −Σ_J m_J Π_IJ ∇_I W_IJ (Monaghan viscosity). Stress: hydro σ = −K(ρ/ρ0 − 1) I from the
+//! density; elastic σ (and τ) are state with the hypo-elastic rate of [`Material2D`].
+
+use super::FormKind;
+use super::model2d::{Material2D, Model2D, ObjectiveRate, State2D};
+use crate::error::Result;
+use crate::kernel;
+use crate::scalar::Scalar;
+use crate::shape::ShapeFamily;
+use crate::shape2d::eval2;
+
+/// Neighbour J of an evaluation point: index, d = x_J − x, φ_J, ∇φ_J.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Nb2<S> {
+    pub j: usize,
+    pub d: [S; 2],
+    pub g: [S; 2],
+}
+
+fn stencils<S: Scalar>(
+    m: &Model2D,
+    z: &State2D<S>,
+    family: ShapeFamily,
+    vol: &[S],
+) -> Result<Vec<Vec<Nb2<S>>>> {
+    let r = m.p.kp.support();
+    let mut out = Vec::with_capacity(z.x.len());
+    let mut nodes = Vec::new();
+    let mut idx = Vec::new();
+    let mut vals = Vec::new();
+    for &xi in &z.x {
+        nodes.clear();
+        idx.clear();
+        for (j, &xj) in z.x.iter().enumerate() {
+            let d = m.rel(xi, xj);
+            if d[0].re().hypot(d[1].re()) < r {
+                nodes.push((d, vol[j]));
+                idx.push(j);
+            }
+        }
+        eval2(family, m.p.kp, &nodes, [xi[0].re(), xi[1].re()], &mut vals)?;
+        out.push(
+            idx.iter()
+                .zip(&nodes)
+                .zip(&vals)
+                .map(|((&j, &(d, _)), &(_, g))| Nb2 { j, d, g })
+                .collect(),
+        );
+    }
+    Ok(out)
+}
+
+fn vel_grad<S: Scalar>(z: &State2D<S>, i: usize, st: &[Nb2<S>]) -> [[S; 2]; 2] {
+    let mut l = [[S::zero(); 2]; 2];
+    for nb in st {
+        for a in 0..2 {
+            let dv = z.v[nb.j][a] - z.v[i][a];
+            for b in 0..2 {
+                l[a][b] += dv * nb.g[b];
+            }
+        }
+    }
+    l
+}
+
+/// σ·g for σ stored as [xx, yy, xy].
+#[inline]
+fn dot<S: Scalar>(s: [S; 3], g: [S; 2]) -> [S; 2] {
+    [s[0] * g[0] + s[2] * g[1], s[2] * g[0] + s[1] * g[1]]
+}
+
+fn div_sum<S: Scalar>(s: &[[S; 3]], rho: &[S], i: usize, st: &[Nb2<S>]) -> [S; 2] {
+    let ri2 = rho[i] * rho[i];
+    let mut a = [S::zero(); 2];
+    for nb in st {
+        let rj = rho[nb.j];
+        let t = [
+            s[i][0] / ri2 + s[nb.j][0] / (rj * rj),
+            s[i][1] / ri2 + s[nb.j][1] / (rj * rj),
+            s[i][2] / ri2 + s[nb.j][2] / (rj * rj),
+        ];
+        let f = dot(t, nb.g);
+        a[0] += f[0] * rj;
+        a[1] += f[1] * rj;
+    }
+    a
+}
+
+fn div_difference<S: Scalar>(s: &[[S; 3]], rho_i: S, i: usize, st: &[Nb2<S>]) -> [S; 2] {
+    let mut a = [S::zero(); 2];
+    for nb in st {
+        let t = [
+            s[nb.j][0] - s[i][0],
+            s[nb.j][1] - s[i][1],
+            s[nb.j][2] - s[i][2],
+        ];
+        let f = dot(t, nb.g);
+        a[0] += f[0];
+        a[1] += f[1];
+    }
+    [a[0] / rho_i, a[1] / rho_i]
+}
+
+/// Hypo-elastic stress rate for velocity gradient L.
+pub(crate) fn stress_rate<S: Scalar>(mat: &Material2D, s: [S; 3], l: [[S; 2]; 2]) -> [S; 3] {
+    let Material2D::Elastic {
+        lambda,
+        shear,
+        rate,
+    } = *mat
+    else {
+        return [S::zero(); 3];
+    };
+    let tr = l[0][0] + l[1][1];
+    let dxy = (l[0][1] + l[1][0]) * 0.5;
+    let mut r = [
+        tr * lambda + l[0][0] * (2.0 * shear),
+        tr * lambda + l[1][1] * (2.0 * shear),
+        dxy * (2.0 * shear),
+    ];
+    let sm = [[s[0], s[2]], [s[2], s[1]]];
+    // extra[a][b] for the objective terms
+    let mut extra = [[S::zero(); 2]; 2];
+    match rate {
+        ObjectiveRate::Jaumann => {
+            let w = [
+                [S::zero(), (l[0][1] - l[1][0]) * 0.5],
+                [(l[1][0] - l[0][1]) * 0.5, S::zero()],
+            ];
+            for a in 0..2 {
+                for b in 0..2 {
+                    for c in 0..2 {
+                        extra[a][b] += w[a][c] * sm[c][b] - sm[a][c] * w[c][b];
+                    }
+                }
+            }
+        }
+        ObjectiveRate::Truesdell => {
+            for a in 0..2 {
+                for b in 0..2 {
+                    for c in 0..2 {
+                        extra[a][b] += l[a][c] * sm[c][b] + sm[a][c] * l[b][c];
+                    }
+                    extra[a][b] -= tr * sm[a][b];
+                }
+            }
+        }
+    }
+    r[0] += extra[0][0];
+    r[1] += extra[1][1];
+    r[2] += extra[0][1];
+    r
+}
+
+fn av_accel<S: Scalar>(m: &Model2D, z: &State2D<S>, i: usize, st: &[Nb2<S>]) -> [S; 2] {
+    let Some(av) = m.p.av else {
+        return [S::zero(); 2];
+    };
+    let h = m.p.kp.h;
+    let mut a = [S::zero(); 2];
+    for nb in st {
+        if nb.j == i {
+            continue;
+        }
+        let xij = [-nb.d[0], -nb.d[1]];
+        let vij = [z.v[i][0] - z.v[nb.j][0], z.v[i][1] - z.v[nb.j][1]];
+        let vx = vij[0] * xij[0] + vij[1] * xij[1];
+        if av.approaching_only && vx.re() >= 0.0 {
+            continue;
+        }
+        let r2 = xij[0] * xij[0] + xij[1] * xij[1];
+        let mu = vx * h / (r2 + 0.01 * h * h);
+        let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
+        let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
+        let r = r2.sqrt();
+        let dw = kernel::dw(m.p.kp.kernel, 2, r, h);
+        for c in 0..2 {
+            a[c] -= pi * dw * xij[c] / r * m.mass[nb.j];
+        }
+    }
+    a
+}
+
+/// The 2D rate of an Eulerian form.
+pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>) -> Result<()> {
+    let form = m.p.form;
+    let vol: Vec<S> = z
+        .rho
+        .iter()
+        .zip(&m.mass)
+        .map(|(&r, &ms)| S::cst(ms) / r)
+        .collect();
+    let st_a = stencils(m, z, m.p.shape, &vol)?;
+    let mixed = matches!(form, FormKind::Lnl | FormKind::Cll);
+    let st_b = if mixed {
+        stencils(m, z, ShapeFamily::Corrected, &vol)?
+    } else {
+        Vec::new()
+    };
+    let hydro_stress: Vec<[S; 3]> = match m.p.material {
+        Material2D::Hydro { bulk } => z
+            .rho
+            .iter()
+            .map(|&r| {
+                let sg = (r / m.p.rho0 - 1.0) * (-bulk);
+                [sg, sg, S::zero()]
+            })
+            .collect(),
+        Material2D::Elastic { .. } => Vec::new(),
+    };
+    let (sig, tau): (&[[S; 3]], &[[S; 3]]) = match m.p.material {
+        Material2D::Hydro { .. } => (&hydro_stress, &hydro_stress),
+        Material2D::Elastic { .. } => (&z.sigma, if mixed { &z.tau } else { &z.sigma }),
+    };
+    let c = m.p.c_partition;
+    for i in 0..z.x.len() {
+        out.x[i] = z.v[i];
+        let la = vel_grad(z, i, &st_a[i]);
+        let lb = if mixed { vel_grad(z, i, &st_b[i]) } else { la };
+        let tra = la[0][0] + la[1][1];
+        let trb = lb[0][0] + lb[1][1];
+        out.rho[i] = -z.rho[i]
+            * if mixed {
+                tra * (1.0 - c) + trb * c
+            } else {
+                tra
+            };
+        if !z.sigma.is_empty() {
+            out.sigma[i] = stress_rate(&m.p.material, z.sigma[i], la);
+        }
+        if !z.tau.is_empty() {
+            out.tau[i] = stress_rate(&m.p.material, z.tau[i], lb);
+        }
+        let a = match form {
+            FormKind::Classical => div_sum(sig, &z.rho, i, &st_a[i]),
+            FormKind::Nonlocal | FormKind::Local => div_difference(sig, z.rho[i], i, &st_a[i]),
+            FormKind::Lnl | FormKind::Cll => {
+                let p = if form == FormKind::Lnl {
+                    div_difference(sig, z.rho[i], i, &st_a[i])
+                } else {
+                    div_sum(sig, &z.rho, i, &st_a[i])
+                };
+                let q = div_difference(tau, z.rho[i], i, &st_b[i]);
+                [p[0] * (1.0 - c) + q[0] * c, p[1] * (1.0 - c) + q[1] * c]
+            }
+            _ => [S::zero(); 2],
+        };
+        let av = av_accel(m, z, i, &st_a[i]);
+        out.v[i] = [a[0] + av[0], a[1] + av[1]];
+    }
+    Ok(())
+}
+
+/// The 2D total-Lagrangian rate: F = I + Σ_K (u_K − ū) ⊗ ∇φ_K(X_J) at every master J
+/// (nodal integration, \[B00\] eq 79 in 2D), m_K a_K = −Σ_J V0_J P_J ∇φ_K(X_J), with
+/// - hydro: the fluid itself, P = −p(J) cof F, p = K(ρ/ρ0 − 1), ρ = ρ_ref/J (transverse modes
+///   neutral, longitudinal speed² K/ρ0, as for the Eulerian forms);
+/// - elastic: St Venant–Kirchhoff about the pre-stress, S = σ0 I + λ_T tr E I + 2G_T E, P = F S,
+///   with (λ_T, G_T) = (λ, G) for the Truesdell rate and (λ + σ0, G − σ0) for the Jaumann rate,
+///   so that the tangent C_T + σ0 δ (\[B00\] eq 15) is that of the Eulerian law.
+pub(crate) fn rate_tl<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>) -> Result<()> {
+    let s0 = m.sigma0;
+    for (i, a) in out.v.iter_mut().enumerate() {
+        out.x[i] = z.v[i];
+        *a = [S::zero(); 2];
+    }
+    let u: Vec<[S; 2]> =
+        z.x.iter()
+            .zip(&m.x_ref)
+            .map(|(x, xr)| [x[0] - xr[0], x[1] - xr[1]])
+            .collect();
+    for (j, st) in m.ref_master.iter().enumerate() {
+        let sphi: f64 = st.iter().map(|e| e.1).sum();
+        let mut ubar = [S::zero(); 2];
+        for &(k, phi, _) in st {
+            ubar[0] += u[k][0] * phi;
+            ubar[1] += u[k][1] * phi;
+        }
+        ubar = [ubar[0] / sphi, ubar[1] / sphi];
+        let mut f = [[S::cst(1.0), S::zero()], [S::zero(), S::cst(1.0)]];
+        for &(k, _, gr) in st {
+            for a in 0..2 {
+                let du = u[k][a] - ubar[a];
+                for b in 0..2 {
+                    f[a][b] += du * gr[b];
+                }
+            }
+        }
+        let p = match m.p.material {
+            Material2D::Hydro { bulk } => {
+                let jac = f[0][0] * f[1][1] - f[0][1] * f[1][0];
+                let rho_ref = m.mass[j] / m.vol_ref[j];
+                let pr = ((S::cst(rho_ref) / jac) / m.p.rho0 - 1.0) * bulk;
+                // P = −p cof F, cof F = J F⁻ᵀ = [[F11, −F10], [−F01, F00]]
+                [[-pr * f[1][1], pr * f[1][0]], [pr * f[0][1], -pr * f[0][0]]]
+            }
+            Material2D::Elastic {
+                lambda,
+                shear,
+                rate,
+            } => {
+                let (lam, g) = match rate {
+                    ObjectiveRate::Truesdell => (lambda, shear),
+                    ObjectiveRate::Jaumann => (lambda + s0, shear - s0),
+                };
+                let mut e = [[S::zero(); 2]; 2];
+                for a in 0..2 {
+                    for b in 0..2 {
+                        let mut s = S::zero();
+                        for c in 0..2 {
+                            s += f[c][a] * f[c][b];
+                        }
+                        e[a][b] = (s - if a == b { 1.0 } else { 0.0 }) * 0.5;
+                    }
+                }
+                let tr = e[0][0] + e[1][1];
+                let mut sm = [[S::zero(); 2]; 2];
+                for a in 0..2 {
+                    for b in 0..2 {
+                        sm[a][b] =
+                            e[a][b] * (2.0 * g) + if a == b { tr * lam + s0 } else { S::zero() };
+                    }
+                }
+                let mut p = [[S::zero(); 2]; 2];
+                for a in 0..2 {
+                    for b in 0..2 {
+                        for c in 0..2 {
+                            p[a][b] += f[a][c] * sm[c][b];
+                        }
+                    }
+                }
+                p
+            }
+        };
+        let w = m.vol_ref[j];
+        for &(k, _, gr) in st {
+            for a in 0..2 {
+                out.v[k][a] -= (p[a][0] * gr[0] + p[a][1] * gr[1]) * w;
+            }
+        }
+    }
+    for (a, &ms) in out.v.iter_mut().zip(&m.mass) {
+        *a = [a[0] / ms, a[1] / ms];
+    }
+    Ok(())
+}
+
+impl Model2D {
+    /// The rate function of the 2D system (same definitions as the 1D forms).
+    pub fn rate<S: Scalar>(&self, z: &State2D<S>, out: &mut State2D<S>) -> Result<()> {
+        *out = State2D::zeros_like(z);
+        match self.p.form {
+            FormKind::TotalLagrangian => rate_tl(self, z, out),
+            _ => rate(self, z, out),
+        }
+    }
+}
