@@ -1,0 +1,205 @@
+//! 2D in-plane Bloch analysis: derived closed-form dynamical matrices vs the engine, the Swegle
+//! tension statements, and the reduction to 1D along an axis.
+
+use sphstab::forms::{FormKind, Material2D, ModelParams2D, ObjectiveRate};
+use sphstab::kernel;
+use sphstab::lattice::Lattice2D;
+use sphstab::shape::ShapeFamily;
+use sphstab::shape2d::KernelParams2;
+use sphstab::vonneumann::derived::{LatticeSums, classical_sum};
+use sphstab::vonneumann::derived2d::{rho_d, sums};
+use sphstab::vonneumann::linearise2d::{Linearisation2D, base_state};
+use std::f64::consts::PI;
+
+fn params(
+    form: FormKind,
+    kern: &str,
+    shape: ShapeFamily,
+    h: f64,
+    material: Material2D,
+) -> ModelParams2D {
+    ModelParams2D {
+        form,
+        shape,
+        kp: KernelParams2 {
+            kernel: kernel::by_name(kern).unwrap(),
+            h,
+        },
+        material,
+        rho0: 1.0,
+        c_partition: 0.5,
+        av: None,
+    }
+}
+
+fn materials() -> Vec<(&'static str, Material2D)> {
+    vec![
+        ("hydro", Material2D::Hydro { bulk: 1.0 }),
+        (
+            "elastic-jaumann",
+            Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap(),
+        ),
+        (
+            "elastic-truesdell",
+            Material2D::elastic(1.0, 0.25, ObjectiveRate::Truesdell).unwrap(),
+        ),
+    ]
+}
+
+fn kgrid(lat: &Lattice2D, n: usize) -> Vec<[f64; 2]> {
+    let b = lat.reciprocal();
+    let mut out = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let (s, t) = (i as f64 / n as f64, j as f64 / n as f64);
+            out.push([s * b[0][0] + t * b[1][0], s * b[0][1] + t * b[1][1]]);
+        }
+    }
+    out
+}
+
+/// Closed-form D(k) (src/vonneumann/derived2d.rs) vs the engine's D(k) to 1e-8 relative, on
+/// square and hexagonal lattices, three materials, tension and compression.
+#[test]
+fn derived_dynamical_matrices_agree_with_engine() {
+    for lat in [Lattice2D::square(1.0).unwrap(), Lattice2D::hexagonal()] {
+        for (mname, mat) in materials() {
+            for (form, shape) in [
+                (FormKind::Classical, ShapeFamily::Sph),
+                (FormKind::Nonlocal, ShapeFamily::Sph),
+                (FormKind::Local, ShapeFamily::Corrected),
+                (FormKind::TotalLagrangian, ShapeFamily::Sph),
+                (FormKind::TotalLagrangian, ShapeFamily::Mls),
+            ] {
+                for (kern, h) in [("m4", 1.2), ("wendland-c2", 1.5)] {
+                    for sb in [0.05, -0.05] {
+                        let p = params(form, kern, shape, h, mat);
+                        let lin = Linearisation2D::new(p, &lat, 1.0, sb).unwrap();
+                        let (rho, s) = base_state(&mat, 1.0, sb).unwrap();
+                        let sum_shape = if form == FormKind::TotalLagrangian {
+                            shape
+                        } else {
+                            ShapeFamily::Sph
+                        };
+                        let mut worst: f64 = 0.0;
+                        let mut scale: f64 = 0.0;
+                        for k in kgrid(&lat, 9) {
+                            let sm = sums(&lat, sum_shape, p.kp, k).unwrap();
+                            let cf = rho_d(form, &mat, s, rho, &sm).unwrap();
+                            let en = lin.dynamical(k);
+                            for a in 0..2 {
+                                for b in 0..2 {
+                                    let want = cf[a][b] / (rho * mat.modulus());
+                                    worst = worst
+                                        .max((en[a][b].re - want).abs())
+                                        .max(en[a][b].im.abs());
+                                    scale = scale.max(want.abs());
+                                }
+                            }
+                        }
+                        assert!(
+                            worst <= 1e-8 * scale,
+                            "{:?} {mname} {form:?}/{shape:?} {kern} h={h} σ̄={sb}: {worst:e} (scale {scale})",
+                            lat.kind
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Classical SPH on a square lattice, hydrodynamic material (the Swegle test's), m4,
+/// h/Δx ∈ {1.0, 1.2, 1.3}, f = ρ/ρ0 ∈ {0.95, 0.99}: unstable in tension; nonlocal and
+/// total-Lagrangian are not. The fastest wave vector and its polarisation are reported.
+#[test]
+fn swegle_lattice_classical_unstable_in_tension_nonlocal_and_tl_not() {
+    let lat = Lattice2D::square(1.0).unwrap();
+    let hydro = Material2D::Hydro { bulk: 1.0 };
+    let n = 24;
+    for h in [1.0, 1.2, 1.3] {
+        for f in [0.95, 0.99] {
+            let sb = 1.0 - f;
+            let mut best = (0.0, [0.0; 2], 0.0);
+            let cl = Linearisation2D::new(
+                params(FormKind::Classical, "m4", ShapeFamily::Sph, h, hydro),
+                &lat,
+                1.0,
+                sb,
+            )
+            .unwrap();
+            for i in 0..=n {
+                for j in 0..=n {
+                    let k = [PI * i as f64 / n as f64, PI * j as f64 / n as f64];
+                    let (g, pol) = cl.growth(k).unwrap();
+                    if g > best.0 {
+                        let kn = k[0].hypot(k[1]);
+                        best = (g, k, ((pol[0] * k[0] + pol[1] * k[1]).norm() / kn).powi(2));
+                    }
+                }
+            }
+            eprintln!(
+                "classical hydro m4 h={h} f={f}: max growth {:.5} c/Δx at k = ({:.3}π, {:.3}π), longitudinal fraction {:.2}",
+                best.0,
+                best.1[0] / PI,
+                best.1[1] / PI,
+                best.2
+            );
+            assert!(best.0 > 1e-3);
+            for form in [FormKind::Nonlocal, FormKind::TotalLagrangian] {
+                let l = Linearisation2D::new(
+                    params(form, "m4", ShapeFamily::Sph, h, hydro),
+                    &lat,
+                    1.0,
+                    sb,
+                )
+                .unwrap();
+                for i in 0..=n {
+                    for j in 0..=n {
+                        let k = [PI * i as f64 / n as f64, PI * j as f64 / n as f64];
+                        assert!(
+                            l.growth(k).unwrap().0 < 1e-6,
+                            "{form:?} h={h} f={f} grows at {k:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Reduction to 1D: for k = (κ, 0) the longitudinal branch of the 2D classical form (Truesdell
+/// elastic, the 1D law) is the 1D relation ω² = C̃S1² − 2σ̄(S2 − S1²) of `derived::classical_sum`,
+/// evaluated with the column sums of the 2D lattice shape (the 2D kernel summed over each
+/// lattice column: φ₁(x) = Σ_y φ(x, y)). Checked to 1e-8.
+#[test]
+fn along_an_axis_the_2d_classical_form_reduces_to_the_1d_relation() {
+    let lat = Lattice2D::square(1.0).unwrap();
+    let mat = Material2D::elastic(1.0, 0.2, ObjectiveRate::Truesdell).unwrap();
+    for h in [1.0, 1.3] {
+        for sb in [0.1, -0.3] {
+            let p = params(FormKind::Classical, "m4", ShapeFamily::Sph, h, mat);
+            let lin = Linearisation2D::new(p, &lat, 1.0, sb).unwrap();
+            for i in 1..=16 {
+                let kap = PI * i as f64 / 16.0;
+                let sm = sums(&lat, ShapeFamily::Sph, p.kp, [kap, 0.0]).unwrap();
+                // column sums: S1x(κ) and S2xx(κ) are exactly the 1D sums of φ₁
+                let one_d = classical_sum(
+                    LatticeSums {
+                        s1: sm.s1[0],
+                        s2: sm.s2[0][0],
+                        m1: sm.m1[0][0],
+                    },
+                    sb,
+                );
+                let d = lin.dynamical([kap, 0.0]);
+                assert!(d[0][1].norm() < 1e-12, "mixing at κ={kap}");
+                assert!(
+                    (d[0][0].re - one_d).abs() < 1e-8 * one_d.abs().max(1e-3),
+                    "h={h} σ̄={sb} κ={kap}: {} vs {one_d}",
+                    d[0][0].re
+                );
+            }
+        }
+    }
+}
