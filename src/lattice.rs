@@ -2,6 +2,9 @@
 //! neighbour offsets within a radius, and the high-symmetry paths of the first Brillouin zone
 //! (square: Γ–X–M–Γ; hexagonal: Γ–M–K–Γ). Lengths in units of Δx.
 
+// Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use crate::error::{Error, Result};
 use std::f64::consts::PI;
 

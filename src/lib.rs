@@ -22,7 +22,7 @@
 //!   time steps in Δx/c.
 //! - Stress σ̄ = σ/C, positive in tension; pressure p = −σ.
 //! - Perturbation ~ exp(iκX + st); semi-discrete ω² = −s²; growth rate γ = max Re s ≥ 0.
-//!   Fully discrete: amplification factor λ per step, amplifying when |λ| > 1 + 1e-9
+//!   Fully discrete: amplification factor λ per step, amplifying when |λ| > 1 + 1e-7
 //!   ([`vonneumann::amplification::AMPLIFICATION_TOL`]). Every tolerance is a named constant.
 //! - Kernels: W(r, h) = σ_d h^−d f(r/h), support radius R = ζh; `h` is in the kernel's own
 //!   convention and R/Δx is Belytschko's dilation D_mx.
@@ -44,6 +44,7 @@
 //! \[B98] Belytschko, Krongauz, Dolbow, Gerlach 1998; [T\] thesis on total-Lagrangian SPH.
 
 pub mod analysis;
+pub mod analysis2d;
 pub mod error;
 pub mod figures;
 pub mod forms;

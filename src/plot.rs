@@ -160,3 +160,68 @@ pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
         Some((dmin.min(0.0), hi)),
     )
 }
+
+/// A heat map of z over a rectangular (x, y) grid (cell centres), white (0) to dark red (max).
+pub fn heatmap_svg(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    x: &[f64],
+    y: &[f64],
+    z: &[Vec<f64>],
+) -> Result<String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (760, 700)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_err)?;
+        let (x0, x1) = (
+            x[0] - 0.5 * (x[1] - x[0]),
+            x[x.len() - 1] + 0.5 * (x[1] - x[0]),
+        );
+        let (y0, y1) = (
+            y[0] - 0.5 * (y[1] - y[0]),
+            y[y.len() - 1] + 0.5 * (y[1] - y[0]),
+        );
+        let zmax = z.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
+        let mut chart = ChartBuilder::on(&root)
+            .caption(format!("{title}  (max {zmax:.4})"), ("sans-serif", 18))
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(60)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(plot_err)?;
+        chart
+            .configure_mesh()
+            .x_desc(x_desc)
+            .y_desc(y_desc)
+            .disable_mesh()
+            .draw()
+            .map_err(plot_err)?;
+        let (dx, dy) = (x[1] - x[0], y[1] - y[0]);
+        chart
+            .draw_series(x.iter().enumerate().flat_map(|(i, &xi)| {
+                y.iter().enumerate().map(move |(j, &yj)| {
+                    let t = if zmax > 0.0 {
+                        (z[i][j] / zmax).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let c = RGBColor(
+                        255 - (100.0 * t) as u8,
+                        (255.0 * (1.0 - t)) as u8,
+                        (255.0 * (1.0 - t)) as u8,
+                    );
+                    Rectangle::new(
+                        [
+                            (xi - dx / 2.0, yj - dy / 2.0),
+                            (xi + dx / 2.0, yj + dy / 2.0),
+                        ],
+                        c.filled(),
+                    )
+                })
+            }))
+            .map_err(plot_err)?;
+        root.present().map_err(plot_err)?;
+    }
+    Ok(svg)
+}

@@ -11,6 +11,9 @@
 //! | `mls` | linear basis p = [1, x, y], origin shifted to x, no volumes: φ_J = W_J cᵀp(d_J), A c = e₁, A = Σ_K W_K p(d_K)p(d_K)ᵀ \[B00 eq 36–38\] |
 //! | `corrected` | Shepard functions with gradients G_J = M⁻¹ ∇ψ_J, M = Σ_K ∇ψ_K ⊗ d_K \[B98 eq 55–61\] |
 
+// Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use crate::error::{Error, Result};
 use crate::kernel::{self, Kernel};
 use crate::scalar::Scalar;

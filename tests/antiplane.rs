@@ -19,7 +19,10 @@ fn model(q: Quadrature, lat: &Lattice2D) -> AntiPlane {
 
 /// [B00] Table I as printed: (j, k, nodal, cell 2×2, cell one point, stress point quadrilateral);
 /// `None` = blank (zero). The ±3 ±2 entry is printed under "one point"; see the test below.
-const TABLE_I: &[(i64, i64, Option<f64>, Option<f64>, Option<f64>, Option<f64>)] = &[
+/// (j, k, nodal, cell 2×2, cell one point, stress point quadrilateral).
+type Row = (i64, i64, Option<f64>, Option<f64>, Option<f64>, Option<f64>);
+
+const TABLE_I: &[Row] = &[
     (0, 0, Some(0.5062), Some(0.6507), Some(0.8142), Some(0.6602)),
     (
         1,

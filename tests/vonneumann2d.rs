@@ -203,3 +203,46 @@ fn along_an_axis_the_2d_classical_form_reduces_to_the_1d_relation() {
         }
     }
 }
+
+/// Finite-box prediction: a Swegle box of n × n particles with 3 fixed layers per side admits
+/// standing modes k = (mπ/(n_free+1), lπ/(n_free+1)); its growth rate is below the
+/// infinite-lattice maximum and converges to it as the box grows (21 → 41 → 81).
+#[test]
+fn finite_box_prediction_converges_to_the_infinite_lattice() {
+    use sphstab::analysis2d::box_prediction;
+    let lat = Lattice2D::square(1.0).unwrap();
+    let hydro = Material2D::Hydro { bulk: 1.0 };
+    let lin = Linearisation2D::new(
+        params(FormKind::Classical, "m4", ShapeFamily::Sph, 1.2, hydro),
+        &lat,
+        1.0,
+        0.01,
+    )
+    .unwrap();
+    let n = 128;
+    let mut inf: f64 = 0.0;
+    for i in 0..=n {
+        for j in 0..=n {
+            inf = inf.max(
+                lin.growth([PI * i as f64 / n as f64, PI * j as f64 / n as f64])
+                    .unwrap()
+                    .0,
+            );
+        }
+    }
+    let mut prev = 0.0;
+    for size in [21usize, 41, 81] {
+        let (g, k) = box_prediction(&lin, size - 6).unwrap();
+        eprintln!(
+            "box {size}×{size} (free {}): predicted growth {g:.5} at k = ({:.4}π, {:.4}π); infinite lattice {inf:.5}; ratio {:.4}",
+            size - 6,
+            k[0] / PI,
+            k[1] / PI,
+            g / inf
+        );
+        assert!(g <= inf * (1.0 + 1e-9));
+        assert!(g > prev);
+        prev = g;
+    }
+    assert!(prev / inf > 0.9);
+}

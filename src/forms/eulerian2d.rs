@@ -10,6 +10,9 @@
 //! plus −Σ_J m_J Π_IJ ∇_I W_IJ (Monaghan viscosity). Stress: hydro σ = −K(ρ/ρ0 − 1) I from the
 //! density; elastic σ (and τ) are state with the hypo-elastic rate of [`Material2D`].
 
+// Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use super::FormKind;
 use super::model2d::{Material2D, Model2D, ObjectiveRate, State2D};
 use crate::error::Result;

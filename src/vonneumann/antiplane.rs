@@ -266,11 +266,9 @@ impl AntiPlane {
         let ns = pattern.sites.len();
         let cell_area = (c[0][0] * c[1][1] - c[0][1] * c[1][0]).abs();
         let vol = cell_area / ns as f64;
-        let span = (c[0][0].hypot(c[0][1])).min(c[1][0].hypot(c[1][1]));
         let nmax = (r / (cell_area / c[0][0].hypot(c[0][1]).max(c[1][0].hypot(c[1][1])))).ceil()
             as i64
             + 2;
-        let _ = span;
         let mut stiffness = BTreeMap::new();
         let mut mass = BTreeMap::new();
         let mut out = Vec::new();
@@ -382,5 +380,31 @@ impl AntiPlane {
             .filter(|((_, _, o), _)| o[0] >= 0 && o[1] >= 0)
             .map(|((_, _, o), &v)| (o[0], o[1], v))
             .collect())
+    }
+}
+
+impl AntiPlane {
+    /// Spurious zero-frequency modes at the cut-off of a square lattice: (θ = 0°, θ = 45°) —
+    /// true where more branches than the rigid mode (only at the supercell Γ) have ω² ≤ tol.
+    pub fn spurious_at_cutoff(&self, gamma: f64) -> Result<(bool, bool)> {
+        use std::f64::consts::PI;
+        let tol = 1e-10;
+        let count = |k: [f64; 2]| -> Result<usize> {
+            Ok(self
+                .omega2(k, Mass::Lumped)?
+                .iter()
+                .filter(|w| w.abs() <= tol)
+                .count())
+        };
+        // for a supercell, the primitive cut-off wave vectors may fold onto Γ (rigid mode)
+        let rigid = |k: [f64; 2]| -> usize {
+            let c = self.pattern.cell;
+            let ph0 = (k[0] * c[0][0] + k[1] * c[0][1]) / (2.0 * PI);
+            let ph1 = (k[0] * c[1][0] + k[1] * c[1][1]) / (2.0 * PI);
+            usize::from((ph0 - ph0.round()).abs() < 1e-12 && (ph1 - ph1.round()).abs() < 1e-12)
+        };
+        let k0 = [PI, 0.0];
+        let k45 = [PI, PI / gamma];
+        Ok((count(k0)? > rigid(k0), count(k45)? > rigid(k45)))
     }
 }

@@ -16,6 +16,9 @@
 //!                   ρ_ref D = Kρ_ref/ρ0 S1S1ᵀ                         (hydro, P = −p cof F)
 //! ```
 
+// Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use crate::error::Result;
 use crate::forms::{FormKind, Material2D, ObjectiveRate};
 use crate::kernel;

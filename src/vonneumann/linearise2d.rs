@@ -4,6 +4,9 @@
 //! dynamical matrix D(k) = −(J_vx + J_vq J_qv) of the mechanical branches, growth rates and
 //! polarisations.
 
+// Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use super::linearise::{REST_RATE_TOL, ZERO_SUM_TOL, eigen};
 use crate::error::{Error, Result};
 use crate::forms::{Comp2, FieldKind, Material2D, Model2D, ModelParams2D, State2D};
@@ -232,6 +235,25 @@ impl Linearisation2D {
         let b = self.branches(k);
         let (g0, g1) = (Self::growth_of(b[0].0), Self::growth_of(b[1].0));
         Ok(if g0 >= g1 { (g0, b[0].1) } else { (g1, b[1].1) })
+    }
+
+    /// Amplification matrix of one leapfrog step Δt (in Δx/c) for wave vector k.
+    pub fn amplification(&self, k: [f64; 2], dt: f64) -> DMatrix<Complex64> {
+        let ms = super::amplification::ModeSystem::new(
+            self.jacobian(k),
+            self.ix.to_vec(),
+            self.iv.to_vec(),
+            self.iq.clone(),
+        );
+        ms.amplification(dt * self.time_scale)
+    }
+
+    /// Spectral radius of the leapfrog amplification matrix at k.
+    pub fn spectral_radius(&self, k: [f64; 2], dt: f64) -> Result<f64> {
+        Ok(eigen(self.amplification(k, dt))?
+            .iter()
+            .map(|l| l.norm())
+            .fold(0.0, f64::max))
     }
 
     /// Eigenvalues s of J(k), normalised to c/Δx.

@@ -45,9 +45,90 @@ pub struct Config {
     /// Monaghan artificial viscosity β (vanishes in the linearisation), ≥ 0.
     #[arg(long = "av-beta", allow_hyphen_values = true)]
     pub av_beta: Option<f64>,
+    /// Dimension: 1 (plane wave in a bar) or 2 (in-plane Bloch analysis of a lattice).
+    #[arg(long, default_value_t = 1)]
+    pub dim: u8,
+    /// 2D lattice: square or hex.
+    #[arg(long, default_value = "square")]
+    pub lattice: String,
+    /// 2D square lattice aspect ratio γ = Δy/Δx, in [0.1, 10].
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub gamma: f64,
+    /// 2D material: hydro (p = K(ρ/ρ0 − 1), G = 0, σ̄ = 1 − ρ/ρ0) or elastic.
+    #[arg(long, default_value = "elastic")]
+    pub material: String,
+    /// 2D elastic Poisson ratio ν (plane strain), in [−0.99, 0.5).
+    #[arg(long, default_value_t = 0.3, allow_hyphen_values = true)]
+    pub poisson: f64,
+    /// 2D elastic objective stress rate: jaumann or truesdell (the 1D law).
+    #[arg(long, default_value = "jaumann")]
+    pub rate: String,
+    /// 2D: wave vectors per reciprocal direction (the zone is sampled grid × grid), in [2, 4096].
+    #[arg(long, default_value_t = 64)]
+    pub grid: usize,
 }
 
 impl Config {
+    /// Whether this is a 2D question (`--dim 2`); any other value than 1 or 2 is an error.
+    pub fn is_2d(&self) -> Result<bool> {
+        match self.dim {
+            1 => Ok(false),
+            2 => Ok(true),
+            d => Err(sphstab::error::Error::OutOfRange {
+                name: "--dim",
+                value: d as f64,
+                range: "must be 1 or 2".into(),
+            }
+            .into()),
+        }
+    }
+
+    /// Builds and validates the 2D query.
+    pub fn query2d(&self) -> Result<sphstab::analysis2d::Query2D> {
+        use sphstab::analysis2d::{MaterialSpec, Query2D};
+        use sphstab::forms::ObjectiveRate;
+        let q1 = self.query(2)?;
+        let mut q = Query2D::new(q1.form, q1.kernel, q1.h_over_dx, q1.stress);
+        q.shape = q1.shape;
+        q.c_partition = q1.c_partition;
+        q.av = q1.av;
+        q.dt = q1.dt;
+        q.grid = self.grid;
+        q.lattice = sphstab::lattice::Lattice2D::by_name(&self.lattice, self.gamma)?;
+        let rate = match self.rate.as_str() {
+            "jaumann" => ObjectiveRate::Jaumann,
+            "truesdell" => ObjectiveRate::Truesdell,
+            r => {
+                return Err(sphstab::error::Error::UnknownName {
+                    what: "rate",
+                    given: r.into(),
+                    valid: "jaumann, truesdell".into(),
+                }
+                .into());
+            }
+        };
+        q.material = match self.material.as_str() {
+            "hydro" => MaterialSpec::Hydro,
+            "elastic" => {
+                sphstab::error::check_range("--poisson", self.poisson, -0.99, 0.5, true, false)?;
+                MaterialSpec::Elastic {
+                    poisson: self.poisson,
+                    rate,
+                }
+            }
+            m => {
+                return Err(sphstab::error::Error::UnknownName {
+                    what: "material",
+                    given: m.into(),
+                    valid: "hydro, elastic".into(),
+                }
+                .into());
+            }
+        };
+        q.validate()?;
+        Ok(q)
+    }
+
     /// Builds and validates the library query.
     pub fn query(&self, points: usize) -> Result<Query1D> {
         let form = FormKind::by_name(&self.form)?;

@@ -20,6 +20,9 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if a.cfg.is_2d()? {
+        return run2d(a);
+    }
     let q = a.cfg.query(a.points)?;
     let r = sphstab::analysis::dispersion(&q)?;
     if let Some(path) = &a.plot {
@@ -42,6 +45,87 @@ pub fn run(a: Args) -> Result<()> {
             r.kappa_dx[i] / std::f64::consts::PI,
             r.omega2[i],
             r.omega2_continuum[i],
+            r.growth_rate[i]
+        );
+    }
+    Ok(())
+}
+
+fn run2d(a: Args) -> Result<()> {
+    use sphstab::plot::{Curve, lines_svg};
+    let q = a.cfg.query2d()?;
+    let r = sphstab::analysis2d::dispersion2d(&q, a.points.max(2))?;
+    if let Some(path) = &a.plot {
+        let col = |i: usize, v: &Vec<[f64; 2]>| v.iter().map(|b| b[i]).collect::<Vec<_>>();
+        let curves = [
+            Curve {
+                label: "continuum S".into(),
+                x: r.path.clone(),
+                y: col(0, &r.omega2_continuum),
+                dashed: true,
+            },
+            Curve {
+                label: "continuum P".into(),
+                x: r.path.clone(),
+                y: col(1, &r.omega2_continuum),
+                dashed: true,
+            },
+            Curve {
+                label: format!("{} branch 1", r.form),
+                x: r.path.clone(),
+                y: col(0, &r.omega2),
+                dashed: false,
+            },
+            Curve {
+                label: format!("{} branch 2", r.form),
+                x: r.path.clone(),
+                y: col(1, &r.omega2),
+                dashed: false,
+            },
+        ];
+        let labels: Vec<String> = r
+            .labels
+            .iter()
+            .map(|(l, s)| format!("{l} {s:.2}"))
+            .collect();
+        let dmax = r.omega2.iter().flatten().fold(0.0f64, |m, &y| m.max(y));
+        let dmin = r.omega2.iter().flatten().fold(0.0f64, |m, &y| m.min(y));
+        let svg = lines_svg(
+            &format!(
+                "{} / {} h = {}Δx, σ̄ = {} (2D, high-symmetry path)",
+                r.form, r.kernel, r.h_over_dx, r.stress
+            ),
+            &format!(
+                "arc length along the path, units 1/Δx ({})",
+                labels.join(", ")
+            ),
+            sphstab::plot::OMEGA2_DESC,
+            &curves,
+            Some((dmin.min(0.0), 1.3 * dmax.max(1e-12))),
+        )?;
+        std::fs::write(path, svg)
+            .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+    }
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(());
+    }
+    println!(
+        "# {} / {} h/Δx {} σ̄ {} — path {:?}",
+        r.form, r.kernel, r.h_over_dx, r.stress, r.labels
+    );
+    println!(
+        "{:>8} {:>10} {:>10} {:>14} {:>14} {:>12}",
+        "s", "κxΔx/π", "κyΔx/π", "ω²₁Δx²/c²", "ω²₂Δx²/c²", "growth"
+    );
+    for i in 0..r.path.len() {
+        println!(
+            "{:>8.4} {:>10.5} {:>10.5} {:>14.6e} {:>14.6e} {:>12.4e}",
+            r.path[i],
+            r.kappa[i][0] / std::f64::consts::PI,
+            r.kappa[i][1] / std::f64::consts::PI,
+            r.omega2[i][0],
+            r.omega2[i][1],
             r.growth_rate[i]
         );
     }

@@ -4,7 +4,9 @@ mod common;
 mod dispersion;
 mod figures;
 mod kernels;
+mod map;
 mod query;
+mod stiffness;
 mod timestep;
 
 use clap::{Parser, Subcommand};
@@ -32,6 +34,10 @@ enum Cmd {
     Kernels(kernels::Args),
     /// Regenerate the figures in figures/ from the configs in analysis/configs/.
     Figures(figures::Args),
+    /// 2D stability map: growth rate over (κx, κy) as a heat map.
+    Map(map::Args),
+    /// Anti-plane Galerkin stiffness K_jk for a quadrature pattern [B00 Table I].
+    Stiffness(stiffness::Args),
 }
 
 fn main() {
@@ -62,6 +68,8 @@ fn main() {
         Cmd::Timestep(a) => timestep::run(a),
         Cmd::Kernels(a) => kernels::run(a),
         Cmd::Figures(a) => figures::run(a),
+        Cmd::Map(a) => map::run(a),
+        Cmd::Stiffness(a) => stiffness::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");

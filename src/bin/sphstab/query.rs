@@ -14,9 +14,16 @@ pub struct Args {
     /// Print one JSON document instead of a table.
     #[arg(long)]
     json: bool,
+    /// 2D: also predict the growth a box of N × N free particles between fixed layers can show
+    /// (standing modes k = (mπ/(N+1), lπ/(N+1))), N in [1, 10000].
+    #[arg(long = "box")]
+    box_free: Option<usize>,
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if a.cfg.is_2d()? {
+        return run2d(a);
+    }
     let q = a.cfg.query(a.points)?;
     let r = sphstab::analysis::query(&q)?;
     if a.json {
@@ -62,6 +69,95 @@ pub fn run(a: Args) -> Result<()> {
     }
     if let (Some(dt), Some(a)) = (r.dt, r.max_amplification) {
         println!("at Δt = {dt} Δx/c: max |λ| = {a:.9}");
+    }
+    Ok(())
+}
+
+fn run2d(a: Args) -> Result<()> {
+    let q = a.cfg.query2d()?;
+    let r = sphstab::analysis2d::query2d(&q)?;
+    let boxp = match a.box_free {
+        Some(n) if (1..=10_000).contains(&n) => Some(sphstab::analysis2d::box_prediction(
+            &q.linearise_at(q.stress)?,
+            n,
+        )?),
+        Some(n) => {
+            return Err(sphstab::error::Error::OutOfRange {
+                name: "--box",
+                value: n as f64,
+                range: "must be an integer in [1, 10000]".into(),
+            }
+            .into());
+        }
+        None => None,
+    };
+    if a.json {
+        let mut v = serde_json::to_value(&r)?;
+        if let Some((g, k)) = boxp {
+            v["box_free_particles"] = serde_json::json!(a.box_free);
+            v["box_growth_rate"] = serde_json::json!(g);
+            v["box_kappa"] = serde_json::json!(k);
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
+        return Ok(());
+    }
+    if let Some((g, k)) = boxp {
+        println!(
+            "box of {0}×{0} free particles: predicted growth {g:.6} c/Δx at κΔx = ({1:.4}π, {2:.4}π)",
+            a.box_free.unwrap_or(0),
+            k[0] / std::f64::consts::PI,
+            k[1] / std::f64::consts::PI
+        );
+    }
+    println!(
+        "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}, {:?}, {:?}, zone sampled {}×{}",
+        r.form,
+        r.kernel,
+        r.shape,
+        r.h_over_dx,
+        r.support_over_dx,
+        r.stress,
+        r.material,
+        r.lattice,
+        r.grid,
+        r.grid
+    );
+    match (r.stable, r.kappa_at_max, &r.polarisation) {
+        (true, _, _) => println!("verdict: STABLE (no exponentially growing mode)"),
+        (false, Some(k), Some(p)) => println!(
+            "verdict: UNSTABLE — max growth rate {:.6} c/Δx at κΔx = ({:.4}π, {:.4}π), polarisation ({:.3}, {:.3}), longitudinal fraction {:.3}",
+            r.max_growth_rate,
+            k[0] / std::f64::consts::PI,
+            k[1] / std::f64::consts::PI,
+            p.vector[0],
+            p.vector[1],
+            p.longitudinal_fraction
+        ),
+        _ => println!("verdict: UNSTABLE (time step)"),
+    }
+    for i in &r.instabilities {
+        let kind = serde_json::to_value(i.kind)?
+            .as_str()
+            .unwrap_or("?")
+            .to_string();
+        println!(
+            "{:<16} growth {:.6} c/Δx at κΔx = ({:.4}π, {:.4}π), {:.1}% of the zone",
+            kind,
+            i.growth_rate,
+            i.kappa_at_max[0] / std::f64::consts::PI,
+            i.kappa_at_max[1] / std::f64::consts::PI,
+            100.0 * i.zone_fraction
+        );
+    }
+    match r.critical_dt {
+        Some(dt) => println!(
+            "critical leapfrog Δt = {dt:.6} Δx/c (CFL c Δt/h = {:.6})",
+            dt / r.h_over_dx
+        ),
+        None => println!("critical Δt: not computed (the semi-discrete system grows)"),
+    }
+    if let (Some(dt), Some(m)) = (r.dt, r.max_amplification) {
+        println!("at Δt = {dt} Δx/c: max |λ| = {m:.9}");
     }
     Ok(())
 }

@@ -17,6 +17,41 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if a.cfg.is_2d()? {
+        let q = a.cfg.query2d()?;
+        let lin = q.linearise_at(q.stress)?;
+        let ks = q.kgrid();
+        let r = sphstab::analysis2d::query2d(&q)?;
+        let bis = if r.critical_dt.is_some() {
+            Some(sphstab::analysis2d::critical_dt_2d(&lin, &ks)?)
+        } else {
+            None
+        };
+        let v = serde_json::json!({
+            "dim": 2, "form": r.form, "kernel": r.kernel, "h_over_dx": r.h_over_dx, "support_over_dx": r.support_over_dx,
+            "stress": r.stress, "critical_dt": bis, "critical_dt_from_omega_max": r.critical_dt,
+            "critical_cfl": bis.map(|d| d / r.h_over_dx),
+        });
+        if a.json {
+            println!("{}", serde_json::to_string_pretty(&v)?);
+        } else {
+            match bis {
+                Some(dt) => println!(
+                    "{} / {} h = {}Δx σ̄ = {} (2D): critical leapfrog Δt = {dt:.9} Δx/c (bisection on the amplification matrices), 2/ω_max = {:.9}, CFL c Δt/h = {:.9}",
+                    r.form,
+                    r.kernel,
+                    r.h_over_dx,
+                    r.stress,
+                    r.critical_dt.unwrap_or(f64::NAN),
+                    dt / r.h_over_dx
+                ),
+                None => println!(
+                    "no critical Δt: the semi-discrete system already grows (see `sphstab query --dim 2`)"
+                ),
+            }
+        }
+        return Ok(());
+    }
     let q = a.cfg.query(a.points)?;
     let r = sphstab::analysis::timestep(&q)?;
     if a.json {

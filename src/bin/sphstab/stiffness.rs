@@ -1,0 +1,157 @@
+//! `sphstab stiffness`: anti-plane Galerkin stiffness K_jk [B00 §4.4, Table I] and, with
+//! `--theta`, the normalised frequency ωΔx/c along that direction.
+
+use anyhow::Result;
+use sphstab::lattice::Lattice2D;
+use sphstab::shape::ShapeFamily;
+use sphstab::shape2d::KernelParams2;
+use sphstab::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
+
+/// Flags of `stiffness`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Weight/kernel (Table I: efg-cubic).
+    #[arg(long, default_value = "efg-cubic")]
+    kernel: String,
+    /// Support radius R/Δx (Belytschko's D_mx), > 0.
+    #[arg(long, default_value_t = 2.0, allow_hyphen_values = true)]
+    support: f64,
+    /// Shape family (Table I: mls).
+    #[arg(long, default_value = "mls")]
+    shape: String,
+    /// nodal, cell-1, cell-2x2, stress-quad, stress-tri, stress-star, stress-hex.
+    #[arg(long, default_value = "nodal")]
+    quadrature: String,
+    /// square or hex (stress-hex needs hex).
+    #[arg(long, default_value = "square")]
+    lattice: String,
+    /// Square-lattice aspect ratio γ.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    gamma: f64,
+    /// Also print ωΔx/c along this direction θ (degrees) for κΔx ∈ (0, κ_cut].
+    #[arg(long, allow_hyphen_values = true)]
+    theta: Option<f64>,
+    /// Points along θ.
+    #[arg(long, default_value_t = 32)]
+    points: usize,
+    /// Use the consistent mass (default lumped, as Table I / eq 119).
+    #[arg(long)]
+    consistent: bool,
+    /// JSON output.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let k = sphstab::kernel::by_name(&a.kernel)?;
+    sphstab::error::check_range("--support", a.support, 0.0, 50.0, false, true)?;
+    let lat = Lattice2D::by_name(&a.lattice, a.gamma)?;
+    let q = Quadrature::by_name(&a.quadrature)?;
+    let fam = ShapeFamily::by_name(&a.shape)?;
+    let ap = AntiPlane::new(
+        &lat,
+        q,
+        fam,
+        KernelParams2 {
+            kernel: k,
+            h: a.support / k.zeta(),
+        },
+    )?;
+    let mass = if a.consistent {
+        Mass::Consistent
+    } else {
+        Mass::Lumped
+    };
+    let mut disp = Vec::new();
+    if let Some(th) = a.theta {
+        sphstab::error::check_range("--theta", th, -360.0, 360.0, true, true)?;
+        let t = th.to_radians();
+        let (c, s) = (t.cos(), t.sin());
+        // cut-off: the zone boundary along θ (|kx| ≤ π, |ky| ≤ π/γ for the square lattice)
+        let gamma = if let sphstab::lattice::LatticeKind::Square { gamma } = lat.kind {
+            gamma
+        } else {
+            1.0
+        };
+        let kcut = (std::f64::consts::PI / c.abs().max(1e-12))
+            .min(std::f64::consts::PI / gamma / s.abs().max(1e-12));
+        for i in 1..=a.points.max(2) {
+            let kap = kcut * i as f64 / a.points.max(2) as f64;
+            let w2 = ap.omega2([kap * c, kap * s], mass)?;
+            disp.push((
+                kap,
+                w2.iter().map(|w| w.max(0.0).sqrt()).collect::<Vec<_>>(),
+            ));
+        }
+    }
+    let gamma = if let sphstab::lattice::LatticeKind::Square { gamma } = lat.kind {
+        gamma
+    } else {
+        1.0
+    };
+    let spurious = if matches!(lat.kind, sphstab::lattice::LatticeKind::Square { .. }) {
+        Some(ap.spurious_at_cutoff(gamma)?)
+    } else {
+        None
+    };
+    if a.json {
+        let entries = if ap.pattern.sites.len() == 1 {
+            ap.stiffness_table()?
+                .into_iter()
+                .map(|(j, k, v)| serde_json::json!({"j": j, "k": k, "value": v}))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let d: Vec<_> = disp
+            .iter()
+            .map(|(k, w)| serde_json::json!({"kappa_dx": k, "omega_dx_over_c": w}))
+            .collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(
+                &serde_json::json!({"quadrature": q.name(), "entries": entries, "dispersion": d,
+            "spurious_zero_frequency": spurious.map(|(a, b)| serde_json::json!({"theta_0": a, "theta_45": b}))})
+            )?
+        );
+        return Ok(());
+    }
+    if ap.pattern.sites.len() == 1 {
+        println!(
+            "K_jk ({}, {} / {}, D_mx = {}, {}; entries j, k ≥ 0, symmetric):",
+            q.name(),
+            a.shape,
+            a.kernel,
+            a.support,
+            a.lattice
+        );
+        for (j, kk, v) in ap.stiffness_table()? {
+            if v.abs() > 1e-14 {
+                println!("{j:>3} {kk:>3} {v:>14.6e}");
+            }
+        }
+    } else {
+        println!(
+            "{}: {} nodes per periodic cell; no single K_jk table (use --theta)",
+            q.name(),
+            ap.pattern.sites.len()
+        );
+    }
+    if let Some((s0, s45)) = spurious {
+        println!(
+            "spurious zero-frequency mode at the cut-off: θ = 0°: {}, θ = 45°: {}",
+            if s0 { "yes" } else { "no" },
+            if s45 { "yes" } else { "no" }
+        );
+    }
+    for (kap, w) in disp {
+        println!(
+            "κΔx = {:>8.5}  ωΔx/c = {:?}",
+            kap,
+            w.iter()
+                .map(|x| (x * 1e6).round() / 1e6)
+                .collect::<Vec<_>>()
+        );
+    }
+    Ok(())
+}

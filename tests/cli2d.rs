@@ -1,0 +1,216 @@
+//! The 2D command line: acceptance command, JSON fields, map, stiffness, bad input.
+
+use std::process::Command;
+
+fn sphstab(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_sphstab"))
+        .args(args)
+        .output()
+        .expect("run sphstab");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = sphstab(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+#[test]
+fn acceptance_2d_classical_hydro_is_tensile() {
+    let v = json(&[
+        "query",
+        "--dim",
+        "2",
+        "--form",
+        "classical",
+        "--kernel",
+        "m4",
+        "--h",
+        "1.2",
+        "--material",
+        "hydro",
+        "--stress",
+        "0.01",
+        "--json",
+    ]);
+    assert_eq!(v["stable"], false);
+    assert!(v["max_growth_rate"].as_f64().unwrap() > 0.1);
+    assert!(
+        v["instabilities"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|i| i["kind"] == "tensile")
+    );
+    let k = v["kappa_at_max"].as_array().unwrap();
+    assert_eq!(k.len(), 2);
+    assert!(v["polarisation"]["longitudinal_fraction"].as_f64().unwrap() > 0.99);
+    for form in ["nonlocal", "total-lagrangian"] {
+        let v = json(&[
+            "query",
+            "--dim",
+            "2",
+            "--form",
+            form,
+            "--kernel",
+            "m4",
+            "--h",
+            "1.2",
+            "--material",
+            "hydro",
+            "--stress",
+            "0.01",
+            "--json",
+        ]);
+        assert_eq!(v["stable"], true, "{form}");
+    }
+}
+
+#[test]
+fn dispersion_2d_along_the_path_and_map() {
+    let dir = std::env::temp_dir().join(format!("sphstab-cli2d-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("d.svg");
+    let v = json(&[
+        "dispersion",
+        "--dim",
+        "2",
+        "--lattice",
+        "hex",
+        "--form",
+        "nonlocal",
+        "--kernel",
+        "wendland-c2",
+        "--h",
+        "1.3",
+        "--points",
+        "8",
+        "--json",
+        "--plot",
+        p.to_str().unwrap(),
+    ]);
+    assert_eq!(v["omega2"].as_array().unwrap().len(), 3 * 8 + 1);
+    let labels: Vec<String> = v["labels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l[0].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(labels, ["Γ", "M", "K", "Γ"]);
+    assert!(std::fs::read_to_string(&p).unwrap().contains("<svg"));
+    let m = dir.join("m.svg");
+    let (code, out, err) = sphstab(&[
+        "map",
+        "--form",
+        "classical",
+        "--kernel",
+        "m4",
+        "--h",
+        "1.2",
+        "--material",
+        "hydro",
+        "--stress",
+        "0.01",
+        "--n",
+        "16",
+        "--plot",
+        m.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("16×16"));
+    assert!(std::fs::read_to_string(&m).unwrap().contains("<svg"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn stiffness_json_entries() {
+    let v = json(&[
+        "stiffness",
+        "--kernel",
+        "efg-cubic",
+        "--support",
+        "2",
+        "--shape",
+        "mls",
+        "--quadrature",
+        "nodal",
+        "--json",
+    ]);
+    let e = v["entries"].as_array().unwrap();
+    let k00 = e.iter().find(|x| x["j"] == 0 && x["k"] == 0).unwrap()["value"]
+        .as_f64()
+        .unwrap();
+    // [B00] Table I, nodal integration: 0.5062
+    assert!((k00 - 0.5062).abs() < 5e-5);
+    assert!(
+        e.iter()
+            .all(|x| x["j"].as_i64().unwrap() >= 0 && x["k"].as_i64().unwrap() >= 0)
+    );
+}
+
+#[test]
+fn timestep_2d() {
+    let v = json(&[
+        "timestep",
+        "--dim",
+        "2",
+        "--form",
+        "total-lagrangian",
+        "--kernel",
+        "m4",
+        "--h",
+        "1.2",
+        "--stress",
+        "0",
+        "--grid",
+        "16",
+        "--json",
+    ]);
+    let a = v["critical_dt"].as_f64().unwrap();
+    let b = v["critical_dt_from_omega_max"].as_f64().unwrap();
+    assert!((a - b).abs() < 1e-6 * b, "{a} vs {b}");
+}
+
+#[test]
+fn bad_2d_input_exits_2_naming_the_flag() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["query", "--dim", "3"], "--dim"),
+        (&["query", "--dim", "2", "--lattice", "cubic"], "lattice"),
+        (&["query", "--dim", "2", "--material", "rubber"], "material"),
+        (&["query", "--dim", "2", "--poisson", "0.5"], "--poisson"),
+        (&["query", "--dim", "2", "--rate", "oldroyd"], "rate"),
+        (&["query", "--dim", "2", "--grid", "1"], "--grid"),
+        (&["query", "--dim", "2", "--gamma", "0"], "--gamma"),
+        (
+            &["query", "--dim", "2", "--form", "least-squares"],
+            "--form",
+        ),
+        (
+            &[
+                "query",
+                "--dim",
+                "2",
+                "--material",
+                "hydro",
+                "--stress",
+                "1.5",
+            ],
+            "--stress",
+        ),
+        (&["stiffness", "--quadrature", "stress-hex"], "--quadrature"),
+        (&["stiffness", "--quadrature", "gauss"], "quadrature"),
+        (&["map", "--n", "1"], "--n"),
+    ];
+    for (args, flag) in cases {
+        let (code, out, err) = sphstab(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(out.is_empty());
+        assert!(err.contains(flag), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    }
+}
