@@ -7,7 +7,7 @@
 //! With s the pre-stress, ρ the current density and (λ', G') the incremental moduli of the
 //! stress law (hydro: λ' = Kρ/ρ0, G' = 0; Jaumann: λ' = λ, G' = G; Truesdell: λ' = λ − s,
 //! G' = G + s — for isotropic pre-stress), the derivations of `analysis/ERRATA.md` E1 carried
-//! to 2D give (D = ω² matrix, normalised by C/ρ0 in [`normalised`]):
+//! to 2D give (D = ω² matrix; divide by C/ρ0 for the normalised D of the engine):
 //! ```text
 //! classical (sph):  ρD = (λ' + G' + 2s) S1S1ᵀ + G'|S1|² I − 2s S2
 //! nonlocal (sph):   ρD = (λ' + G') S1S1ᵀ + G'|S1|² I
