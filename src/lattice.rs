@@ -110,6 +110,27 @@ impl Lattice2D {
         out
     }
 
+    /// Distance from Γ to the first-zone boundary along direction θ (radians): the smallest
+    /// |G|²/(2 G·n̂) over the nearest reciprocal-lattice vectors G with G·n̂ > 0.
+    pub fn zone_boundary(&self, theta: f64) -> f64 {
+        let n = [theta.cos(), theta.sin()];
+        let b = self.reciprocal();
+        let mut best = f64::INFINITY;
+        for m in -2i64..=2 {
+            for l in -2i64..=2 {
+                let g = [
+                    m as f64 * b[0][0] + l as f64 * b[1][0],
+                    m as f64 * b[0][1] + l as f64 * b[1][1],
+                ];
+                let gn = g[0] * n[0] + g[1] * n[1];
+                if gn > 1e-12 {
+                    best = best.min((g[0] * g[0] + g[1] * g[1]) / (2.0 * gn));
+                }
+            }
+        }
+        best
+    }
+
     /// The high-symmetry points of the first Brillouin zone, in path order, with labels.
     pub fn symmetry_points(&self) -> Vec<(&'static str, [f64; 2])> {
         match self.kind {
@@ -170,6 +191,17 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn zone_boundary_distances() {
+        let s = Lattice2D::square(1.0).unwrap();
+        assert!((s.zone_boundary(0.0) - PI).abs() < 1e-12);
+        assert!((s.zone_boundary(PI / 4.0) - PI * 2f64.sqrt()).abs() < 1e-12);
+        let h = Lattice2D::hexagonal();
+        // Γ–K along x: 4π/3; Γ–M along 30°: 2π/√3
+        assert!((h.zone_boundary(0.0) - 4.0 * PI / 3.0).abs() < 1e-12);
+        assert!((h.zone_boundary(PI / 6.0) - 2.0 * PI / 3f64.sqrt()).abs() < 1e-12);
     }
 
     #[test]

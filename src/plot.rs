@@ -80,29 +80,31 @@ pub fn lines_svg(
             .map_err(plot_err)?;
         for (i, c) in curves.iter().enumerate() {
             let color = PALETTE[i % PALETTE.len()];
-            let pts: Vec<(f64, f64)> =
-                c.x.iter()
-                    .zip(&c.y)
-                    .filter(|(_, y)| y.is_finite() && **y >= lo && **y <= hi)
-                    .map(|(&x, &y)| (x, y))
-                    .collect();
+            // split into runs of points inside the vertical range (no lines across clipped gaps)
+            let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+            for (&x, &y) in c.x.iter().zip(&c.y) {
+                if y.is_finite() && y >= lo && y <= hi {
+                    segments.last_mut().map(|s| s.push((x, y)));
+                } else if !segments.last().is_some_and(|s| s.is_empty()) {
+                    segments.push(Vec::new());
+                }
+            }
             let style = color.stroke_width(2);
-            if c.dashed {
-                chart
-                    .draw_series(DashedLineSeries::new(pts, 8, 5, style))
-                    .map_err(plot_err)?
-                    .label(c.label.clone())
-                    .legend(move |(x, y)| {
+            for (n, seg) in segments.into_iter().filter(|s| !s.is_empty()).enumerate() {
+                let anno = if c.dashed {
+                    chart
+                        .draw_series(DashedLineSeries::new(seg, 8, 5, style))
+                        .map_err(plot_err)?
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(seg, style))
+                        .map_err(plot_err)?
+                };
+                if n == 0 {
+                    anno.label(c.label.clone()).legend(move |(x, y)| {
                         PathElement::new([(x, y), (x + 20, y)], color.stroke_width(2))
                     });
-            } else {
-                chart
-                    .draw_series(LineSeries::new(pts, style))
-                    .map_err(plot_err)?
-                    .label(c.label.clone())
-                    .legend(move |(x, y)| {
-                        PathElement::new([(x, y), (x + 20, y)], color.stroke_width(2))
-                    });
+                }
             }
         }
         chart

@@ -374,10 +374,20 @@ impl AntiPlane {
                 "the stiffness table is defined for one node per cell (not stress-star)".into(),
             ));
         }
+        // Square lattices: j ≥ 0, k ≥ 0 (K even in j and in k); others: the half-plane
+        // j > 0 or (j = 0, k ≥ 0), since only K(−o) = K(o) holds.
+        let c = self.pattern.cell;
+        let rectangular = c[0][1] == 0.0 && c[1][0] == 0.0;
         Ok(self
             .stiffness
             .iter()
-            .filter(|((_, _, o), _)| o[0] >= 0 && o[1] >= 0)
+            .filter(|((_, _, o), _)| {
+                if rectangular {
+                    o[0] >= 0 && o[1] >= 0
+                } else {
+                    o[0] > 0 || (o[0] == 0 && o[1] >= 0)
+                }
+            })
             .map(|((_, _, o), &v)| (o[0], o[1], v))
             .collect())
     }

@@ -67,14 +67,8 @@ pub fn run(a: Args) -> Result<()> {
         sphstab::error::check_range("--theta", th, -360.0, 360.0, true, true)?;
         let t = th.to_radians();
         let (c, s) = (t.cos(), t.sin());
-        // cut-off: the zone boundary along θ (|kx| ≤ π, |ky| ≤ π/γ for the square lattice)
-        let gamma = if let sphstab::lattice::LatticeKind::Square { gamma } = lat.kind {
-            gamma
-        } else {
-            1.0
-        };
-        let kcut = (std::f64::consts::PI / c.abs().max(1e-12))
-            .min(std::f64::consts::PI / gamma / s.abs().max(1e-12));
+        // cut-off: the first-zone boundary along θ
+        let kcut = lat.zone_boundary(t);
         for i in 1..=a.points.max(2) {
             let kap = kcut * i as f64 / a.points.max(2) as f64;
             let w2 = ap.omega2([kap * c, kap * s], mass)?;
@@ -117,8 +111,13 @@ pub fn run(a: Args) -> Result<()> {
         return Ok(());
     }
     if ap.pattern.sites.len() == 1 {
+        let half = if a.lattice == "square" {
+            "entries j, k ≥ 0; K is even in j and in k"
+        } else {
+            "offsets j a1 + k a2 over a half-plane; K(−j, −k) = K(j, k)"
+        };
         println!(
-            "K_jk ({}, {} / {}, D_mx = {}, {}; entries j, k ≥ 0, symmetric):",
+            "K_jk ({}, {} / {}, D_mx = {}, {}; {half}):",
             q.name(),
             a.shape,
             a.kernel,
