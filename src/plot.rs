@@ -84,7 +84,9 @@ pub fn lines_svg(
             let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
             for (&x, &y) in c.x.iter().zip(&c.y) {
                 if y.is_finite() && y >= lo && y <= hi {
-                    segments.last_mut().map(|s| s.push((x, y)));
+                    if let Some(s) = segments.last_mut() {
+                        s.push((x, y));
+                    }
                 } else if !segments.last().is_some_and(|s| s.is_empty()) {
                     segments.push(Vec::new());
                 }
