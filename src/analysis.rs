@@ -19,6 +19,48 @@ pub const H_RANGE: (f64, f64) = (0.05, 50.0);
 /// Allowed range of σ̄.
 pub const STRESS_RANGE: (f64, f64) = (-10.0, 10.0);
 
+/// Checks shared by the 1D and 2D questions: h/Δx, σ̄, c, viscosity, Δt, and that the support
+/// reaches the nearest neighbours (ζh > Δx).
+pub fn check_common(
+    kernel: &'static dyn Kernel,
+    h: f64,
+    stress: f64,
+    c: f64,
+    av: Option<(f64, f64)>,
+    dt: Option<f64>,
+) -> Result<()> {
+    check_range("--h", h, H_RANGE.0, H_RANGE.1, true, true)?;
+    check_range(
+        "--stress",
+        stress,
+        STRESS_RANGE.0,
+        STRESS_RANGE.1,
+        true,
+        true,
+    )?;
+    check_range("--c", c, 0.0, 1.0, true, true)?;
+    if let Some((a, b)) = av {
+        check_range("--av-alpha", a, 0.0, 100.0, true, true)?;
+        check_range("--av-beta", b, 0.0, 100.0, true, true)?;
+    }
+    if let Some(dt) = dt {
+        check_range("--dt", dt, 0.0, 1e6, false, true)?;
+    }
+    if kernel.zeta() * h <= 1.0 {
+        return Err(Error::OutOfRange {
+            name: "--h",
+            value: h,
+            range: format!(
+                "the support ζh must exceed Δx so that particles have neighbours: h/Δx > {} for {} (ζ = {})",
+                1.0 / kernel.zeta(),
+                kernel.name(),
+                kernel.zeta()
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// A 1D stability question.
 #[derive(Clone, Copy, Debug)]
 pub struct Query1D {
@@ -66,24 +108,15 @@ impl Query1D {
 
     /// Validates every number (one-line errors naming the parameter and its range).
     pub fn validate(&self) -> Result<()> {
-        check_range("--h", self.h_over_dx, H_RANGE.0, H_RANGE.1, true, true)?;
-        check_range(
-            "--stress",
+        check_common(
+            self.kernel,
+            self.h_over_dx,
             self.stress,
-            STRESS_RANGE.0,
-            STRESS_RANGE.1,
-            true,
-            true,
+            self.c_partition,
+            self.av,
+            self.dt,
         )?;
-        check_range("--c", self.c_partition, 0.0, 1.0, true, true)?;
         check_range("--alpha-s", self.alpha_s, 0.0, 100.0, true, true)?;
-        if let Some((a, b)) = self.av {
-            check_range("--av-alpha", a, 0.0, 100.0, true, true)?;
-            check_range("--av-beta", b, 0.0, 100.0, true, true)?;
-        }
-        if let Some(dt) = self.dt {
-            check_range("--dt", dt, 0.0, 1e6, false, true)?;
-        }
         if self.points < 2 || self.points > 10_000_000 {
             return Err(Error::OutOfRange {
                 name: "--points",
@@ -99,18 +132,6 @@ impl Query1D {
             false,
             false,
         )?;
-        if self.support_over_dx() <= 1.0 {
-            return Err(Error::OutOfRange {
-                name: "--h",
-                value: self.h_over_dx,
-                range: format!(
-                    "the support ζh must exceed Δx so that particles have neighbours: h/Δx > {} for {} (ζ = {})",
-                    1.0 / self.kernel.zeta(),
-                    self.kernel.name(),
-                    self.kernel.zeta()
-                ),
-            });
-        }
         self.form.check_shape(self.shape)
     }
 

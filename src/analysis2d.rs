@@ -1,8 +1,7 @@
 //! 2D questions: stability over the Brillouin zone (`query --dim 2`), dispersion along the
 //! high-symmetry path, critical time step, growth-rate maps, and the finite-box prediction.
 
-use crate::analysis::H_RANGE;
-use crate::error::{Error, Result, check_range};
+use crate::error::{Error, Result};
 use crate::forms::{ArtificialViscosity, FormKind, Material2D, ModelParams2D, ObjectiveRate};
 use crate::kernel::Kernel;
 use crate::lattice::{Lattice2D, LatticeKind};
@@ -82,16 +81,14 @@ impl Query2D {
 
     /// Validates the inputs.
     pub fn validate(&self) -> Result<()> {
-        check_range("--h", self.h_over_dx, H_RANGE.0, H_RANGE.1, true, true)?;
-        check_range("--stress", self.stress, -10.0, 10.0, true, true)?;
-        check_range("--c", self.c_partition, 0.0, 1.0, true, true)?;
-        if let Some(dt) = self.dt {
-            check_range("--dt", dt, 0.0, 1e6, false, true)?;
-        }
-        if let Some((a, b)) = self.av {
-            check_range("--av-alpha", a, 0.0, 100.0, true, true)?;
-            check_range("--av-beta", b, 0.0, 100.0, true, true)?;
-        }
+        crate::analysis::check_common(
+            self.kernel,
+            self.h_over_dx,
+            self.stress,
+            self.c_partition,
+            self.av,
+            self.dt,
+        )?;
         if self.grid < 2 || self.grid > 4096 {
             return Err(Error::OutOfRange {
                 name: "--grid",
@@ -104,16 +101,6 @@ impl Query2D {
                 "--form {} is not available with --dim 2 (classical, nonlocal, local, lnl, cll, total-lagrangian)",
                 self.form.name()
             )));
-        }
-        if self.kernel.zeta() * self.h_over_dx <= 1.0 {
-            return Err(Error::OutOfRange {
-                name: "--h",
-                value: self.h_over_dx,
-                range: format!(
-                    "the support ζh must exceed the spacing: h/Δx > {}",
-                    1.0 / self.kernel.zeta()
-                ),
-            });
         }
         if self.material == MaterialSpec::Hydro && self.stress >= 1.0 {
             return Err(Error::OutOfRange {

@@ -98,3 +98,25 @@ pub fn check_range(
         })
     }
 }
+
+/// Looks `given` up in a table of (value, CLI name); the error lists every valid name.
+pub fn lookup<T: Copy>(what: &'static str, table: &[(T, &'static str)], given: &str) -> Result<T> {
+    table
+        .iter()
+        .find(|(_, n)| *n == given)
+        .map(|(v, _)| *v)
+        .ok_or_else(|| Error::UnknownName {
+            what,
+            given: given.to_string(),
+            valid: table.iter().map(|(_, n)| *n).collect::<Vec<_>>().join(", "),
+        })
+}
+
+/// The CLI name of `v` in a table of (value, name).
+pub fn name_in<T: Copy + PartialEq>(table: &[(T, &'static str)], v: T) -> &'static str {
+    table
+        .iter()
+        .find(|(x, _)| *x == v)
+        .map(|(_, n)| *n)
+        .unwrap_or("?")
+}

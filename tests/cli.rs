@@ -1,25 +1,9 @@
 //! The command line: acceptance commands, JSON fields, plot output, and bad input (exit 2 with
 //! a one-line message naming the flag; we check the flag name only, not the wording).
 
-use std::process::Command;
+mod common;
 
-fn sphstab(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_sphstab"))
-        .args(args)
-        .output()
-        .expect("run sphstab");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let (code, out, err) = sphstab(args);
-    assert_eq!(code, 0, "{args:?}: {err}");
-    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {out}"))
-}
+use common::{assert_bad_inputs, json, sphstab};
 
 #[test]
 fn default_query_runs_and_prints_a_verdict() {
@@ -172,22 +156,7 @@ fn bad_input_exits_2_naming_the_flag() {
         (&["query", "--form", "local", "--shape", "sph"], "--shape"),
         (&["query", "--h", "abc"], "--h"),
     ];
-    for (args, flag) in cases {
-        let (code, out, err) = sphstab(args);
-        assert_eq!(code, 2, "{args:?}: exit {code}, stderr {err}");
-        assert!(out.is_empty(), "{args:?}: stdout {out}");
-        assert!(
-            err.contains(flag),
-            "{args:?}: stderr does not name {flag}: {err}"
-        );
-        if !err.contains("Usage") {
-            assert_eq!(
-                err.trim_end().lines().count(),
-                1,
-                "{args:?}: not one line: {err}"
-            );
-        }
-    }
+    assert_bad_inputs(cases);
 }
 
 /// Unknown names list the valid ones.

@@ -1,24 +1,8 @@
 //! The 2D command line: acceptance command, JSON fields, map, stiffness, bad input.
 
-use std::process::Command;
+mod common;
 
-fn sphstab(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_sphstab"))
-        .args(args)
-        .output()
-        .expect("run sphstab");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let (code, out, err) = sphstab(args);
-    assert_eq!(code, 0, "{args:?}: {err}");
-    serde_json::from_str(&out).unwrap()
-}
+use common::{assert_bad_inputs, json, sphstab};
 
 #[test]
 fn acceptance_2d_classical_hydro_is_tensile() {
@@ -206,11 +190,5 @@ fn bad_2d_input_exits_2_naming_the_flag() {
         (&["stiffness", "--quadrature", "gauss"], "quadrature"),
         (&["map", "--n", "1"], "--n"),
     ];
-    for (args, flag) in cases {
-        let (code, out, err) = sphstab(args);
-        assert_eq!(code, 2, "{args:?}: {err}");
-        assert!(out.is_empty());
-        assert!(err.contains(flag), "{args:?}: {err}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-    }
+    assert_bad_inputs(cases);
 }

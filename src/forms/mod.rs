@@ -72,28 +72,12 @@ impl FormKind {
 
     /// CLI name.
     pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(f, _)| *f == self)
-            .map(|(_, n)| *n)
-            .unwrap_or("?")
+        crate::error::name_in(&Self::ALL, self)
     }
 
     /// Looks a form up by CLI name.
     pub fn by_name(name: &str) -> Result<Self> {
-        Self::ALL
-            .iter()
-            .find(|(_, n)| *n == name)
-            .map(|(f, _)| *f)
-            .ok_or_else(|| Error::UnknownName {
-                what: "form",
-                given: name.to_string(),
-                valid: Self::ALL
-                    .iter()
-                    .map(|(_, n)| *n)
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            })
+        crate::error::lookup("form", &Self::ALL, name)
     }
 
     /// Lagrangian kernel (reference-configuration shape functions, fixed neighbours).

@@ -50,28 +50,12 @@ impl Quadrature {
 
     /// CLI name.
     pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(q, _)| *q == self)
-            .map(|(_, n)| *n)
-            .unwrap_or("?")
+        crate::error::name_in(&Self::ALL, self)
     }
 
     /// By CLI name.
     pub fn by_name(name: &str) -> Result<Self> {
-        Self::ALL
-            .iter()
-            .find(|(_, n)| *n == name)
-            .map(|(q, _)| *q)
-            .ok_or_else(|| Error::UnknownName {
-                what: "quadrature",
-                given: name.into(),
-                valid: Self::ALL
-                    .iter()
-                    .map(|(_, n)| *n)
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            })
+        crate::error::lookup("quadrature", &Self::ALL, name)
     }
 }
 

@@ -126,14 +126,7 @@ impl Linearisation {
                 rows[0].iter().map(|&(k, mk)| (offset(k), mk)).collect()
             }
         };
-        let mut zero_sum = vec![vec![false; nd]; nd];
-        for (b, col) in cols.iter().enumerate() {
-            for (a, zs) in zero_sum.iter_mut().enumerate() {
-                let s: f64 = col.iter().map(|(_, c)| c[a]).sum();
-                let abs: f64 = col.iter().map(|(_, c)| c[a].abs()).sum();
-                zs[b] = s.abs() <= ZERO_SUM_TOL * abs;
-            }
-        }
+        let zero_sum = zero_sums(&cols, nd);
         let c = (lat.modulus / lat.rho0).sqrt();
         let lin = Linearisation {
             dofs,
@@ -161,26 +154,8 @@ impl Linearisation {
     }
 
     fn check_rest_structure(&self) -> Result<()> {
-        // Auxiliary rates must not depend on positions or auxiliary states at rest.
-        let mut big = 0.0f64;
-        let mut bad = 0.0f64;
-        for (b, col) in self.cols.iter().enumerate() {
-            for (_, c) in col {
-                for (a, &v) in c.iter().enumerate() {
-                    big = big.max(v.abs());
-                    let aux_row = a != self.ix && a != self.iv;
-                    if aux_row && b != self.iv {
-                        bad = bad.max(v.abs());
-                    }
-                }
-            }
-        }
-        if bad > REST_RATE_TOL * big {
-            return Err(Error::NonFinite(
-                "rest-state structure (auxiliary rate depends on positions)",
-            ));
-        }
-        Ok(())
+        let (ix, iv) = (self.ix, self.iv);
+        check_rest(&self.cols, |a| a != ix && a != iv, |b| b == iv)
     }
 
     /// Per-mode Jacobian block J(κ) (physical units; κ is κΔx), with the velocity rows
@@ -258,6 +233,46 @@ impl Linearisation {
             Ok((-self.omega2(kappa).0).max(0.0).sqrt())
         }
     }
+}
+
+/// For each Jacobian entry (a, b): whether its κ = 0 sum Σ_i A_ab(i) vanishes to rounding
+/// ([`ZERO_SUM_TOL`]); such entries are summed with e^{−ik·R} − 1 (exact as k → 0).
+pub(crate) fn zero_sums<O>(cols: &[Vec<(O, Vec<f64>)>], nd: usize) -> Vec<Vec<bool>> {
+    let mut zs = vec![vec![false; nd]; nd];
+    for (b, col) in cols.iter().enumerate() {
+        for (a, row) in zs.iter_mut().enumerate() {
+            let s: f64 = col.iter().map(|(_, c)| c[a]).sum();
+            let abs: f64 = col.iter().map(|(_, c)| c[a].abs()).sum();
+            row[b] = s.abs() <= ZERO_SUM_TOL * abs;
+        }
+    }
+    zs
+}
+
+/// The mechanical reduction assumes the auxiliary rates depend on velocities only at rest:
+/// entries (auxiliary row, non-velocity column) above [`REST_RATE_TOL`] of the largest are an error.
+pub(crate) fn check_rest<O>(
+    cols: &[Vec<(O, Vec<f64>)>],
+    aux_row: impl Fn(usize) -> bool,
+    vel_col: impl Fn(usize) -> bool,
+) -> Result<()> {
+    let (mut big, mut bad) = (0.0f64, 0.0f64);
+    for (b, col) in cols.iter().enumerate() {
+        for (_, c) in col {
+            for (a, &v) in c.iter().enumerate() {
+                big = big.max(v.abs());
+                if aux_row(a) && !vel_col(b) {
+                    bad = bad.max(v.abs());
+                }
+            }
+        }
+    }
+    if bad > REST_RATE_TOL * big {
+        return Err(Error::NonFinite(
+            "rest-state structure (auxiliary rate depends on positions)",
+        ));
+    }
+    Ok(())
 }
 
 /// Eigenvalues of a small complex matrix by the complex Schur decomposition, with bounded

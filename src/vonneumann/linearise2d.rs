@@ -7,7 +7,7 @@
 // Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::linearise::{REST_RATE_TOL, ZERO_SUM_TOL, eigen};
+use super::linearise::{check_rest, eigen, zero_sums};
 use crate::error::{Error, Result};
 use crate::forms::{Comp2, FieldKind, Material2D, Model2D, ModelParams2D, State2D};
 use crate::lattice::Lattice2D;
@@ -85,14 +85,7 @@ impl Linearisation2D {
             }
             cols.push(col);
         }
-        let mut zero_sum = vec![vec![false; nd]; nd];
-        for (b, col) in cols.iter().enumerate() {
-            for (a, zs) in zero_sum.iter_mut().enumerate() {
-                let s: f64 = col.iter().map(|(_, c)| c[a]).sum();
-                let abs: f64 = col.iter().map(|(_, c)| c[a].abs()).sum();
-                zs[b] = s.abs() <= ZERO_SUM_TOL * abs;
-            }
-        }
+        let zero_sum = zero_sums(&cols, nd);
         let find = |c: Comp2| {
             comps
                 .iter()
@@ -121,23 +114,11 @@ impl Linearisation2D {
     }
 
     fn check_rest_structure(&self) -> Result<()> {
-        let (mut big, mut bad) = (0.0f64, 0.0f64);
-        for (b, col) in self.cols.iter().enumerate() {
-            for (_, c) in col {
-                for (a, &v) in c.iter().enumerate() {
-                    big = big.max(v.abs());
-                    if self.iq.contains(&a) && !self.iv.contains(&b) {
-                        bad = bad.max(v.abs());
-                    }
-                }
-            }
-        }
-        if bad > REST_RATE_TOL * big {
-            return Err(Error::NonFinite(
-                "rest-state structure (auxiliary rate depends on positions)",
-            ));
-        }
-        Ok(())
+        check_rest(
+            &self.cols,
+            |a| self.iq.contains(&a),
+            |b| self.iv.contains(&b),
+        )
     }
 
     /// Whether velocities enter the accelerations (artificial viscosity).

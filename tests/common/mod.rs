@@ -64,3 +64,41 @@ pub fn shape_fn(fam: ShapeFamily, kern: &str, h: f64) -> impl Fn(f64) -> [f64; 3
     let kp = KernelParams { kernel: k(kern), h };
     move |x| lattice_shape(fam, kp, x).unwrap()
 }
+
+/// Runs the built `sphstab` binary: (exit code, stdout, stderr).
+pub fn sphstab(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sphstab"))
+        .args(args)
+        .output()
+        .expect("run sphstab");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Runs `sphstab` expecting success and a JSON document on stdout.
+pub fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = sphstab(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {out}"))
+}
+
+/// Asserts every bad input exits 2 with one line on stderr naming `flag` and nothing on stdout.
+pub fn assert_bad_inputs(cases: &[(&[&str], &str)]) {
+    for (args, flag) in cases {
+        let (code, out, err) = sphstab(args);
+        assert_eq!(code, 2, "{args:?}: exit {code}, stderr {err}");
+        assert!(out.is_empty(), "{args:?}: stdout {out}");
+        assert!(
+            err.contains(flag),
+            "{args:?}: stderr does not name {flag}: {err}"
+        );
+        assert_eq!(
+            err.trim_end().lines().count(),
+            1,
+            "{args:?}: not one line: {err}"
+        );
+    }
+}
