@@ -17,6 +17,7 @@ use super::FormKind;
 use super::model2d::{Material2D, Model2D, ObjectiveRate, State2D};
 use crate::error::Result;
 use crate::kernel;
+use crate::neighbours::CellList;
 use crate::scalar::Scalar;
 use crate::shape::ShapeFamily;
 use crate::shape2d::eval2;
@@ -36,21 +37,34 @@ fn stencils<S: Scalar>(
     vol: &[S],
 ) -> Result<Vec<Vec<Nb2<S>>>> {
     let r = m.p.kp.support();
+    let pos: Vec<[f64; 2]> = z.x.iter().map(|p| [p[0].re(), p[1].re()]).collect();
+    // cell list for open domains and rectangular periodic boxes; direct scan otherwise
+    let grid = match m.period {
+        None => Some(CellList::new(&pos, r, None)),
+        Some(l) if l[0][1] == 0.0 && l[1][0] == 0.0 => {
+            Some(CellList::new(&pos, r, Some([l[0][0], l[1][1]])))
+        }
+        Some(_) => None,
+    };
     let mut out = Vec::with_capacity(z.x.len());
     let mut nodes = Vec::new();
     let mut idx = Vec::new();
     let mut vals = Vec::new();
-    for &xi in &z.x {
+    for (i, &xi) in z.x.iter().enumerate() {
         nodes.clear();
         idx.clear();
-        for (j, &xj) in z.x.iter().enumerate() {
-            let d = m.rel(xi, xj);
+        let mut visit = |j: usize| {
+            let d = m.rel(xi, z.x[j]);
             if d[0].re().hypot(d[1].re()) < r {
                 nodes.push((d, vol[j]));
                 idx.push(j);
             }
+        };
+        match &grid {
+            Some(g) => g.for_candidates(pos[i], &mut visit),
+            None => (0..z.x.len()).for_each(&mut visit),
         }
-        eval2(family, m.p.kp, &nodes, [xi[0].re(), xi[1].re()], &mut vals)?;
+        eval2(family, m.p.kp, &nodes, pos[i], &mut vals)?;
         out.push(
             idx.iter()
                 .zip(&nodes)

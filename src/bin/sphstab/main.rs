@@ -7,6 +7,7 @@ mod kernels;
 mod map;
 mod query;
 mod stiffness;
+mod swegle;
 mod timestep;
 
 use clap::{Parser, Subcommand};
@@ -38,6 +39,8 @@ enum Cmd {
     Map(map::Args),
     /// Anti-plane Galerkin stiffness K_jk for a quadrature pattern [B00 Table I].
     Stiffness(stiffness::Args),
+    /// The Swegle perturbed-particle test, measured against the engine's predictions.
+    Swegle(swegle::Args),
 }
 
 fn main() {
@@ -70,6 +73,7 @@ fn main() {
         Cmd::Figures(a) => figures::run(a),
         Cmd::Map(a) => map::run(a),
         Cmd::Stiffness(a) => stiffness::run(a),
+        Cmd::Swegle(a) => swegle::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");

@@ -1,0 +1,158 @@
+//! `sphstab swegle`: the Swegle perturbed-particle test [V21 §7.2] against the engine.
+
+use anyhow::{Context, Result};
+use sphstab::forms::FormKind;
+use sphstab::solver::BoundaryDensity;
+use sphstab::solver::swegle::{SwegleConfig, run_swegle};
+
+/// Flags of `swegle`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// classical, nonlocal, local, lnl, cll, total-lagrangian.
+    #[arg(long, default_value = "classical")]
+    form: String,
+    /// Kernel name.
+    #[arg(long, default_value = "m4")]
+    kernel: String,
+    /// h/Δx.
+    #[arg(long, default_value_t = 1.2, allow_hyphen_values = true)]
+    h: f64,
+    /// Shape family (default: the form's).
+    #[arg(long)]
+    shape: Option<String>,
+    /// f = ρ/ρ0: < 1 tension, > 1 compression, in [0.5, 1.5].
+    #[arg(
+        long = "density-ratio",
+        default_value_t = 0.99,
+        allow_hyphen_values = true
+    )]
+    density_ratio: f64,
+    /// Particles per side (21, 41, 81, …).
+    #[arg(long, default_value_t = 21)]
+    size: usize,
+    /// End time.
+    #[arg(long = "t-end", default_value_t = 40.0, allow_hyphen_values = true)]
+    t_end: f64,
+    /// Boundary layers' density: evolve (continuity) or frozen.
+    #[arg(long = "boundary-density", default_value = "evolve")]
+    boundary_density: String,
+    /// Time step in Δx/c.
+    #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
+    cfl: f64,
+    /// Partition coefficient c of lnl/cll.
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    c: f64,
+    /// JSON on stdout.
+    #[arg(long)]
+    json: bool,
+    /// SVG of max |v| against time with the predicted slopes.
+    #[arg(long)]
+    plot: Option<std::path::PathBuf>,
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let form = FormKind::by_name(&a.form)?;
+    let k = sphstab::kernel::by_name(&a.kernel)?;
+    let mut cfg = SwegleConfig::new(form, k, a.h, a.density_ratio);
+    if let Some(s) = &a.shape {
+        cfg.shape = sphstab::shape::ShapeFamily::by_name(s)?;
+    }
+    cfg.size = a.size;
+    cfg.t_end = a.t_end;
+    cfg.cfl = a.cfl;
+    cfg.c_partition = a.c;
+    cfg.boundary = match a.boundary_density.as_str() {
+        "evolve" => BoundaryDensity::Evolve,
+        "frozen" => BoundaryDensity::Frozen,
+        s => {
+            return Err(sphstab::error::Error::UnknownName {
+                what: "--boundary-density",
+                given: s.into(),
+                valid: "evolve, frozen".into(),
+            }
+            .into());
+        }
+    };
+    cfg.validate()?;
+    let show = !a.json && std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let r = run_swegle(&cfg, |f| {
+        if show {
+            eprint!("\r{:5.1}%", 100.0 * f);
+        }
+    })?;
+    if show {
+        eprintln!("\r      ");
+    }
+    if let Some(path) = &a.plot {
+        use sphstab::plot::{Curve, lines_svg};
+        let t: Vec<f64> = r.history.iter().map(|h| h.0).collect();
+        let lv: Vec<f64> = r.history.iter().map(|h| h.1.max(1e-300).log10()).collect();
+        let unit = cfg.sound_speed() / cfg.dx;
+        let mut curves = vec![Curve {
+            label: "log10 max |v| (free particles)".into(),
+            x: t.clone(),
+            y: lv,
+            dashed: false,
+        }];
+        if let Some(f) = r.fit {
+            let t0 = f.window.0;
+            let y0 = cfg.window.0.log10();
+            for (name, rate) in [
+                ("box prediction", r.predicted_growth_rate_box),
+                ("infinite lattice", r.predicted_growth_rate_infinite),
+            ] {
+                let slope = rate * unit / std::f64::consts::LN_10;
+                curves.push(Curve {
+                    label: format!("{name}: {rate:.4} c/Δx"),
+                    x: t.clone(),
+                    y: t.iter().map(|&s| y0 + slope * (s - t0)).collect(),
+                    dashed: true,
+                });
+            }
+        }
+        let svg = lines_svg(
+            &format!(
+                "Swegle test: {} / {} h = {}Δx, f = {}, {}×{}",
+                r.form, r.kernel, r.h_over_dx, r.density_ratio, r.size, r.size
+            ),
+            "time",
+            "log10 max |v|",
+            &curves,
+            Some((-11.0, 0.0)),
+        )?;
+        std::fs::write(path, svg)
+            .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+    }
+    if a.json {
+        let mut v = serde_json::to_value(&r)?;
+        if let Some(o) = v.as_object_mut() {
+            o.remove("history");
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
+        return Ok(());
+    }
+    println!(
+        "Swegle test {}×{}: {} / {} h = {}Δx, f = {}",
+        r.size, r.size, r.form, r.kernel, r.h_over_dx, r.density_ratio
+    );
+    match r.measured_growth_rate {
+        Some(m) => println!(
+            "measured growth {:.5} c/Δx; box prediction {:.5} ({}); infinite lattice {:.5}; measured/box {:.4}, measured/infinite {:.4}",
+            m,
+            r.predicted_growth_rate_box,
+            r.box_method,
+            r.predicted_growth_rate_infinite,
+            r.ratio_box.unwrap_or(f64::NAN),
+            r.ratio_infinite.unwrap_or(f64::NAN)
+        ),
+        None => println!(
+            "no exponential growth measured (grew: {}); box prediction {:.5}, infinite lattice {:.5}",
+            r.grew, r.predicted_growth_rate_box, r.predicted_growth_rate_infinite
+        ),
+    }
+    println!(
+        "max |v| at the end {:.3e}; {} steps of Δt = {:.4e} in {:.2} s",
+        r.max_velocity_end, r.steps, r.dt, r.runtime_s
+    );
+    Ok(())
+}

@@ -1,0 +1,11 @@
+//! The reference time-domain solver: it integrates the forms' rate functions
+//! ([`crate::forms::Model2D::rate`], [`crate::forms::Model1D::rate`]) with the shared leapfrog
+//! step [`crate::integrator::kdk_step`] — the same definitions the von Neumann engine
+//! linearises (SPEC §4).
+
+pub mod box_operator;
+pub mod diagnostics;
+pub mod run2d;
+pub mod swegle;
+
+pub use run2d::{BoundaryDensity, Run2D};
