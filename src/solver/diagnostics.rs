@@ -21,11 +21,12 @@ pub struct GrowthFit {
 pub fn growth_fit(t: &[f64], y: &[f64], lo: f64, hi: f64) -> Option<GrowthFit> {
     let start = y.iter().position(|&v| v > lo)?;
     let mut idx = Vec::new();
-    for i in start..y.len() {
-        if y[i] >= hi || !(y[i] > 0.0) {
+    for (i, &yi) in y.iter().enumerate().skip(start) {
+        // stop at the top of the window, or at a non-positive / NaN sample
+        if yi >= hi || yi.is_nan() || yi <= 0.0 {
             break;
         }
-        if y[i] > lo {
+        if yi > lo {
             idx.push(i);
         }
     }
