@@ -61,7 +61,7 @@ impl Query2D {
         Self {
             form,
             kernel,
-            shape: form.default_shape(),
+            shape: form.default_shape_2d(),
             h_over_dx,
             stress,
             c_partition: 0.5,

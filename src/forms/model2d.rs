@@ -211,6 +211,17 @@ impl FormKind {
         )
     }
 
+    /// Default shape family in 2D: as in 1D, except total-Lagrangian, whose closest 2D paper is
+    /// the thesis [T] (TL SPH, `sph` shapes). (With `mls`, nodal integration of a pre-stressed
+    /// rest state is not in equilibrium within two supports of a boundary: the residual force
+    /// ∝ σ0 drifts a fixed-boundary box; see the closing notes of issue 4.)
+    pub fn default_shape_2d(self) -> ShapeFamily {
+        match self {
+            FormKind::TotalLagrangian => ShapeFamily::Sph,
+            f => f.default_shape(),
+        }
+    }
+
     /// The scalar components per particle in 2D for `material`.
     pub fn comps_2d(self, material: &Material2D) -> Vec<Comp2> {
         let mut c = vec![Comp2::X(0), Comp2::X(1), Comp2::V(0), Comp2::V(1)];

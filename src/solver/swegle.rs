@@ -55,6 +55,9 @@ pub struct SwegleConfig {
     pub window: (f64, f64),
     /// Partition coefficient (lnl / cll).
     pub c_partition: f64,
+    /// Extend `t_end` so that a mode growing at the box prediction can rise from the kick to the
+    /// top of the fit window (1.5 ln(window top / kick) / γ_box), never shortening it.
+    pub until_window: bool,
 }
 
 impl SwegleConfig {
@@ -68,7 +71,7 @@ impl SwegleConfig {
         Self {
             form,
             kernel,
-            shape: form.default_shape(),
+            shape: form.default_shape_2d(),
             h_over_dx,
             density_ratio,
             size: 21,
@@ -82,6 +85,7 @@ impl SwegleConfig {
             cfl: 0.2,
             window: (1e-8, 1e-4),
             c_partition: 0.5,
+            until_window: false,
         }
     }
 
@@ -264,7 +268,13 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         g
     };
     let dt = cfg.cfl * cfg.dx / c;
-    let steps = (cfg.t_end / dt).ceil() as usize;
+    let t_end = if cfg.until_window && box_rate > 1e-6 {
+        cfg.t_end
+            .max(1.5 * (cfg.window.1 / cfg.kick).ln() / (box_rate * unit))
+    } else {
+        cfg.t_end
+    };
+    let steps = (t_end / dt).ceil() as usize;
     let mut t = vec![0.0];
     let mut y = vec![run.max_free_speed().max(cfg.kick)];
     let mut vmax_ever: f64 = 0.0;
@@ -276,7 +286,7 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         t.push(run.t);
         y.push(v);
         if s % 64 == 0 {
-            progress(run.t / cfg.t_end);
+            progress(run.t / t_end);
         }
         // beyond the window the perturbation is nonlinear; 1e3 × the window top is far enough
         if v > cfg.window.1 * 1e3 * unit * cfg.dx {

@@ -33,6 +33,9 @@ pub struct Args {
     /// End time.
     #[arg(long = "t-end", default_value_t = 40.0, allow_hyphen_values = true)]
     t_end: f64,
+    /// Run past --t-end until a mode growing at the box prediction reaches the fit window.
+    #[arg(long = "until-window")]
+    until_window: bool,
     /// Boundary layers' density: evolve (continuity) or frozen.
     #[arg(long = "boundary-density", default_value = "evolve")]
     boundary_density: String,
@@ -61,6 +64,7 @@ pub fn run(a: Args) -> Result<()> {
     cfg.t_end = a.t_end;
     cfg.cfl = a.cfl;
     cfg.c_partition = a.c;
+    cfg.until_window = a.until_window;
     cfg.boundary = match a.boundary_density.as_str() {
         "evolve" => BoundaryDensity::Evolve,
         "frozen" => BoundaryDensity::Frozen,
