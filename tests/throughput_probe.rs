@@ -11,17 +11,34 @@ use sphstab::solver::{BoundaryDensity, Run2D};
 #[test]
 #[ignore = "timing probe, run on demand"]
 fn throughput_200x200() {
-    for (name, mat) in [("hydro", Material2D::Hydro { bulk: 1.0 }), ("elastic", Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap())] {
+    for (name, mat) in [
+        ("hydro", Material2D::Hydro { bulk: 1.0 }),
+        (
+            "elastic",
+            Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap(),
+        ),
+    ] {
         let p = ModelParams2D {
             form: FormKind::Classical,
             shape: ShapeFamily::Sph,
-            kp: KernelParams2 { kernel: kernel::by_name("m4").unwrap(), h: 1.3 },
+            kp: KernelParams2 {
+                kernel: kernel::by_name("m4").unwrap(),
+                h: 1.3,
+            },
             material: mat,
             rho0: 1.0,
             c_partition: 0.5,
             av: None,
         };
-        let model = Model2D::periodic_patch(p, &Lattice2D::square(1.0).unwrap(), 1.0, [200, 200], 1.0, 0.0).unwrap();
+        let model = Model2D::periodic_patch(
+            p,
+            &Lattice2D::square(1.0).unwrap(),
+            1.0,
+            [200, 200],
+            1.0,
+            0.0,
+        )
+        .unwrap();
         let z = model.rest_state(1.0);
         let n = z.x.len();
         let mut run = Run2D::new(model, z, vec![false; n], BoundaryDensity::Evolve).unwrap();
@@ -33,6 +50,10 @@ fn throughput_200x200() {
             run.step(0.1).unwrap();
         }
         let s = t.elapsed().as_secs_f64();
-        eprintln!("200×200 classical m4 h=1.3 {name}: {steps} steps in {s:.2} s = {:.3e} particle-steps/s ({:.0} ns per particle-step)", (n * steps) as f64 / s, s / (n * steps) as f64 * 1e9);
+        eprintln!(
+            "200×200 classical m4 h=1.3 {name}: {steps} steps in {s:.2} s = {:.3e} particle-steps/s ({:.0} ns per particle-step)",
+            (n * steps) as f64 / s,
+            s / (n * steps) as f64 * 1e9
+        );
     }
 }

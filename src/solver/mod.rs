@@ -5,7 +5,10 @@
 
 pub mod box_operator;
 pub mod diagnostics;
+pub mod rod;
+pub mod run1d;
 pub mod run2d;
 pub mod swegle;
 
+pub use run1d::Run1D;
 pub use run2d::{BoundaryDensity, Run2D};
