@@ -192,3 +192,85 @@ fn bad_2d_input_exits_2_naming_the_flag() {
     ];
     assert_bad_inputs(cases);
 }
+
+/// Issue acceptance: the Swegle command reports a measured rate near the box prediction, and
+/// `grew: false` for the nonlocal form.
+#[test]
+fn swegle_command_acceptance() {
+    let v = json(&[
+        "swegle",
+        "--form",
+        "classical",
+        "--kernel",
+        "m4",
+        "--h",
+        "1.2",
+        "--density-ratio",
+        "0.99",
+        "--json",
+    ]);
+    let ratio = v["ratio_box"].as_f64().unwrap();
+    assert!((0.9..=1.0).contains(&ratio), "{ratio}");
+    for key in [
+        "measured_growth_rate",
+        "predicted_growth_rate_box",
+        "predicted_growth_rate_infinite",
+        "max_velocity_end",
+        "grew",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    let v = json(&[
+        "swegle",
+        "--form",
+        "nonlocal",
+        "--kernel",
+        "m4",
+        "--h",
+        "1.2",
+        "--density-ratio",
+        "0.99",
+        "--json",
+    ]);
+    assert_eq!(v["grew"], false);
+}
+
+#[test]
+fn simulate_writes_csv_and_vtk() {
+    let dir = std::env::temp_dir().join(format!("sphstab-sim-{}", std::process::id()));
+    let v = json(&[
+        "simulate",
+        "uniform-bar",
+        "--form",
+        "local",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(v["velocity_error_l2"].as_f64().unwrap() < 1e-10);
+    let csv = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+    assert!(csv.starts_with("t,max_abs_v,kinetic_energy"));
+    let vtk = std::fs::read_to_string(dir.join("final.vtk")).unwrap();
+    assert!(vtk.contains("POINTS 100 double"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_scene_input_exits_2() {
+    let dir = std::env::temp_dir().join(format!("sphstab-badscene-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("s.json");
+    std::fs::write(&f, r#"{"name":"x","form":"classical","kernel":"m4","h_over_dx":1.2,"modulus":1,"rho0":1,"particles":10,"origin":0,"length":1,"initial_velocity":{"kind":"rest"},"t_end":1,"colour":"red"}"#).unwrap();
+    assert_bad_inputs(&[
+        (&["simulate", f.to_str().unwrap()], "colour"),
+        (&["simulate", "nope"], "scene"),
+        (&["simulate", "rod", "--t-end", "-1"], "--t-end"),
+        (&["swegle", "--density-ratio", "3"], "--density-ratio"),
+        (&["swegle", "--size", "5"], "--size"),
+        (
+            &["swegle", "--boundary-density", "melted"],
+            "--boundary-density",
+        ),
+    ]);
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -5,9 +5,11 @@
 
 pub mod box_operator;
 pub mod diagnostics;
+pub mod output;
 pub mod rod;
 pub mod run1d;
 pub mod run2d;
+pub mod scene;
 pub mod swegle;
 
 pub use run1d::Run1D;

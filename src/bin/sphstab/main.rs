@@ -6,6 +6,7 @@ mod figures;
 mod kernels;
 mod map;
 mod query;
+mod simulate;
 mod stiffness;
 mod swegle;
 mod timestep;
@@ -41,6 +42,8 @@ enum Cmd {
     Stiffness(stiffness::Args),
     /// The Swegle perturbed-particle test, measured against the engine's predictions.
     Swegle(swegle::Args),
+    /// Run a 1D scene (JSON file or built-in) and compare it with its analytic solution.
+    Simulate(simulate::Args),
 }
 
 fn main() {
@@ -74,6 +77,7 @@ fn main() {
         Cmd::Map(a) => map::run(a),
         Cmd::Stiffness(a) => stiffness::run(a),
         Cmd::Swegle(a) => swegle::run(a),
+        Cmd::Simulate(a) => simulate::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");

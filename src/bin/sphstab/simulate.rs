@@ -1,0 +1,86 @@
+//! `sphstab simulate`: run a 1D scene (JSON file or built-in name).
+
+use anyhow::{Context, Result};
+use sphstab::solver::output::{csv, vtk_1d};
+use sphstab::solver::scene::{builtin, parse};
+
+/// Flags of `simulate`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Scene: a JSON file, or uniform-bar, compressive-wave, tensile-wave, rod. (The 2D Swegle
+    /// box: `sphstab swegle`.)
+    scene: String,
+    /// Override the scene's form.
+    #[arg(long)]
+    form: Option<String>,
+    /// Override the scene's end time (s).
+    #[arg(long = "t-end", allow_hyphen_values = true)]
+    t_end: Option<f64>,
+    /// JSON summary on stdout.
+    #[arg(long)]
+    json: bool,
+    /// Write history.csv (t, max |v|, kinetic energy) and final.vtk here.
+    #[arg(long)]
+    out: Option<std::path::PathBuf>,
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let mut scene = if a.scene.ends_with(".json") || std::path::Path::new(&a.scene).exists() {
+        let text = std::fs::read_to_string(&a.scene)
+            .with_context(|| format!("cannot read scene {}", a.scene))?;
+        parse(&a.scene, &text)?
+    } else {
+        builtin(&a.scene)?
+    };
+    if let Some(f) = a.form {
+        scene.form = f;
+    }
+    if let Some(t) = a.t_end {
+        sphstab::error::check_range("--t-end", t, 0.0, f64::INFINITY, false, false)?;
+        scene.t_end = t;
+    }
+    let show = !a.json && std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let r = scene.run(|f| {
+        if show {
+            eprint!("\r{:5.1}%", 100.0 * f);
+        }
+    })?;
+    if show {
+        eprintln!("\r      ");
+    }
+    if let Some(dir) = &a.out {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("--out: cannot create {}", dir.display()))?;
+        let h = csv(
+            &["t", "max_abs_v", "kinetic_energy"],
+            r.history.iter().map(|&(t, v, e)| vec![t, v, e]),
+        );
+        std::fs::write(dir.join("history.csv"), h)
+            .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
+        if let Some(z) = &r.final_state {
+            std::fs::write(
+                dir.join("final.vtk"),
+                vtk_1d(&format!("{} {} t={:e}", r.name, r.form, r.t), z),
+            )
+            .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
+        }
+    }
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(());
+    }
+    println!(
+        "{} / {}: t = {:.4e} s in {} steps ({:.2} s); max |v| {:.4e}; velocity L2 error vs analytic: {}{}",
+        r.name,
+        r.form,
+        r.t,
+        r.steps,
+        r.runtime_s,
+        r.max_velocity,
+        r.velocity_error_l2
+            .map(|e| format!("{e:.4e}"))
+            .unwrap_or("n/a".into()),
+        if r.diverged { " — DIVERGED" } else { "" }
+    );
+    Ok(())
+}

@@ -1,0 +1,103 @@
+//! Output formats as pure functions returning strings: CSV time histories and legacy-VTK
+//! particle snapshots (POLYDATA with vertices, readable by ParaView).
+
+use crate::forms::{State1D, State2D};
+use std::fmt::Write;
+
+/// CSV with a header row.
+pub fn csv(header: &[&str], rows: impl IntoIterator<Item = Vec<f64>>) -> String {
+    let mut s = header.join(",");
+    s.push('\n');
+    for r in rows {
+        let line: Vec<String> = r.iter().map(|v| format!("{v:e}")).collect();
+        s.push_str(&line.join(","));
+        s.push('\n');
+    }
+    s
+}
+
+fn vtk(
+    title: &str,
+    pts: &[[f64; 2]],
+    scalars: &[(&str, Vec<f64>)],
+    vectors: &[(&str, Vec<[f64; 2]>)],
+) -> String {
+    let n = pts.len();
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "# vtk DataFile Version 3.0\n{}\nASCII\nDATASET POLYDATA\nPOINTS {n} double",
+        title.replace('\n', " ")
+    );
+    for p in pts {
+        let _ = writeln!(s, "{:e} {:e} 0", p[0], p[1]);
+    }
+    let _ = writeln!(s, "VERTICES {n} {}", 2 * n);
+    for i in 0..n {
+        let _ = writeln!(s, "1 {i}");
+    }
+    let _ = writeln!(s, "POINT_DATA {n}");
+    for (name, v) in scalars {
+        let _ = writeln!(s, "SCALARS {name} double 1\nLOOKUP_TABLE default");
+        for x in v {
+            let _ = writeln!(s, "{x:e}");
+        }
+    }
+    for (name, v) in vectors {
+        let _ = writeln!(s, "VECTORS {name} double");
+        for x in v {
+            let _ = writeln!(s, "{:e} {:e} 0", x[0], x[1]);
+        }
+    }
+    s
+}
+
+/// Legacy VTK of a 1D state (points on the x axis; velocity, density, stress when carried).
+pub fn vtk_1d(title: &str, z: &State1D<f64>) -> String {
+    let pts: Vec<[f64; 2]> = z.x.iter().map(|&x| [x, 0.0]).collect();
+    let mut sc = vec![("velocity", z.v.clone())];
+    if !z.rho.is_empty() {
+        sc.push(("density", z.rho.clone()));
+    }
+    if !z.sigma.is_empty() {
+        sc.push(("stress", z.sigma.clone()));
+    }
+    vtk(title, &pts, &sc, &[])
+}
+
+/// Legacy VTK of a 2D state (velocity vectors; density and σ components when carried).
+pub fn vtk_2d(title: &str, z: &State2D<f64>) -> String {
+    let mut sc = Vec::new();
+    if !z.rho.is_empty() {
+        sc.push(("density", z.rho.clone()));
+    }
+    if !z.sigma.is_empty() {
+        sc.push(("sigma_xx", z.sigma.iter().map(|s| s[0]).collect()));
+        sc.push(("sigma_yy", z.sigma.iter().map(|s| s[1]).collect()));
+        sc.push(("sigma_xy", z.sigma.iter().map(|s| s[2]).collect()));
+    }
+    vtk(title, &z.x, &sc, &[("velocity", z.v.clone())])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vtk_has_consistent_counts() {
+        let z = State1D {
+            x: vec![0.0, 1.0, 2.0],
+            v: vec![0.1, 0.2, 0.3],
+            ..Default::default()
+        };
+        let s = vtk_1d("t", &z);
+        assert!(
+            s.contains("POINTS 3 double")
+                && s.contains("VERTICES 3 6")
+                && s.contains("POINT_DATA 3")
+        );
+        assert_eq!(s.lines().filter(|l| l.starts_with("1 ")).count(), 3);
+        let c = csv(&["t", "v"], [vec![0.0, 1.0], vec![1.0, 2.0]]);
+        assert_eq!(c.lines().count(), 3);
+    }
+}

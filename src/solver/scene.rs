@@ -1,0 +1,400 @@
+//! Scenes as JSON (1D bars; the 2D Swegle box has its own command), with built-ins by name:
+//! `uniform-bar` \[V21 §7.1\], `compressive-wave` \[V21 §7.4\], `tensile-wave` \[V21 §7.5\] and
+//! `rod` \[B00 §4.1.2\]. Unknown fields are rejected with the field named.
+//!
+//! Each built-in carries its analytic solution (linear elasticity, small strain; the velocity
+//! field, which every form has), and a run reports the relative L2 error of the velocity of the
+//! free particles at `t_end`: ‖v − v_exact‖₂ / ‖v_exact‖₂ (or / (v_scale √N) where v_exact ≡ 0).
+
+use super::run1d::Run1D;
+use crate::error::{Error, Result};
+use crate::forms::{ArtificialViscosity, FormKind, Model1D, ModelParams};
+use crate::kernel;
+use crate::shape::{KernelParams, ShapeFamily};
+use serde::{Deserialize, Serialize};
+
+/// Initial velocity field.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(rename_all = "kebab-case", tag = "kind", deny_unknown_fields)]
+pub enum InitialVelocity {
+    /// v = 0.
+    Rest,
+    /// v = value everywhere.
+    Uniform {
+        /// Value (m/s).
+        value: f64,
+    },
+    /// v = gradient · x.
+    Linear {
+        /// dv/dx (1/s).
+        gradient: f64,
+    },
+    /// One particle (index) moves at value.
+    Point {
+        /// Particle index.
+        index: usize,
+        /// Value.
+        value: f64,
+    },
+}
+
+/// Prescribed-velocity end layer.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct EndLayer {
+    /// Number of particles.
+    pub layers: usize,
+    /// Prescribed velocity (m/s); null: keep the initial velocity of each particle.
+    pub velocity: Option<f64>,
+}
+
+/// Analytic solution of a built-in.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(rename_all = "kebab-case")]
+pub enum Analytic {
+    /// v = gradient · x at all times (uniform strain rate).
+    UniformStrain,
+    /// A step wave from a wall at the left end: v = 0 behind the front x < x0 + c t, v0 ahead.
+    WallImpact,
+    /// Two step waves from the ends moving inward; v = end velocity behind each front, 0
+    /// between them, (v_left + v_right) after they cross.
+    EndPull,
+}
+
+/// A 1D scene.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene1D {
+    /// Name (free text).
+    pub name: String,
+    /// Form.
+    pub form: String,
+    /// Kernel.
+    pub kernel: String,
+    /// h/Δx.
+    pub h_over_dx: f64,
+    /// Shape family (null: the form's default).
+    #[serde(default)]
+    pub shape: Option<String>,
+    /// Partition coefficient of lnl / cll.
+    #[serde(default = "half")]
+    pub c_partition: f64,
+    /// Tangent modulus C (Pa; E for a bar).
+    pub modulus: f64,
+    /// Density ρ0 (kg/m³).
+    pub rho0: f64,
+    /// Initial stress σ0 (Pa, + tension).
+    #[serde(default)]
+    pub initial_stress: f64,
+    /// Number of particles.
+    pub particles: usize,
+    /// Position of the first particle (m).
+    pub origin: f64,
+    /// Bar length between the first and the last particle (m).
+    pub length: f64,
+    /// Initial velocity.
+    pub initial_velocity: InitialVelocity,
+    /// Left end layer.
+    #[serde(default)]
+    pub left: Option<EndLayer>,
+    /// Right end layer.
+    #[serde(default)]
+    pub right: Option<EndLayer>,
+    /// Monaghan viscosity (α, β), acting on approaching pairs.
+    #[serde(default)]
+    pub artificial_viscosity: Option<(f64, f64)>,
+    /// End time (s).
+    pub t_end: f64,
+    /// Δt in Δx/c.
+    #[serde(default = "cfl_default")]
+    pub cfl: f64,
+    /// Analytic solution for the error norm.
+    #[serde(default)]
+    pub analytic: Option<Analytic>,
+}
+
+fn half() -> f64 {
+    0.5
+}
+fn cfl_default() -> f64 {
+    0.2
+}
+
+/// Built-in scenes by name.
+pub fn builtin(name: &str) -> Result<Scene1D> {
+    let text = match name {
+        "uniform-bar" => UNIFORM_BAR,
+        "compressive-wave" => COMPRESSIVE_WAVE,
+        "tensile-wave" => TENSILE_WAVE,
+        "rod" => ROD,
+        _ => {
+            return Err(Error::UnknownName {
+                what: "scene",
+                given: name.into(),
+                valid: "uniform-bar, compressive-wave, tensile-wave, rod (or a JSON file)".into(),
+            });
+        }
+    };
+    parse(name, text)
+}
+
+/// Parses a scene; errors name the file and the field.
+pub fn parse(file: &str, text: &str) -> Result<Scene1D> {
+    serde_json::from_str(text).map_err(|e| Error::Config {
+        file: file.into(),
+        msg: e.to_string(),
+    })
+}
+
+/// [V21 §7.1]: bar of length 1 centred at 0, 100 particles, v = 0.001 x (tension), the 3 particles
+/// at each end keep their initial velocity, ρ0 = 8, E = 2, t = 10.
+const UNIFORM_BAR: &str = r#"{
+  "name": "uniform-bar", "form": "nonlocal", "kernel": "m4", "h_over_dx": 1.3,
+  "modulus": 2.0, "rho0": 8.0, "particles": 100, "origin": -0.5, "length": 1.0,
+  "initial_velocity": {"kind": "linear", "gradient": 0.001},
+  "left": {"layers": 3, "velocity": null}, "right": {"layers": 3, "velocity": null},
+  "t_end": 10.0, "cfl": 0.2, "analytic": "uniform-strain"
+}"#;
+
+/// [V21 §7.4]: 5 cm steel bar (E = 200 GPa, ρ = 8000) at −50 m/s onto a rigid wall at x = 0,
+/// 500 particles, h = 1.3Δx, viscosity 0.5; compared at 5 μs, before the wave reaches the free end.
+const COMPRESSIVE_WAVE: &str = r#"{
+  "name": "compressive-wave", "form": "classical", "kernel": "m4", "h_over_dx": 1.3,
+  "modulus": 200e9, "rho0": 8000.0, "particles": 500, "origin": 0.0, "length": 0.05,
+  "initial_velocity": {"kind": "uniform", "value": -50.0},
+  "left": {"layers": 3, "velocity": 0.0},
+  "artificial_viscosity": [0.5, 0.0],
+  "t_end": 5e-6, "cfl": 0.2, "analytic": "wall-impact"
+}"#;
+
+/// [V21 §7.5]: 0.2 m bar (E = 70.8 GPa, ρ = 1550), 200 particles, the 7 particles at each end
+/// pulled outwards at 70 m/s; viscosity 0.5; compared at 10 μs, before the waves meet.
+const TENSILE_WAVE: &str = r#"{
+  "name": "tensile-wave", "form": "nonlocal", "kernel": "m4", "h_over_dx": 1.3,
+  "modulus": 70.8e9, "rho0": 1550.0, "particles": 200, "origin": -0.1, "length": 0.2,
+  "initial_velocity": {"kind": "rest"},
+  "left": {"layers": 7, "velocity": -70.0}, "right": {"layers": 7, "velocity": 70.0},
+  "artificial_viscosity": [0.5, 0.0],
+  "t_end": 1e-5, "cfl": 0.2, "analytic": "end-pull"
+}"#;
+
+/// [B00 §4.1.2]: rod fixed at both ends (3 layers), σ0 = 1 GPa, E = 10 GPa, ρ = 2450, l = 0.04 m,
+/// 41 nodes, centre node at 40 m/s, t = 1e-4 s.
+const ROD: &str = r#"{
+  "name": "rod", "form": "total-lagrangian", "kernel": "efg-quartic", "h_over_dx": 1.5, "shape": "mls",
+  "modulus": 1e10, "rho0": 2450.0, "initial_stress": 1e9, "particles": 41, "origin": 0.0, "length": 0.04,
+  "initial_velocity": {"kind": "point", "index": 20, "value": 40.0},
+  "left": {"layers": 3, "velocity": 0.0}, "right": {"layers": 3, "velocity": 0.0},
+  "t_end": 1e-4, "cfl": 0.2
+}"#;
+
+/// Result of a scene run.
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneReport {
+    /// Scene name.
+    pub name: String,
+    /// Form.
+    pub form: &'static str,
+    /// Time reached.
+    pub t: f64,
+    /// Steps.
+    pub steps: usize,
+    /// Relative L2 error of the free particles' velocity against the analytic solution.
+    pub velocity_error_l2: Option<f64>,
+    /// Largest |v| over the run.
+    pub max_velocity: f64,
+    /// The run diverged (non-finite state) before t_end.
+    pub diverged: bool,
+    /// Wall-clock seconds.
+    pub runtime_s: f64,
+    /// History: (t, max |v|, kinetic energy).
+    #[serde(skip)]
+    pub history: Vec<(f64, f64, f64)>,
+    /// Final positions, velocities and (if carried) stresses.
+    #[serde(skip)]
+    pub final_state: Option<crate::forms::State1D<f64>>,
+}
+
+impl Scene1D {
+    fn validate(&self) -> Result<()> {
+        crate::error::check_range("particles", self.particles as f64, 4.0, 1e7, true, true)?;
+        crate::error::check_range("length", self.length, 0.0, f64::INFINITY, false, false)?;
+        crate::error::check_range("modulus", self.modulus, 0.0, f64::INFINITY, false, false)?;
+        crate::error::check_range("rho0", self.rho0, 0.0, f64::INFINITY, false, false)?;
+        crate::error::check_range("t_end", self.t_end, 0.0, f64::INFINITY, false, false)?;
+        crate::error::check_range("cfl", self.cfl, 0.0, 2.0, false, true)?;
+        crate::error::check_range("h_over_dx", self.h_over_dx, 0.05, 50.0, true, true)?;
+        Ok(())
+    }
+
+    /// Builds and runs the scene, calling `progress` with the fraction done.
+    pub fn run(&self, mut progress: impl FnMut(f64)) -> Result<SceneReport> {
+        self.validate()?;
+        let form = FormKind::by_name(&self.form)?;
+        let k = kernel::by_name(&self.kernel)?;
+        let shape = match &self.shape {
+            Some(s) => ShapeFamily::by_name(s)?,
+            None => form.default_shape(),
+        };
+        let n = self.particles;
+        let dx = self.length / (n - 1) as f64;
+        let x: Vec<f64> = (0..n).map(|i| self.origin + i as f64 * dx).collect();
+        let c = (self.modulus / self.rho0).sqrt();
+        let p = ModelParams {
+            form,
+            shape,
+            kp: KernelParams {
+                kernel: k,
+                h: self.h_over_dx * dx,
+            },
+            modulus: self.modulus,
+            rho0: self.rho0,
+            sigma0: self.initial_stress,
+            c_partition: self.c_partition,
+            alpha_s: 0.0,
+            av: self
+                .artificial_viscosity
+                .map(|(alpha, beta)| ArtificialViscosity {
+                    alpha,
+                    beta,
+                    sound_speed: c,
+                    approaching_only: true,
+                }),
+            dx,
+        };
+        let model = Model1D::new(p, x.clone(), vec![dx; n], None)?;
+        let mut z = model.rest_state();
+        for (i, v) in z.v.iter_mut().enumerate() {
+            *v = match self.initial_velocity {
+                InitialVelocity::Rest => 0.0,
+                InitialVelocity::Uniform { value } => value,
+                InitialVelocity::Linear { gradient } => gradient * x[i],
+                InitialVelocity::Point { index, value } => {
+                    if index >= n {
+                        return Err(Error::OutOfRange {
+                            name: "initial_velocity.index",
+                            value: index as f64,
+                            range: format!("must be < particles = {n}"),
+                        });
+                    }
+                    if i == index { value } else { 0.0 }
+                }
+            };
+        }
+        let mut prescribed = vec![None; n];
+        if let Some(l) = &self.left {
+            for (i, p) in prescribed.iter_mut().enumerate().take(l.layers.min(n)) {
+                *p = Some(l.velocity.unwrap_or(z.v[i]));
+            }
+        }
+        if let Some(r) = &self.right {
+            for i in n.saturating_sub(r.layers)..n {
+                prescribed[i] = Some(r.velocity.unwrap_or(z.v[i]));
+            }
+        }
+        let v_init = z.v.clone();
+        let free: Vec<bool> = prescribed.iter().map(|p| p.is_none()).collect();
+        let mut run = Run1D::new(model, z, prescribed.clone())?;
+        let dt = self.cfl * dx / c;
+        let steps = (self.t_end / dt).ceil() as usize;
+        let dt = self.t_end / steps as f64;
+        let mass = self.rho0 * dx;
+        let mut history = Vec::with_capacity(steps + 1);
+        let mut vmax: f64 = 0.0;
+        let mut diverged = false;
+        let start = std::time::Instant::now();
+        for s in 0..steps {
+            if run.step(dt).is_err() {
+                diverged = true;
+                break;
+            }
+            let vm = run.z.v.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            vmax = vmax.max(vm);
+            let ke = 0.5 * mass * run.z.v.iter().map(|v| v * v).sum::<f64>();
+            history.push((run.t, vm, ke));
+            if s % 256 == 0 {
+                progress(run.t / self.t_end);
+            }
+        }
+        let runtime_s = start.elapsed().as_secs_f64();
+        let error = if diverged {
+            None
+        } else {
+            self.analytic.map(|a| {
+                let exact: Vec<f64> = (0..n)
+                    .map(|i| self.exact_velocity(a, x[i], &v_init, &prescribed, i, run.t, c))
+                    .collect();
+                let (mut num, mut den, mut cnt) = (0.0, 0.0, 0usize);
+                let mut scale: f64 = 0.0;
+                for i in (0..n).filter(|&i| free[i]) {
+                    num += (run.z.v[i] - exact[i]).powi(2);
+                    den += exact[i].powi(2);
+                    cnt += 1;
+                    scale = scale.max(exact[i].abs()).max(v_init[i].abs());
+                }
+                if den > 0.0 {
+                    (num / den).sqrt()
+                } else {
+                    (num / cnt.max(1) as f64).sqrt() / scale.max(1e-300)
+                }
+            })
+        };
+        Ok(SceneReport {
+            name: self.name.clone(),
+            form: form.name(),
+            t: run.t,
+            steps: run.steps,
+            velocity_error_l2: error,
+            max_velocity: vmax,
+            diverged,
+            runtime_s,
+            history,
+            final_state: Some(run.z),
+        })
+    }
+
+    /// The analytic velocity of particle i (reference position X) at time t.
+    fn exact_velocity(
+        &self,
+        a: Analytic,
+        xi: f64,
+        v_init: &[f64],
+        prescribed: &[Option<f64>],
+        i: usize,
+        t: f64,
+        c: f64,
+    ) -> f64 {
+        match a {
+            Analytic::UniformStrain => v_init[i],
+            Analytic::WallImpact => {
+                let wall = self.origin
+                    + self
+                        .left
+                        .as_ref()
+                        .map(|l| l.layers.saturating_sub(1))
+                        .unwrap_or(0) as f64
+                        * self.length
+                        / (self.particles - 1) as f64;
+                if xi - wall < c * t { 0.0 } else { v_init[i] }
+            }
+            Analytic::EndPull => {
+                let n = self.particles;
+                let dx = self.length / (n - 1) as f64;
+                let lw = self.left.as_ref().map(|l| l.layers).unwrap_or(0);
+                let rw = self.right.as_ref().map(|l| l.layers).unwrap_or(0);
+                let xl = self.origin + (lw.max(1) - 1) as f64 * dx;
+                let xr = self.origin + (n - rw.max(1)) as f64 * dx;
+                let vl = prescribed[0].unwrap_or(0.0);
+                let vr = prescribed[n - 1].unwrap_or(0.0);
+                let mut v = 0.0;
+                if xi - xl < c * t {
+                    v += vl;
+                }
+                if xr - xi < c * t {
+                    v += vr;
+                }
+                v
+            }
+        }
+    }
+}
