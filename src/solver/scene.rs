@@ -288,8 +288,9 @@ impl Scene1D {
             }
         }
         if let Some(r) = &self.right {
-            for i in n.saturating_sub(r.layers)..n {
-                prescribed[i] = Some(r.velocity.unwrap_or(z.v[i]));
+            let first = n.saturating_sub(r.layers);
+            for (p, &v) in prescribed.iter_mut().zip(&z.v).skip(first) {
+                *p = Some(r.velocity.unwrap_or(v));
             }
         }
         let v_init = z.v.clone();
@@ -384,13 +385,12 @@ impl Scene1D {
                 let rw = self.right.as_ref().map(|l| l.layers).unwrap_or(0);
                 let xl = self.origin + (lw.max(1) - 1) as f64 * dx;
                 let xr = self.origin + (n - rw.max(1)) as f64 * dx;
-                let vl = prescribed[0].unwrap_or(0.0);
-                let vr = prescribed[n - 1].unwrap_or(0.0);
+                let (vl, vr) = ends;
                 let mut v = 0.0;
-                if xi - xl < c * t {
+                if xi - xl < ct {
                     v += vl;
                 }
-                if xr - xi < c * t {
+                if xr - xi < ct {
                     v += vr;
                 }
                 v
