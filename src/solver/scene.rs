@@ -322,8 +322,12 @@ impl Scene1D {
             None
         } else {
             self.analytic.map(|a| {
+                let ends = (
+                    prescribed[0].unwrap_or(0.0),
+                    prescribed[n - 1].unwrap_or(0.0),
+                );
                 let exact: Vec<f64> = (0..n)
-                    .map(|i| self.exact_velocity(a, x[i], &v_init, &prescribed, i, run.t, c))
+                    .map(|i| self.exact_velocity(a, x[i], v_init[i], ends, run.t * c))
                     .collect();
                 let (mut num, mut den, mut cnt) = (0.0, 0.0, 0usize);
                 let mut scale: f64 = 0.0;
@@ -354,29 +358,21 @@ impl Scene1D {
         })
     }
 
-    /// The analytic velocity of particle i (reference position X) at time t.
-    fn exact_velocity(
-        &self,
-        a: Analytic,
-        xi: f64,
-        v_init: &[f64],
-        prescribed: &[Option<f64>],
-        i: usize,
-        t: f64,
-        c: f64,
-    ) -> f64 {
+    /// The analytic velocity at reference position `xi` (initial velocity `v0`, end velocities
+    /// `ends`) when the fronts have travelled `ct`.
+    fn exact_velocity(&self, a: Analytic, xi: f64, v0: f64, ends: (f64, f64), ct: f64) -> f64 {
         match a {
-            Analytic::UniformStrain => v_init[i],
+            Analytic::UniformStrain => v0,
             Analytic::WallImpact => {
+                let dx = self.length / (self.particles - 1) as f64;
                 let wall = self.origin
                     + self
                         .left
                         .as_ref()
                         .map(|l| l.layers.saturating_sub(1))
                         .unwrap_or(0) as f64
-                        * self.length
-                        / (self.particles - 1) as f64;
-                if xi - wall < c * t { 0.0 } else { v_init[i] }
+                        * dx;
+                if xi - wall < ct { 0.0 } else { v0 }
             }
             Analytic::EndPull => {
                 let n = self.particles;
