@@ -208,8 +208,11 @@ pub struct SwegleReport {
     pub steps: usize,
     /// Wall-clock seconds of the time loop.
     pub runtime_s: f64,
-    /// History (t, max |v|) every `history_stride` steps.
+    /// History (t, max |v|), at most ~400 samples.
     pub history: Vec<(f64, f64)>,
+    /// Final particle state.
+    #[serde(skip)]
+    pub final_state: Option<crate::forms::State2D<f64>>,
 }
 
 /// Runs the test.
@@ -322,5 +325,6 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
             .step_by(stride)
             .map(|(&a, &b)| (a, b))
             .collect(),
+        final_state: Some(run.z),
     })
 }

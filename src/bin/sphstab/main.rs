@@ -5,6 +5,7 @@ mod dispersion;
 mod figures;
 mod kernels;
 mod map;
+mod progress;
 mod query;
 mod simulate;
 mod stiffness;

@@ -7,8 +7,8 @@ use sphstab::solver::scene::{builtin, parse};
 /// Flags of `simulate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Scene: a JSON file, or uniform-bar, compressive-wave, tensile-wave, rod. (The 2D Swegle
-    /// box: `sphstab swegle`.)
+    /// Scene: a JSON file, or uniform-bar, compressive-wave, tensile-wave, rod, swegle (the 2D
+    /// Swegle box with its defaults; `sphstab swegle` has all its options).
     scene: String,
     /// Override the scene's form.
     #[arg(long)]
@@ -25,6 +25,26 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if a.scene == "swegle" {
+        let mut args = vec!["swegle".to_string()];
+        if let Some(f) = &a.form {
+            args.extend(["--form".into(), f.clone()]);
+        }
+        if let Some(t) = a.t_end {
+            args.extend(["--t-end".into(), t.to_string()]);
+        }
+        if a.json {
+            args.push("--json".into());
+        }
+        if let Some(o) = &a.out {
+            args.extend(["--out".into(), o.display().to_string()]);
+        }
+        let parsed = <crate::swegle::Args as clap::FromArgMatches>::from_arg_matches(
+            &<crate::swegle::Args as clap::Args>::augment_args(clap::Command::new("swegle"))
+                .try_get_matches_from(args)?,
+        )?;
+        return crate::swegle::run(parsed);
+    }
     let mut scene = if a.scene.ends_with(".json") || std::path::Path::new(&a.scene).exists() {
         let text = std::fs::read_to_string(&a.scene)
             .with_context(|| format!("cannot read scene {}", a.scene))?;
@@ -39,15 +59,9 @@ pub fn run(a: Args) -> Result<()> {
         sphstab::error::check_range("--t-end", t, 0.0, f64::INFINITY, false, false)?;
         scene.t_end = t;
     }
-    let show = !a.json && std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let r = scene.run(|f| {
-        if show {
-            eprint!("\r{:5.1}%", 100.0 * f);
-        }
-    })?;
-    if show {
-        eprintln!("\r      ");
-    }
+    let pb = crate::progress::bar(crate::progress::wanted(a.json));
+    let r = scene.run(|f| crate::progress::set(&pb, f))?;
+    pb.finish_and_clear();
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--out: cannot create {}", dir.display()))?;

@@ -51,6 +51,9 @@ pub struct Args {
     /// SVG of max |v| against time with the predicted slopes.
     #[arg(long)]
     plot: Option<std::path::PathBuf>,
+    /// Write history.csv (t, max |v| of the free particles) and final.vtk (particles) here.
+    #[arg(long)]
+    out: Option<std::path::PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -78,14 +81,33 @@ pub fn run(a: Args) -> Result<()> {
         }
     };
     cfg.validate()?;
-    let show = !a.json && std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let r = run_swegle(&cfg, |f| {
-        if show {
-            eprint!("\r{:5.1}%", 100.0 * f);
+    let pb = crate::progress::bar(crate::progress::wanted(a.json));
+    let r = run_swegle(&cfg, |f| crate::progress::set(&pb, f))?;
+    pb.finish_and_clear();
+    if let Some(dir) = &a.out {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("--out: cannot create {}", dir.display()))?;
+        let h = sphstab::solver::output::csv(
+            &["t", "max_abs_v_free"],
+            r.history.iter().map(|&(t, v)| vec![t, v]),
+        );
+        std::fs::write(dir.join("history.csv"), h)
+            .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
+        if let Some(z) = &r.final_state {
+            let title = format!(
+                "swegle {} {} h={} f={} t={:e}",
+                r.form,
+                r.kernel,
+                r.h_over_dx,
+                r.density_ratio,
+                r.dt * r.steps as f64
+            );
+            std::fs::write(
+                dir.join("final.vtk"),
+                sphstab::solver::output::vtk_2d(&title, z),
+            )
+            .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
         }
-    })?;
-    if show {
-        eprintln!("\r      ");
     }
     if let Some(path) = &a.plot {
         use sphstab::plot::{Curve, lines_svg};
