@@ -11,6 +11,7 @@ pub mod run1d;
 pub mod run2d;
 pub mod scene;
 pub mod swegle;
+pub mod thesis_wave;
 
 pub use run1d::Run1D;
 pub use run2d::{BoundaryDensity, Run2D};
