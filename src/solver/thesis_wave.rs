@@ -118,10 +118,10 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
         }
     };
     let mut incident = 0.0;
-    for i in 0..n {
-        z.v[i] = g(x[i]);
-        z.sigma[i] = -rho_a * ca * g(x[i]);
-        incident += g(x[i]) * dx;
+    for ((v, s), &xi) in z.v.iter_mut().zip(z.sigma.iter_mut()).zip(&x) {
+        *v = g(xi);
+        *s = -rho_a * ca * g(xi);
+        incident += g(xi) * dx;
     }
     let mut run = Run1D::new(model, z, vec![None; n])?;
     // the incident pulse reaches the interface after (a − x0)/c_A; wait until the reflected and
