@@ -189,3 +189,31 @@ fn periodic_box_single_mode_growth() {
     );
     assert!((measured / gd - 1.0).abs() < 0.01, "{measured} vs {gd}");
 }
+
+/// The growing pattern of the Swegle box (rustfft sine transform of the free particles'
+/// velocity at the top of the fit window) is the engine's fastest admitted standing mode: its
+/// large component equals the prediction's (15π/16 in a 15×15 free region) and the small one is
+/// within one mode index (nearly degenerate rates), up to the x ↔ y symmetry of the box.
+#[test]
+fn swegle_growing_pattern_is_the_predicted_standing_mode() {
+    let k = kernel::by_name("m4").unwrap();
+    let d = PI / 16.0;
+    for h in [1.0, 1.2, 1.3] {
+        for f in [0.95, 0.99] {
+            let r = run_swegle(&SwegleConfig::new(FormKind::Classical, k, h, f), |_| {}).unwrap();
+            let (m, share) = r.dominant_kappa.unwrap();
+            let p = r.predicted_kappa_box;
+            let (m_hi, m_lo) = (m[0].max(m[1]), m[0].min(m[1]));
+            let (p_hi, p_lo) = (p[0].max(p[1]), p[0].min(p[1]));
+            eprintln!(
+                "h={h} f={f}: dominant ({:.4}π, {:.4}π) share {share:.2}; predicted ({:.4}π, {:.4}π)",
+                m[0] / PI,
+                m[1] / PI,
+                p[0] / PI,
+                p[1] / PI
+            );
+            assert!((m_hi - p_hi).abs() < 1e-12, "large component");
+            assert!((m_lo - p_lo).abs() < 1.5 * d, "small component");
+        }
+    }
+}

@@ -208,6 +208,11 @@ pub struct SwegleReport {
     pub steps: usize,
     /// Wall-clock seconds of the time loop.
     pub runtime_s: f64,
+    /// Dominant standing mode (m, l) of the free particles' velocity at the end of the fit window
+    /// (or the end), as a wave vector [κxΔx, κyΔx] = (mπ, lπ)/(n_free + 1), with its power share.
+    pub dominant_kappa: Option<([f64; 2], f64)>,
+    /// Wave vector of the fastest standing mode the box admits (engine), for comparison.
+    pub predicted_kappa_box: [f64; 2],
     /// History (t, max |v|), at most ~400 samples.
     pub history: Vec<(f64, f64)>,
     /// Final particle state.
@@ -221,43 +226,29 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
     let c = cfg.sound_speed();
     let unit = c / cfg.dx; // c/Δx: normalisation of rates
     // predictions
-    let (box_rate, method) = {
-        let nfree = cfg.size - 2 * cfg.layers;
-        if 2 * nfree * nfree <= MAX_DENSE_DOFS.min(1000) {
-            (box_growth(&run)?.0 / unit, "dense-operator")
-        } else {
-            let lin = Linearisation2D::new(
-                ModelParams2D {
-                    kp: KernelParams2 {
-                        kernel: cfg.kernel,
-                        h: cfg.h_over_dx,
-                    },
-                    rho0: 1.0,
-                    material: Material2D::Hydro { bulk: 1.0 },
-                    ..cfg.params()
-                },
-                &Lattice2D::square(1.0)?,
-                1.0,
-                1.0 - cfg.density_ratio,
-            )?;
-            (box_prediction(&lin, nfree)?.0, "standing-modes")
-        }
+    let nfree = cfg.size - 2 * cfg.layers;
+    let lin_unit = Linearisation2D::new(
+        ModelParams2D {
+            kp: KernelParams2 {
+                kernel: cfg.kernel,
+                h: cfg.h_over_dx,
+            },
+            rho0: 1.0,
+            material: Material2D::Hydro { bulk: 1.0 },
+            ..cfg.params()
+        },
+        &Lattice2D::square(1.0)?,
+        1.0,
+        1.0 - cfg.density_ratio,
+    )?;
+    let (standing_rate, standing_k) = box_prediction(&lin_unit, nfree)?;
+    let (box_rate, method) = if 2 * nfree * nfree <= MAX_DENSE_DOFS.min(1000) {
+        (box_growth(&run)?.0 / unit, "dense-operator")
+    } else {
+        (standing_rate, "standing-modes")
     };
     let inf = {
-        let lin = Linearisation2D::new(
-            ModelParams2D {
-                kp: KernelParams2 {
-                    kernel: cfg.kernel,
-                    h: cfg.h_over_dx,
-                },
-                rho0: 1.0,
-                material: Material2D::Hydro { bulk: 1.0 },
-                ..cfg.params()
-            },
-            &Lattice2D::square(1.0)?,
-            1.0,
-            1.0 - cfg.density_ratio,
-        )?;
+        let lin = &lin_unit;
         let n = 96;
         let mut g: f64 = 0.0;
         for i in 0..=n {
@@ -281,6 +272,20 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
     let mut t = vec![0.0];
     let mut y = vec![run.max_free_speed().max(cfg.kick)];
     let mut vmax_ever: f64 = 0.0;
+    let mut snapshot: Option<Vec<Vec<f64>>> = None;
+    let free_fields = |run: &Run2D| -> Vec<Vec<f64>> {
+        let (n, l) = (cfg.size, cfg.layers);
+        let mut vx = Vec::with_capacity(nfree * nfree);
+        let mut vy = Vec::with_capacity(nfree * nfree);
+        for i in l..n - l {
+            for j in l..n - l {
+                let v = run.z.v[i * n + j];
+                vx.push(v[0]);
+                vy.push(v[1]);
+            }
+        }
+        vec![vx, vy]
+    };
     let start = std::time::Instant::now();
     for s in 0..steps {
         run.step(dt)?;
@@ -288,6 +293,9 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         vmax_ever = vmax_ever.max(v);
         t.push(run.t);
         y.push(v);
+        if snapshot.is_none() && v >= cfg.window.1 {
+            snapshot = Some(free_fields(&run));
+        }
         if s % 64 == 0 {
             progress(run.t / t_end);
         }
@@ -297,6 +305,16 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         }
     }
     let runtime_s = start.elapsed().as_secs_f64();
+    let fields = snapshot.unwrap_or_else(|| free_fields(&run));
+    let d = PI / (nfree as f64 + 1.0);
+    let dominant = {
+        let ((m, l), share) = crate::solver::diagnostics::dominant_mode(&fields, nfree);
+        if share > 0.0 {
+            Some(([m as f64 * d, l as f64 * d], share))
+        } else {
+            None
+        }
+    };
     let fit = growth_fit(&t, &y, cfg.window.0, cfg.window.1);
     let measured = fit.map(|f| f.rate / unit);
     let stride = (t.len() / 400).max(1);
@@ -319,6 +337,8 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         dt,
         steps: run.steps,
         runtime_s,
+        dominant_kappa: dominant,
+        predicted_kappa_box: standing_k,
         history: t
             .iter()
             .zip(&y)
