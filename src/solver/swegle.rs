@@ -215,6 +215,10 @@ pub struct SwegleReport {
     pub predicted_kappa_box: [f64; 2],
     /// History (t, max |v|), at most ~400 samples.
     pub history: Vec<(f64, f64)>,
+    /// Full history every step: t, centre |v|, max |v| and RMS |v| over the free particles,
+    /// kinetic energy of all particles.
+    #[serde(skip)]
+    pub history_full: Vec<[f64; 5]>,
     /// Final particle state.
     #[serde(skip)]
     pub final_state: Option<crate::forms::State2D<f64>>,
@@ -273,6 +277,30 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
     let mut y = vec![run.max_free_speed().max(cfg.kick)];
     let mut vmax_ever: f64 = 0.0;
     let mut snapshot: Option<Vec<Vec<f64>>> = None;
+    let centre = (cfg.size / 2) * cfg.size + cfg.size / 2;
+    let mut full = Vec::with_capacity(steps + 1);
+    let record = |run: &Run2D, full: &mut Vec<[f64; 5]>| {
+        let mut s2 = 0.0;
+        let mut nf = 0usize;
+        let mut ke = 0.0;
+        for (i, v) in run.z.v.iter().enumerate() {
+            let v2 = v[0] * v[0] + v[1] * v[1];
+            ke += 0.5 * run.model.mass[i] * v2;
+            if !run.fixed[i] {
+                s2 += v2;
+                nf += 1;
+            }
+        }
+        let c = run.z.v[centre];
+        full.push([
+            run.t,
+            c[0].hypot(c[1]),
+            run.max_free_speed(),
+            (s2 / nf.max(1) as f64).sqrt(),
+            ke,
+        ]);
+    };
+    record(&run, &mut full);
     let free_fields = |run: &Run2D| -> Vec<Vec<f64>> {
         let (n, l) = (cfg.size, cfg.layers);
         let mut vx = Vec::with_capacity(nfree * nfree);
@@ -293,6 +321,7 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         vmax_ever = vmax_ever.max(v);
         t.push(run.t);
         y.push(v);
+        record(&run, &mut full);
         if snapshot.is_none() && v >= cfg.window.1 {
             snapshot = Some(free_fields(&run));
         }
@@ -337,6 +366,7 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         dt,
         steps: run.steps,
         runtime_s,
+        history_full: full,
         dominant_kappa: dominant,
         predicted_kappa_box: standing_k,
         history: t

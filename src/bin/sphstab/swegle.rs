@@ -51,7 +51,8 @@ pub struct Args {
     /// SVG of max |v| against time with the predicted slopes.
     #[arg(long)]
     plot: Option<std::path::PathBuf>,
-    /// Write history.csv (t, max |v| of the free particles) and final.vtk (particles) here.
+    /// Write history.csv (t, centre |v|, max and RMS |v| of the free particles, kinetic energy)
+    /// and final.vtk (particles) here.
     #[arg(long)]
     out: Option<std::path::PathBuf>,
 }
@@ -88,8 +89,14 @@ pub fn run(a: Args) -> Result<()> {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--out: cannot create {}", dir.display()))?;
         let h = sphstab::solver::output::csv(
-            &["t", "max_abs_v_free"],
-            r.history.iter().map(|&(t, v)| vec![t, v]),
+            &[
+                "t",
+                "centre_abs_v",
+                "max_abs_v_free",
+                "rms_v_free",
+                "kinetic_energy",
+            ],
+            r.history_full.iter().map(|row| row.to_vec()),
         );
         std::fs::write(dir.join("history.csv"), h)
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
