@@ -19,6 +19,11 @@ use std::f64::consts::PI;
 pub enum MaterialSpec {
     /// Hydrodynamic, p = K(ρ/ρ0 − 1); σ̄ = 1 − ρ/ρ0.
     Hydro,
+    /// Compressible neo-Hookean with Poisson ratio ν at small strain (total-Lagrangian only).
+    NeoHookean {
+        /// ν.
+        poisson: f64,
+    },
     /// Linear elastic with Poisson ratio ν (plane strain) and an objective rate.
     Elastic {
         /// ν.
@@ -117,6 +122,14 @@ impl Query2D {
         match self.material {
             MaterialSpec::Hydro => Ok(Material2D::Hydro { bulk: 1.0 }),
             MaterialSpec::Elastic { poisson, rate } => Material2D::elastic(1.0, poisson, rate),
+            MaterialSpec::NeoHookean { poisson } => {
+                match Material2D::elastic(1.0, poisson, ObjectiveRate::Truesdell)? {
+                    Material2D::Elastic { lambda, shear, .. } => {
+                        Ok(Material2D::NeoHookean { lambda, shear })
+                    }
+                    m => Ok(m),
+                }
+            }
         }
     }
 
@@ -288,6 +301,7 @@ pub fn continuum_moduli(q: &Query2D) -> Result<(f64, f64)> {
     let s = q.stress;
     Ok(match q.material()? {
         Material2D::Hydro { .. } => (1.0, 0.0),
+        Material2D::NeoHookean { shear, .. } => (1.0, shear),
         Material2D::Elastic {
             shear,
             rate: ObjectiveRate::Jaumann,

@@ -246,3 +246,33 @@ fn finite_box_prediction_converges_to_the_infinite_lattice() {
     }
     assert!(prev / inf > 0.9);
 }
+
+/// The neo-Hookean total-Lagrangian law [T eq 3.64] linearises to Hooke's law about the
+/// unstressed state: its dynamical matrix equals (λ + G)S1S1ᵀ + G|S1|²I (derived closed form),
+/// and the same as the linear elastic TL at zero pre-stress, to 1e-8.
+#[test]
+fn neo_hookean_linearises_to_hooke() {
+    let lat = Lattice2D::square(1.0).unwrap();
+    let (lambda, shear) = match Material2D::elastic(1.0, 0.3, ObjectiveRate::Truesdell).unwrap() {
+        Material2D::Elastic { lambda, shear, .. } => (lambda, shear),
+        _ => unreachable!(),
+    };
+    let nh = Material2D::NeoHookean { lambda, shear };
+    for shape in [ShapeFamily::Sph, ShapeFamily::Mls] {
+        let p = params(FormKind::TotalLagrangian, "m4", shape, 1.3, nh);
+        let lin = Linearisation2D::new(p, &lat, 1.0, 0.0).unwrap();
+        for k in kgrid(&lat, 7) {
+            let sm = sums(&lat, shape, p.kp, k).unwrap();
+            let cf = rho_d(FormKind::TotalLagrangian, &nh, 0.0, 1.0, &sm).unwrap();
+            let d = lin.dynamical(k);
+            for a in 0..2 {
+                for b in 0..2 {
+                    assert!(
+                        (d[a][b].re - cf[a][b]).abs() < 1e-8 * (1.0 + cf[a][b].abs()),
+                        "{shape:?} k={k:?}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -232,11 +232,11 @@ pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>)
                 [sg, sg, S::zero()]
             })
             .collect(),
-        Material2D::Elastic { .. } => Vec::new(),
+        _ => Vec::new(),
     };
     let (sig, tau): (&[[S; 3]], &[[S; 3]]) = match m.p.material {
         Material2D::Hydro { .. } => (&hydro_stress, &hydro_stress),
-        Material2D::Elastic { .. } => (&z.sigma, if mixed { &z.tau } else { &z.sigma }),
+        _ => (&z.sigma, if mixed { &z.tau } else { &z.sigma }),
     };
     let c = m.p.c_partition;
     for i in 0..z.x.len() {
@@ -319,6 +319,20 @@ pub(crate) fn rate_tl<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<
                 let pr = ((S::cst(rho_ref) / jac) / m.p.rho0 - 1.0) * bulk;
                 // P = −p cof F, cof F = J F⁻ᵀ = [[F11, −F10], [−F01, F00]]
                 [[-pr * f[1][1], pr * f[1][0]], [pr * f[0][1], -pr * f[0][0]]]
+            }
+            Material2D::NeoHookean { lambda, shear } => {
+                // P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ, F⁻ᵀ = cof F / J
+                let jac = f[0][0] * f[1][1] - f[0][1] * f[1][0];
+                let cof = [[f[1][1], -f[1][0]], [-f[0][1], f[0][0]]];
+                let lnj = jac.ln();
+                let mut p = [[S::zero(); 2]; 2];
+                for a in 0..2 {
+                    for b in 0..2 {
+                        let fit = cof[a][b] / jac;
+                        p[a][b] = (f[a][b] - fit) * shear + lnj * fit * lambda;
+                    }
+                }
+                p
             }
             Material2D::Elastic {
                 lambda,

@@ -36,6 +36,14 @@ pub enum Material2D {
         /// Bulk modulus K.
         bulk: f64,
     },
+    /// Compressible neo-Hookean \[T eq 3.62–3.64\], total-Lagrangian forms only:
+    /// P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ (plane strain), linearised about the unstressed state.
+    NeoHookean {
+        /// Lamé λ.
+        lambda: f64,
+        /// Shear modulus μ.
+        shear: f64,
+    },
     /// Linear hypo-elastic.
     Elastic {
         /// Lamé λ (2D: K − G).
@@ -62,7 +70,8 @@ impl Material2D {
     pub fn modulus(&self) -> f64 {
         match *self {
             Material2D::Hydro { bulk } => bulk,
-            Material2D::Elastic { lambda, shear, .. } => lambda + 2.0 * shear,
+            Material2D::Elastic { lambda, shear, .. }
+            | Material2D::NeoHookean { lambda, shear } => lambda + 2.0 * shear,
         }
     }
 }
@@ -229,7 +238,10 @@ impl FormKind {
             return c;
         }
         c.push(Comp2::Rho);
-        if matches!(material, Material2D::Elastic { .. }) {
+        if matches!(
+            material,
+            Material2D::Elastic { .. } | Material2D::NeoHookean { .. }
+        ) {
             c.extend([Comp2::Sigma(0), Comp2::Sigma(1), Comp2::Sigma(2)]);
             if matches!(self, FormKind::Lnl | FormKind::Cll) {
                 c.extend([Comp2::Tau(0), Comp2::Tau(1), Comp2::Tau(2)]);
@@ -257,6 +269,20 @@ impl Model2D {
             )));
         }
         p.form.check_shape(p.shape)?;
+        if let Material2D::NeoHookean { .. } = p.material {
+            if p.form != FormKind::TotalLagrangian {
+                return Err(Error::Incompatible(
+                    "--material neo-hookean needs --form total-lagrangian".into(),
+                ));
+            }
+            if sigma0 != 0.0 {
+                return Err(Error::OutOfRange {
+                    name: "--stress",
+                    value: sigma0,
+                    range: "neo-hookean: the reference state is unstressed, σ̄ must be 0".into(),
+                });
+            }
+        }
         let mass = vol_ref.iter().map(|v| rho * v).collect();
         let mut m = Model2D {
             p,

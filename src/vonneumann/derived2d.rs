@@ -106,6 +106,7 @@ fn outer(a: [f64; 2], b: [f64; 2]) -> [[f64; 2]; 2] {
 fn incremental(mat: &Material2D, s: f64, rho_over_rho0: f64) -> (f64, f64) {
     match *mat {
         Material2D::Hydro { bulk } => (bulk * rho_over_rho0, 0.0),
+        Material2D::NeoHookean { lambda, shear } => (lambda, shear),
         Material2D::Elastic {
             lambda,
             shear,
@@ -167,6 +168,14 @@ pub fn rho_d(
                 for a in 0..2 {
                     for b in 0..2 {
                         d[a][b] = bulk * rho_ratio * ss[a][b];
+                    }
+                }
+            }
+            Material2D::NeoHookean { lambda, shear } => {
+                // linearises to Hooke's law about the unstressed state (s = 0)
+                for a in 0..2 {
+                    for b in 0..2 {
+                        d[a][b] = (lambda + shear) * ss[a][b] + shear * n2 * id(a, b);
                     }
                 }
             }

@@ -47,7 +47,7 @@ pub fn base_state(material: &Material2D, rho0: f64, sigma_bar: f64) -> Result<(f
             }
             Ok(((1.0 - sigma_bar) * rho0, sigma_bar * c))
         }
-        Material2D::Elastic { .. } => Ok((rho0, sigma_bar * c)),
+        Material2D::Elastic { .. } | Material2D::NeoHookean { .. } => Ok((rho0, sigma_bar * c)),
     }
 }
 

@@ -54,7 +54,8 @@ pub struct Config {
     /// 2D square lattice aspect ratio γ = Δy/Δx, in [0.1, 10].
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub gamma: f64,
-    /// 2D material: hydro (p = K(ρ/ρ0 − 1), G = 0, σ̄ = 1 − ρ/ρ0) or elastic.
+    /// 2D material: hydro (p = K(ρ/ρ0 − 1), G = 0, σ̄ = 1 − ρ/ρ0), elastic, or neo-hookean
+    /// (total-lagrangian only, unstressed reference).
     #[arg(long, default_value = "elastic")]
     pub material: String,
     /// 2D elastic Poisson ratio ν (plane strain), in [−0.99, 0.5).
@@ -89,7 +90,9 @@ impl Config {
         use sphstab::forms::ObjectiveRate;
         let q1 = self.query(2)?;
         let mut q = Query2D::new(q1.form, q1.kernel, q1.h_over_dx, q1.stress);
-        q.shape = q1.shape;
+        if self.shape.is_some() {
+            q.shape = q1.shape;
+        }
         q.c_partition = q1.c_partition;
         q.av = q1.av;
         q.dt = q1.dt;
@@ -109,6 +112,12 @@ impl Config {
         };
         q.material = match self.material.as_str() {
             "hydro" => MaterialSpec::Hydro,
+            "neo-hookean" => {
+                sphstab::error::check_range("--poisson", self.poisson, -0.99, 0.5, true, false)?;
+                MaterialSpec::NeoHookean {
+                    poisson: self.poisson,
+                }
+            }
             "elastic" => {
                 sphstab::error::check_range("--poisson", self.poisson, -0.99, 0.5, true, false)?;
                 MaterialSpec::Elastic {
@@ -120,7 +129,7 @@ impl Config {
                 return Err(sphstab::error::Error::UnknownName {
                     what: "material",
                     given: m.into(),
-                    valid: "hydro, elastic".into(),
+                    valid: "hydro, elastic, neo-hookean".into(),
                 }
                 .into());
             }
