@@ -56,6 +56,8 @@ pub struct Query2D {
     pub av: Option<(f64, f64)>,
     /// Leapfrog Δt (Δx/c) to check.
     pub dt: Option<f64>,
+    /// Artificial stress (ε, n) of the classical form.
+    pub art_stress: Option<(f64, i32)>,
     /// Wave vectors per reciprocal-lattice direction (the zone is sampled n × n).
     pub grid: usize,
 }
@@ -80,6 +82,7 @@ impl Query2D {
             },
             av: None,
             dt: None,
+            art_stress: None,
             grid: 64,
         }
     }
@@ -151,6 +154,13 @@ impl Query2D {
                 sound_speed: 1.0,
                 approaching_only: false,
             }),
+            art_stress: self
+                .art_stress
+                .map(|(eps, n)| crate::forms::ArtificialStress {
+                    eps,
+                    n,
+                    spacing: 1.0,
+                }),
         })
     }
 

@@ -104,6 +104,7 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material2D) -> ModelPara
         rho0: 1.0,
         c_partition: 0.5,
         av: None,
+        art_stress: None,
     }
 }
 

@@ -112,3 +112,21 @@ fn swegle_compression() {
         table.join("\n")
     );
 }
+
+/// With artificial stress the solver and the engine still agree (same rate function):
+/// classical m4 h = 1.2 f = 0.95, ε = 0.2: measured / box in [0.90, 1.00].
+#[test]
+fn swegle_with_artificial_stress() {
+    let mut cfg = SwegleConfig::new(
+        FormKind::Classical,
+        kernel::by_name("m4").unwrap(),
+        1.2,
+        0.95,
+    );
+    cfg.art_stress = Some((0.2, 4));
+    cfg.until_window = true;
+    let r = run_swegle(&cfg, |_| {}).unwrap();
+    eprintln!("{}", row(&r));
+    let ratio = r.ratio_box.unwrap();
+    assert!((0.90..=1.00).contains(&ratio), "{ratio}");
+}

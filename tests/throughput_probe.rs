@@ -29,6 +29,7 @@ fn throughput_200x200() {
             rho0: 1.0,
             c_partition: 0.5,
             av: None,
+            art_stress: None,
         };
         let model = Model2D::periodic_patch(
             p,

@@ -207,6 +207,74 @@ fn av_accel<S: Scalar>(m: &Model2D, z: &State2D<S>, i: usize, st: &[Nb2<S>]) -> 
     a
 }
 
+/// Artificial-stress tensor R = −ε Σ_{λ>0} λ P_λ / ρ² of a stress [xx, yy, xy] (principal
+/// decomposition; an isotropic tensile stress gives R = −ε σ/ρ², smooth for linearisation).
+fn art_tensor<S: Scalar>(s: [S; 3], rho: S, eps: f64) -> [S; 3] {
+    let scale = S::cst(-eps) / (rho * rho);
+    let mean = (s[0] + s[1]) * 0.5;
+    let dh = (s[0] - s[1]) * 0.5;
+    let rad2 = dh * dh + s[2] * s[2];
+    if rad2.re() <= 1e-28 * mean.re().abs().max(f64::MIN_POSITIVE).powi(2) {
+        // (numerically) isotropic
+        return if mean.re() > 0.0 {
+            [s[0] * scale, s[1] * scale, s[2] * scale]
+        } else {
+            [S::zero(); 3]
+        };
+    }
+    let rad = rad2.sqrt();
+    let (l1, l2) = (mean + rad, mean - rad);
+    // P1 = (σ − λ2 I)/(λ1 − λ2), P2 = I − P1
+    let p1 = [
+        (s[0] - l2) / (rad * 2.0),
+        (s[1] - l2) / (rad * 2.0),
+        s[2] / (rad * 2.0),
+    ];
+    let p2 = [S::cst(1.0) - p1[0], S::cst(1.0) - p1[1], -p1[2]];
+    let mut r = [S::zero(); 3];
+    for (l, p) in [(l1, p1), (l2, p2)] {
+        if l.re() > 0.0 {
+            for k in 0..3 {
+                r[k] += l * p[k] * scale;
+            }
+        }
+    }
+    r
+}
+
+/// Σ_J m_J (R_I + R_J) f_IJⁿ ∇_I W_IJ.
+fn art_accel<S: Scalar>(m: &Model2D, r: &[[S; 3]], i: usize, st: &[Nb2<S>]) -> [S; 2] {
+    let Some(a) = m.p.art_stress else {
+        return [S::zero(); 2];
+    };
+    let h = m.p.kp.h;
+    let w_dp = kernel::w(m.p.kp.kernel, 2, a.spacing, h);
+    let mut acc = [S::zero(); 2];
+    for nb in st {
+        if nb.j == i {
+            continue;
+        }
+        let rr = (nb.d[0] * nb.d[0] + nb.d[1] * nb.d[1]).sqrt();
+        let f = kernel::w(m.p.kp.kernel, 2, rr, h) / w_dp;
+        let mut fnn = S::cst(1.0);
+        for _ in 0..a.n {
+            fnn *= f;
+        }
+        // ∇_I W(x_I − x_J) = W'(r) (x_I − x_J)/r = −W'(r) d/r
+        let dw = kernel::dw(m.p.kp.kernel, 2, rr, h);
+        let g = [-dw * nb.d[0] / rr, -dw * nb.d[1] / rr];
+        let t = [
+            r[i][0] + r[nb.j][0],
+            r[i][1] + r[nb.j][1],
+            r[i][2] + r[nb.j][2],
+        ];
+        let f2 = dot(t, g);
+        acc[0] += f2[0] * fnn * m.mass[nb.j];
+        acc[1] += f2[1] * fnn * m.mass[nb.j];
+    }
+    acc
+}
+
 /// The 2D rate of an Eulerian form.
 pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>) -> Result<()> {
     let form = m.p.form;
@@ -239,6 +307,14 @@ pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>)
         _ => (&z.sigma, if mixed { &z.tau } else { &z.sigma }),
     };
     let c = m.p.c_partition;
+    let art: Vec<[S; 3]> = match (m.p.art_stress, form) {
+        (Some(a), FormKind::Classical | FormKind::Cll) => sig
+            .iter()
+            .zip(&z.rho)
+            .map(|(&s, &r)| art_tensor(s, r, a.eps))
+            .collect(),
+        _ => Vec::new(),
+    };
     for i in 0..z.x.len() {
         out.x[i] = z.v[i];
         let la = vel_grad(z, i, &st_a[i]);
@@ -272,7 +348,13 @@ pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>)
             _ => [S::zero(); 2],
         };
         let av = av_accel(m, z, i, &st_a[i]);
-        out.v[i] = [a[0] + av[0], a[1] + av[1]];
+        let mut a = [a[0] + av[0], a[1] + av[1]];
+        if !art.is_empty() {
+            let ar = art_accel(m, &art, i, &st_a[i]);
+            let w = if form == FormKind::Cll { 1.0 - c } else { 1.0 };
+            a = [a[0] + ar[0] * w, a[1] + ar[1] * w];
+        }
+        out.v[i] = a;
     }
     Ok(())
 }

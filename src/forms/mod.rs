@@ -22,7 +22,9 @@ mod total_lagrangian;
 pub use model::{
     ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,
 };
-pub use model2d::{Comp2, Material2D, Model2D, ModelParams2D, ObjectiveRate, State2D};
+pub use model2d::{
+    ArtificialStress, Comp2, Material2D, Model2D, ModelParams2D, ObjectiveRate, State2D,
+};
 
 use crate::error::{Error, Result};
 use crate::shape::ShapeFamily;

@@ -76,6 +76,19 @@ impl Material2D {
     }
 }
 
+/// Monaghan (2000) / Gray, Monaghan & Swift (2001) artificial stress for the classical form:
+/// R_I = −ε Σ_{λ>0} λ P_λ / ρ_I² from the tensile principal stresses of σ_I, adding
+/// Σ_J m_J (R_I + R_J) f_IJⁿ ∇_I W_IJ with f_IJ = W(r_IJ)/W(Δp).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArtificialStress {
+    /// ε (typically 0.2–0.3).
+    pub eps: f64,
+    /// Exponent n (typically 4).
+    pub n: i32,
+    /// Δp, the particle spacing of W(Δp).
+    pub spacing: f64,
+}
+
 /// Parameters of a 2D model.
 #[derive(Clone, Copy, Debug)]
 pub struct ModelParams2D {
@@ -93,6 +106,8 @@ pub struct ModelParams2D {
     pub c_partition: f64,
     /// Optional artificial viscosity.
     pub av: Option<ArtificialViscosity>,
+    /// Optional artificial stress (classical and cll forms).
+    pub art_stress: Option<ArtificialStress>,
 }
 
 /// A 2D particle model.

@@ -55,6 +55,8 @@ pub struct SwegleConfig {
     pub window: (f64, f64),
     /// Partition coefficient (lnl / cll).
     pub c_partition: f64,
+    /// Artificial stress (ε, n) of the classical form (None: off, as in the published test).
+    pub art_stress: Option<(f64, i32)>,
     /// Extend `t_end` so that a mode growing at the box prediction can rise from the kick to the
     /// top of the fit window (1.5 ln(window top / kick) / γ_box), never shortening it.
     pub until_window: bool,
@@ -86,6 +88,7 @@ impl SwegleConfig {
             window: (1e-8, 1e-4),
             c_partition: 0.5,
             until_window: false,
+            art_stress: None,
         }
     }
 
@@ -130,6 +133,13 @@ impl SwegleConfig {
             rho0: self.rho0,
             c_partition: self.c_partition,
             av: None,
+            art_stress: self
+                .art_stress
+                .map(|(eps, n)| crate::forms::ArtificialStress {
+                    eps,
+                    n,
+                    spacing: self.dx,
+                }),
         }
     }
 
@@ -239,6 +249,13 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
             },
             rho0: 1.0,
             material: Material2D::Hydro { bulk: 1.0 },
+            art_stress: cfg
+                .art_stress
+                .map(|(eps, n)| crate::forms::ArtificialStress {
+                    eps,
+                    n,
+                    spacing: 1.0,
+                }),
             ..cfg.params()
         },
         &Lattice2D::square(1.0)?,

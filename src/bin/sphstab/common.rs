@@ -64,6 +64,12 @@ pub struct Config {
     /// 2D elastic objective stress rate: jaumann or truesdell (the 1D law).
     #[arg(long, default_value = "jaumann")]
     pub rate: String,
+    /// 2D classical/cll: Monaghan–Gray artificial stress ε (≥ 0; typical 0.2–0.3).
+    #[arg(long = "art-eps", allow_hyphen_values = true)]
+    pub art_eps: Option<f64>,
+    /// Artificial-stress exponent n of f = W(r)/W(Δx), in [1, 12].
+    #[arg(long = "art-n", default_value_t = 4)]
+    pub art_n: i32,
     /// 2D: wave vectors per reciprocal direction (the zone is sampled grid × grid), in [2, 4096].
     #[arg(long, default_value_t = 64)]
     pub grid: usize,
@@ -97,6 +103,11 @@ impl Config {
         q.av = q1.av;
         q.dt = q1.dt;
         q.grid = self.grid;
+        if let Some(eps) = self.art_eps {
+            sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
+            sphstab::error::check_range("--art-n", self.art_n as f64, 1.0, 12.0, true, true)?;
+            q.art_stress = Some((eps, self.art_n));
+        }
         q.lattice = sphstab::lattice::Lattice2D::by_name(&self.lattice, self.gamma)?;
         let rate = match self.rate.as_str() {
             "jaumann" => ObjectiveRate::Jaumann,
@@ -140,6 +151,12 @@ impl Config {
 
     /// Builds and validates the library query.
     pub fn query(&self, points: usize) -> Result<Query1D> {
+        if self.art_eps.is_some() && self.dim == 1 {
+            return Err(sphstab::error::Error::Incompatible(
+                "--art-eps: artificial stress is implemented in 2D (--dim 2) only".into(),
+            )
+            .into());
+        }
         let form = FormKind::by_name(&self.form)?;
         let k = kernel::by_name(&self.kernel)?;
         let h = match (self.h, self.support) {

@@ -7,8 +7,9 @@ use sphstab::solver::scene::{builtin, parse};
 /// Flags of `simulate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Scene: a JSON file, or uniform-bar, compressive-wave, tensile-wave, rod, swegle (the 2D
-    /// Swegle box with its defaults; `sphstab swegle` has all its options).
+    /// Scene: a JSON file, or uniform-bar, compressive-wave, tensile-wave, rod, thesis-wave
+    /// (density interface, ρB/ρA = 0.25, 0.5, 2, 4), swegle (the 2D Swegle box with its defaults;
+    /// `sphstab swegle` has all its options).
     scene: String,
     /// Override the scene's form.
     #[arg(long)]
@@ -44,6 +45,35 @@ pub fn run(a: Args) -> Result<()> {
                 .try_get_matches_from(args)?,
         )?;
         return crate::swegle::run(parsed);
+    }
+    if a.scene == "thesis-wave" {
+        let form = sphstab::forms::FormKind::by_name(a.form.as_deref().unwrap_or("nonlocal"))?;
+        let k = sphstab::kernel::by_name("m4")?;
+        let mut rows = Vec::new();
+        for r in [0.25, 0.5, 2.0, 4.0] {
+            rows.push(sphstab::solver::thesis_wave::run_thesis_wave(
+                &sphstab::solver::thesis_wave::ThesisWave::new(form, k, r),
+            )?);
+        }
+        if a.json {
+            println!("{}", serde_json::to_string_pretty(&rows)?);
+        } else {
+            println!(
+                "thesis-wave / {}: particle-velocity reflection and transmission at a density interface [T eq 4.45–4.46]",
+                form.name()
+            );
+            for r in rows {
+                println!(
+                    "ρB/ρA = {:<5} reflected {:+.4} (exact {:+.4})  transmitted {:.4} (exact {:.4})",
+                    r.density_ratio,
+                    r.reflected,
+                    r.reflected_exact,
+                    r.transmitted,
+                    r.transmitted_exact
+                );
+            }
+        }
+        return Ok(());
     }
     let mut scene = if a.scene.ends_with(".json") || std::path::Path::new(&a.scene).exists() {
         let text = std::fs::read_to_string(&a.scene)

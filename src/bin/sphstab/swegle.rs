@@ -45,6 +45,12 @@ pub struct Args {
     /// Partition coefficient c of lnl/cll.
     #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     c: f64,
+    /// Monaghan–Gray artificial stress ε of the classical form (off by default, as published).
+    #[arg(long = "art-eps", allow_hyphen_values = true)]
+    art_eps: Option<f64>,
+    /// Artificial-stress exponent n.
+    #[arg(long = "art-n", default_value_t = 4)]
+    art_n: i32,
     /// JSON on stdout.
     #[arg(long)]
     json: bool,
@@ -69,6 +75,11 @@ pub fn run(a: Args) -> Result<()> {
     cfg.cfl = a.cfl;
     cfg.c_partition = a.c;
     cfg.until_window = a.until_window;
+    if let Some(eps) = a.art_eps {
+        sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
+        sphstab::error::check_range("--art-n", a.art_n as f64, 1.0, 12.0, true, true)?;
+        cfg.art_stress = Some((eps, a.art_n));
+    }
     cfg.boundary = match a.boundary_density.as_str() {
         "evolve" => BoundaryDensity::Evolve,
         "frozen" => BoundaryDensity::Frozen,
