@@ -11,6 +11,7 @@ use sphstab::vonneumann::closed_form as cf;
 use std::time::Instant;
 
 #[test]
+#[ignore = "timing probe, run on demand"]
 fn dispersion_curve_cost_closed_form_vs_engine() {
     let ks = grid(1024);
     let reps = 20;
