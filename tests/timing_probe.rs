@@ -1,6 +1,6 @@
 //! Not a correctness test: prints how long a 1,024-point dispersion curve takes by the closed
 //! form and by the numeric engine, measured in the same run (ratio is what matters). Run with
-//! `cargo test --release --test timing_probe -- --nocapture`.
+//! `cargo test --release --test timing_probe -- --nocapture --ignored` (run on demand).
 
 mod common;
 
