@@ -16,8 +16,20 @@ use std::f64::consts::PI;
 #[test]
 fn million_steps_bounded_energy() {
     let n = 32;
-    let p = params(FormKind::TotalLagrangian, "efg-quartic", ShapeFamily::Mls, 1.5, 0.0);
-    let model = Model1D::new(p, (0..n).map(|i| i as f64).collect(), vec![1.0; n], Some(n as f64)).unwrap();
+    let p = params(
+        FormKind::TotalLagrangian,
+        "efg-quartic",
+        ShapeFamily::Mls,
+        1.5,
+        0.0,
+    );
+    let model = Model1D::new(
+        p,
+        (0..n).map(|i| i as f64).collect(),
+        vec![1.0; n],
+        Some(n as f64),
+    )
+    .unwrap();
     let mut z = model.rest_state();
     let kap = 2.0 * PI * 5.0 / n as f64;
     for (i, v) in z.v.iter_mut().enumerate() {
@@ -39,6 +51,9 @@ fn million_steps_bounded_energy() {
         }
     }
     let drift = (last / first - 1.0).abs();
-    eprintln!("10⁶ steps in {:.1} s: peak kinetic energy first 1% {first:.6e}, last 1% {last:.6e}, relative drift {drift:.2e}", t.elapsed().as_secs_f64());
+    eprintln!(
+        "10⁶ steps in {:.1} s: peak kinetic energy first 1% {first:.6e}, last 1% {last:.6e}, relative drift {drift:.2e}",
+        t.elapsed().as_secs_f64()
+    );
     assert!(drift < 1e-6);
 }
