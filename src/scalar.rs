@@ -7,6 +7,8 @@ use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 /// Arithmetic needed by rate functions and shape functions.
 pub trait Scalar:
     Copy
+    + Send
+    + Sync
     + std::fmt::Debug
     + Add<Output = Self>
     + Sub<Output = Self>

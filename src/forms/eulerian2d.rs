@@ -21,6 +21,13 @@ use crate::neighbours::CellList;
 use crate::scalar::Scalar;
 use crate::shape::ShapeFamily;
 use crate::shape2d::eval2;
+use rayon::prelude::*;
+
+/// Per-worker buffers of the stencil search: (relative position, volume), indices, (φ, ∇φ).
+type StencilBuffers<S> = (Vec<([S; 2], S)>, Vec<usize>, Vec<(S, [S; 2])>);
+
+/// Per-particle rates: (ρ̇, σ̇, τ̇, a).
+type ParticleRates<S> = (S, [S; 3], [S; 3], [S; 2]);
 
 /// Neighbour J of an evaluation point: index, d = x_J − x, φ_J, ∇φ_J.
 #[derive(Clone, Copy, Debug)]
@@ -46,34 +53,36 @@ fn stencils<S: Scalar>(
         }
         Some(_) => None,
     };
-    let mut out = Vec::with_capacity(z.x.len());
-    let mut nodes = Vec::new();
-    let mut idx = Vec::new();
-    let mut vals = Vec::new();
-    for (i, &xi) in z.x.iter().enumerate() {
-        nodes.clear();
-        idx.clear();
-        let mut visit = |j: usize| {
-            let d = m.rel(xi, z.x[j]);
-            if d[0].re().hypot(d[1].re()) < r {
-                nodes.push((d, vol[j]));
-                idx.push(j);
-            }
-        };
-        match &grid {
-            Some(g) => g.for_candidates(pos[i], &mut visit),
-            None => (0..z.x.len()).for_each(&mut visit),
-        }
-        eval2(family, m.p.kp, &nodes, pos[i], &mut vals)?;
-        out.push(
-            idx.iter()
-                .zip(&nodes)
-                .zip(&vals)
-                .map(|((&j, &(d, _)), &(_, g))| Nb2 { j, d, g })
-                .collect(),
-        );
-    }
-    Ok(out)
+    // one stencil per particle, in parallel (rayon); each worker keeps its own buffers
+    (0..z.x.len())
+        .into_par_iter()
+        .map_init(
+            || (Vec::new(), Vec::new(), Vec::new()),
+            |(nodes, idx, vals): &mut StencilBuffers<S>, i| {
+                nodes.clear();
+                idx.clear();
+                let xi = z.x[i];
+                let mut visit = |j: usize| {
+                    let d = m.rel(xi, z.x[j]);
+                    if d[0].re().hypot(d[1].re()) < r {
+                        nodes.push((d, vol[j]));
+                        idx.push(j);
+                    }
+                };
+                match &grid {
+                    Some(g) => g.for_candidates(pos[i], &mut visit),
+                    None => (0..z.x.len()).for_each(&mut visit),
+                }
+                eval2(family, m.p.kp, nodes, pos[i], vals)?;
+                Ok(idx
+                    .iter()
+                    .zip(nodes.iter())
+                    .zip(vals.iter())
+                    .map(|((&j, &(d, _)), &(_, g))| Nb2 { j, d, g })
+                    .collect())
+            },
+        )
+        .collect()
 }
 
 fn vel_grad<S: Scalar>(z: &State2D<S>, i: usize, st: &[Nb2<S>]) -> [[S; 2]; 2] {
@@ -315,44 +324,63 @@ pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>)
             .collect(),
         _ => Vec::new(),
     };
-    for i in 0..z.x.len() {
-        out.x[i] = z.v[i];
-        let la = vel_grad(z, i, &st_a[i]);
-        let lb = if mixed { vel_grad(z, i, &st_b[i]) } else { la };
-        let tra = la[0][0] + la[1][1];
-        let trb = lb[0][0] + lb[1][1];
-        out.rho[i] = -z.rho[i]
-            * if mixed {
-                tra * (1.0 - c) + trb * c
+    // per-particle rates in parallel (rayon), then scattered into `out`
+    let zero3 = [S::zero(); 3];
+    let rates: Vec<ParticleRates<S>> = (0..z.x.len())
+        .into_par_iter()
+        .map(|i| {
+            let la = vel_grad(z, i, &st_a[i]);
+            let lb = if mixed { vel_grad(z, i, &st_b[i]) } else { la };
+            let tra = la[0][0] + la[1][1];
+            let trb = lb[0][0] + lb[1][1];
+            let rho_rate = -z.rho[i]
+                * if mixed {
+                    tra * (1.0 - c) + trb * c
+                } else {
+                    tra
+                };
+            let sig_rate = if z.sigma.is_empty() {
+                zero3
             } else {
-                tra
+                stress_rate(&m.p.material, z.sigma[i], la)
             };
+            let tau_rate = if z.tau.is_empty() {
+                zero3
+            } else {
+                stress_rate(&m.p.material, z.tau[i], lb)
+            };
+            let a = match form {
+                FormKind::Classical => div_sum(sig, &z.rho, i, &st_a[i]),
+                FormKind::Nonlocal | FormKind::Local => div_difference(sig, z.rho[i], i, &st_a[i]),
+                FormKind::Lnl | FormKind::Cll => {
+                    let p = if form == FormKind::Lnl {
+                        div_difference(sig, z.rho[i], i, &st_a[i])
+                    } else {
+                        div_sum(sig, &z.rho, i, &st_a[i])
+                    };
+                    let q = div_difference(tau, z.rho[i], i, &st_b[i]);
+                    [p[0] * (1.0 - c) + q[0] * c, p[1] * (1.0 - c) + q[1] * c]
+                }
+                _ => [S::zero(); 2],
+            };
+            let av = av_accel(m, z, i, &st_a[i]);
+            let mut a = [a[0] + av[0], a[1] + av[1]];
+            if !art.is_empty() {
+                let ar = art_accel(m, &art, i, &st_a[i]);
+                let w = if form == FormKind::Cll { 1.0 - c } else { 1.0 };
+                a = [a[0] + ar[0] * w, a[1] + ar[1] * w];
+            }
+            (rho_rate, sig_rate, tau_rate, a)
+        })
+        .collect();
+    for (i, (rho_rate, sig_rate, tau_rate, a)) in rates.into_iter().enumerate() {
+        out.x[i] = z.v[i];
+        out.rho[i] = rho_rate;
         if !z.sigma.is_empty() {
-            out.sigma[i] = stress_rate(&m.p.material, z.sigma[i], la);
+            out.sigma[i] = sig_rate;
         }
         if !z.tau.is_empty() {
-            out.tau[i] = stress_rate(&m.p.material, z.tau[i], lb);
-        }
-        let a = match form {
-            FormKind::Classical => div_sum(sig, &z.rho, i, &st_a[i]),
-            FormKind::Nonlocal | FormKind::Local => div_difference(sig, z.rho[i], i, &st_a[i]),
-            FormKind::Lnl | FormKind::Cll => {
-                let p = if form == FormKind::Lnl {
-                    div_difference(sig, z.rho[i], i, &st_a[i])
-                } else {
-                    div_sum(sig, &z.rho, i, &st_a[i])
-                };
-                let q = div_difference(tau, z.rho[i], i, &st_b[i]);
-                [p[0] * (1.0 - c) + q[0] * c, p[1] * (1.0 - c) + q[1] * c]
-            }
-            _ => [S::zero(); 2],
-        };
-        let av = av_accel(m, z, i, &st_a[i]);
-        let mut a = [a[0] + av[0], a[1] + av[1]];
-        if !art.is_empty() {
-            let ar = art_accel(m, &art, i, &st_a[i]);
-            let w = if form == FormKind::Cll { 1.0 - c } else { 1.0 };
-            a = [a[0] + ar[0] * w, a[1] + ar[1] * w];
+            out.tau[i] = tau_rate;
         }
         out.v[i] = a;
     }

@@ -98,6 +98,9 @@ impl SecondOrderSystem<f64> for Sys<'_> {
             a[2 * i + 1] = ai[1] * keep;
         }
     }
+    fn accel_depends_on_velocity(&self) -> bool {
+        self.run.model.p.av.is_some()
+    }
     fn qrate(&self, x: &[f64], v: &[f64], q: &[f64], r: &mut [f64]) {
         let out = self.rate(x, v, q);
         let n = self.run.flat.n;
