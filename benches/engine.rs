@@ -15,13 +15,17 @@ fn benches(c: &mut Criterion) {
     let m4 = kernel::by_name("m4").unwrap();
     let mut q = Query1D::new(FormKind::Classical, m4, 1.2, 0.01);
     q.points = 1024;
-    c.bench_function("dispersion 1D, 1024 points (classical m4)", |b| b.iter(|| dispersion(&q).unwrap()));
+    c.bench_function("dispersion 1D, 1024 points (classical m4)", |b| {
+        b.iter(|| dispersion(&q).unwrap())
+    });
 
     let mut q2 = Query2D::new(FormKind::Classical, m4, 1.2, 0.01);
     q2.material = MaterialSpec::Hydro;
     let mut g = c.benchmark_group("slow");
     g.sample_size(10);
-    g.bench_function("growth map 2D, 128x128 (classical m4 hydro)", |b| b.iter(|| growth_map(&q2, 128).unwrap()));
+    g.bench_function("growth map 2D, 128x128 (classical m4 hydro)", |b| {
+        b.iter(|| growth_map(&q2, 128).unwrap())
+    });
 
     let p = ModelParams2D {
         form: FormKind::Classical,
@@ -33,12 +37,22 @@ fn benches(c: &mut Criterion) {
         av: None,
         art_stress: None,
     };
-    let model = Model2D::periodic_patch(p, &Lattice2D::square(1.0).unwrap(), 1.0, [200, 200], 1.0, 0.0).unwrap();
+    let model = Model2D::periodic_patch(
+        p,
+        &Lattice2D::square(1.0).unwrap(),
+        1.0,
+        [200, 200],
+        1.0,
+        0.0,
+    )
+    .unwrap();
     let z = model.rest_state(1.0);
     let n = z.x.len();
     let mut run = Run2D::new(model, z, vec![false; n], BoundaryDensity::Evolve).unwrap();
     run.z.v[n / 2][0] = 1e-6;
-    g.bench_function("solver step 2D, 200x200 (classical m4 hydro)", |b| b.iter(|| run.step(0.1).unwrap()));
+    g.bench_function("solver step 2D, 200x200 (classical m4 hydro)", |b| {
+        b.iter(|| run.step(0.1).unwrap())
+    });
     g.finish();
 }
 
