@@ -45,6 +45,7 @@
 
 pub mod analysis;
 pub mod analysis2d;
+pub mod atlas;
 pub mod error;
 pub mod figures;
 pub mod forms;
@@ -57,4 +58,5 @@ pub mod scalar;
 pub mod shape;
 pub mod shape2d;
 pub mod solver;
+pub mod tradeoff;
 pub mod vonneumann;

@@ -229,3 +229,120 @@ pub fn heatmap_svg(
     }
     Ok(svg)
 }
+
+/// Ten distinguishable colours for the Pareto figure (one per form).
+const PARETO_PALETTE: [RGBColor; 10] = [
+    RGBColor(213, 94, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+    RGBColor(150, 150, 150),
+    RGBColor(128, 0, 128),
+    RGBColor(160, 82, 45),
+];
+
+/// A log–log scatter of (group, x, y, filled) points, one colour per group (legend), filled
+/// markers for `filled`, hollow otherwise; the lower-left Pareto front of the filled points is
+/// drawn as a dashed staircase.
+pub fn pareto_svg(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    pts: &[(String, f64, f64, bool)],
+) -> Result<String> {
+    let pts: Vec<&(String, f64, f64, bool)> = pts
+        .iter()
+        .filter(|p| p.1.is_finite() && p.2.is_finite() && p.1 > 0.0 && p.2 > 0.0)
+        .collect();
+    if pts.is_empty() {
+        return Err(Error::Incompatible(
+            "nothing to plot: no configuration has both a cost and an error".into(),
+        ));
+    }
+    let mut groups: Vec<&str> = Vec::new();
+    for p in &pts {
+        if !groups.contains(&p.0.as_str()) {
+            groups.push(&p.0);
+        }
+    }
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for p in &pts {
+        x0 = x0.min(p.1);
+        x1 = x1.max(p.1);
+        y0 = y0.min(p.2);
+        y1 = y1.max(p.2);
+    }
+    let (x0, x1, y0, y1) = (x0 / 1.3, x1 * 1.3, y0 / 2.0, y1 * 2.0);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 640)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_err)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(plot_err)?;
+        chart
+            .configure_mesh()
+            .x_desc(x_desc)
+            .y_desc(y_desc)
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(plot_err)?;
+        // Pareto front of the filled points: sorted by cost, keep the running minimum error
+        let mut front: Vec<(f64, f64)> = pts.iter().filter(|p| p.3).map(|p| (p.1, p.2)).collect();
+        front.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut stairs = Vec::new();
+        let mut best = f64::INFINITY;
+        for (x, y) in front {
+            if y < best {
+                if best.is_finite() {
+                    stairs.push((x, best));
+                }
+                stairs.push((x, y));
+                best = y;
+            }
+        }
+        if stairs.len() > 1 {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    stairs,
+                    6,
+                    4,
+                    BLACK.mix(0.6).stroke_width(1),
+                ))
+                .map_err(plot_err)?
+                .label("Pareto front of the stable configurations")
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLACK.stroke_width(1)));
+        }
+        for (gi, g) in groups.iter().enumerate() {
+            let color = PARETO_PALETTE[gi % PARETO_PALETTE.len()];
+            chart
+                .draw_series(pts.iter().filter(|p| p.0 == *g).map(|p| {
+                    let style = if p.3 {
+                        color.filled()
+                    } else {
+                        color.stroke_width(2)
+                    };
+                    Circle::new((p.1, p.2), 4, style)
+                }))
+                .map_err(plot_err)?
+                .label(g.to_string())
+                .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(plot_err)?;
+        root.present().map_err(plot_err)?;
+    }
+    Ok(svg)
+}

@@ -175,6 +175,8 @@ fn single_mode_frequency_matches_engine() {
         (FormKind::TotalLagrangian, ShapeFamily::Mls, 0.2),
         (FormKind::EulerianStressPoints, ShapeFamily::Mls, 0.0),
         (FormKind::EulerianNodal, ShapeFamily::Mls, 0.5),
+        // consistent mass: FlatSystem solves M a = f (LU of the dense M)
+        (FormKind::LeastSquares, ShapeFamily::Mls, 0.2),
     ] {
         let (n, m, dt) = (32, 5, 0.05);
         let kap = 2.0 * PI * m as f64 / n as f64;

@@ -338,21 +338,49 @@ impl Model1D {
 
 /// The model as a [`crate::integrator::SecondOrderSystem`] over flat `f64` arrays: `x`, `v`
 /// the masters, `q` the auxiliary fields of the form concatenated in [`FormKind::fields`]
-/// order. Lumped-mass forms only (the consistent-mass solve belongs to the solver).
+/// order. For a consistent mass (least squares) the acceleration solves M a = f with an LU
+/// factorisation of the dense M, computed once (M is constant: reference configuration); meant
+/// for the reference solver's chains of up to a few thousand particles.
 pub struct FlatSystem<'a> {
     model: &'a Model1D,
     template: State1D<f64>,
+    mass_lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
 }
 
 impl<'a> FlatSystem<'a> {
     /// Wraps `model`; `template` fixes the field lengths (e.g. [`Model1D::rest_state`]).
     pub fn new(model: &'a Model1D, template: State1D<f64>) -> Result<Self> {
-        if !matches!(model.mass_op, MassOperator::Lumped) {
-            return Err(crate::error::Error::Incompatible(
-                "FlatSystem needs a lumped mass (least-squares uses a consistent mass)".into(),
-            ));
-        }
-        Ok(Self { model, template })
+        let mass_lu = match &model.mass_op {
+            MassOperator::Lumped => None,
+            MassOperator::Consistent(rows) => {
+                let n = rows.len();
+                if n > 20_000 {
+                    return Err(crate::error::Error::Incompatible(format!(
+                        "consistent mass: {n} particles, the dense solve supports at most 20000"
+                    )));
+                }
+                let mut m = nalgebra::DMatrix::<f64>::zeros(n, n);
+                for (i, row) in rows.iter().enumerate() {
+                    for &(k, v) in row {
+                        m[(i, k)] += v;
+                    }
+                }
+                let lu = m.lu();
+                if !lu.is_invertible() {
+                    return Err(crate::error::Error::SingularMoment {
+                        what: "consistent mass matrix",
+                        x: 0.0,
+                        det: 0.0,
+                    });
+                }
+                Some(lu)
+            }
+        };
+        Ok(Self {
+            model,
+            template,
+            mass_lu,
+        })
     }
 
     fn aux(&self) -> impl Iterator<Item = Field> + '_ {
@@ -404,7 +432,17 @@ impl<'a> FlatSystem<'a> {
 
 impl crate::integrator::SecondOrderSystem<f64> for FlatSystem<'_> {
     fn accel(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64]) {
-        a.copy_from_slice(&self.eval(x, v, q).v);
+        let f = self.eval(x, v, q).v;
+        match &self.mass_lu {
+            None => a.copy_from_slice(&f),
+            Some(lu) => {
+                let rhs = nalgebra::DVector::from_vec(f);
+                match lu.solve(&rhs) {
+                    Some(sol) => a.copy_from_slice(sol.as_slice()),
+                    None => a.fill(f64::NAN),
+                }
+            }
+        }
     }
     fn qrate(&self, x: &[f64], v: &[f64], q: &[f64], r: &mut [f64]) {
         let out = self.eval(x, v, q);

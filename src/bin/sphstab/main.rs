@@ -1,16 +1,23 @@
 //! `sphstab` command-line interface (thin: argument parsing and printing only).
 
+mod alloc;
+mod atlas;
 mod common;
 mod dispersion;
 mod figures;
 mod kernels;
 mod map;
+mod merge;
 mod progress;
 mod query;
 mod simulate;
 mod stiffness;
 mod swegle;
 mod timestep;
+mod tradeoff;
+
+#[global_allocator]
+static ALLOC: alloc::Counting = alloc::Counting;
 
 use clap::{Parser, Subcommand};
 
@@ -45,6 +52,12 @@ enum Cmd {
     Swegle(swegle::Args),
     /// Run a 1D scene (JSON file or built-in) and compare it with its analytic solution.
     Simulate(simulate::Args),
+    /// Speed/accuracy trade-off: cost, accuracy and robustness of every form × kernel × h.
+    Tradeoff(tradeoff::Args),
+    /// 1D stability atlas: every form × kernel × h × σ̄ (parallel, shardable).
+    Atlas(atlas::Args),
+    /// Merge the shards of an atlas.
+    Merge(merge::Args),
 }
 
 fn main() {
@@ -79,6 +92,9 @@ fn main() {
         Cmd::Stiffness(a) => stiffness::run(a),
         Cmd::Swegle(a) => swegle::run(a),
         Cmd::Simulate(a) => simulate::run(a),
+        Cmd::Tradeoff(a) => tradeoff::run(a),
+        Cmd::Atlas(a) => atlas::run(a),
+        Cmd::Merge(a) => merge::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");
