@@ -1,8 +1,9 @@
-//! Criterion benches: a 1,024-point dispersion curve, a 128×128 2D growth map, and one solver
-//! step of a 200×200 block. `cargo bench` runs them.
+//! Criterion benches: a 1,024-point dispersion curve, a 256-cell atlas, a 128×128 2D growth map,
+//! and one solver step of a 200×200 block. `cargo bench` runs them.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphstab::analysis::{Query1D, dispersion};
+use sphstab::atlas::AtlasConfig;
 use sphstab::analysis2d::{MaterialSpec, Query2D, growth_map};
 use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D};
 use sphstab::kernel;
@@ -18,6 +19,20 @@ fn benches(c: &mut Criterion) {
     c.bench_function("dispersion 1D, 1024 points (classical m4)", |b| {
         b.iter(|| dispersion(&q).unwrap())
     });
+
+    let acfg = AtlasConfig {
+        forms: vec!["classical".into()],
+        kernels: vec!["m4".into()],
+        h_points: 16,
+        stress_points: 16,
+        ..Default::default()
+    };
+    let mut g0 = c.benchmark_group("atlas");
+    g0.sample_size(10);
+    g0.bench_function("atlas 1D, 256 cells x 512 kappa (classical m4)", |b| {
+        b.iter(|| sphstab::atlas::run(&acfg, None, |_, _| {}).unwrap())
+    });
+    g0.finish();
 
     let mut q2 = Query2D::new(FormKind::Classical, m4, 1.2, 0.01);
     q2.material = MaterialSpec::Hydro;
