@@ -1,5 +1,6 @@
 //! `sphstab` command-line interface (thin: argument parsing and printing only).
 
+mod alloc;
 mod common;
 mod dispersion;
 mod figures;
@@ -10,6 +11,7 @@ mod query;
 mod simulate;
 mod stiffness;
 mod swegle;
+mod throughput;
 mod timestep;
 
 use clap::{Parser, Subcommand};
@@ -45,6 +47,8 @@ enum Cmd {
     Swegle(swegle::Args),
     /// Run a 1D scene (JSON file or built-in) and compare it with its analytic solution.
     Simulate(simulate::Args),
+    /// Speed and memory of the 2D solver on an open square block (and its scaling with N).
+    Throughput(throughput::Args),
 }
 
 fn main() {
@@ -79,6 +83,7 @@ fn main() {
         Cmd::Stiffness(a) => stiffness::run(a),
         Cmd::Swegle(a) => swegle::run(a),
         Cmd::Simulate(a) => simulate::run(a),
+        Cmd::Throughput(a) => throughput::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");
