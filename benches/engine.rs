@@ -1,15 +1,17 @@
 //! Criterion benches: a 1,024-point dispersion curve, a 256-cell atlas, a 128×128 2D growth map,
-//! and one solver step of a 200×200 block. `cargo bench` runs them.
+//! one solver step of a periodic 200×200 hydro patch, and one step of the open 200×200 elastic
+//! block of `sphstab throughput` (its defaults). `cargo bench` runs them.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphstab::analysis::{Query1D, dispersion};
-use sphstab::atlas::AtlasConfig;
 use sphstab::analysis2d::{MaterialSpec, Query2D, growth_map};
+use sphstab::atlas::AtlasConfig;
 use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::ShapeFamily;
 use sphstab::shape2d::KernelParams2;
+use sphstab::solver::throughput::{ThroughputConfig, build_block};
 use sphstab::solver::{BoundaryDensity, Run2D};
 
 fn benches(c: &mut Criterion) {
@@ -68,6 +70,12 @@ fn benches(c: &mut Criterion) {
     g.bench_function("solver step 2D, 200x200 (classical m4 hydro)", |b| {
         b.iter(|| run.step(0.1).unwrap())
     });
+    let cfg = ThroughputConfig::new(m4);
+    let mut block = build_block(&cfg, 200).unwrap();
+    g.bench_function(
+        "solver step 2D, open 200x200 block (classical m4 elastic Jaumann, AV, art. stress)",
+        |b| b.iter(|| block.step(cfg.dt).unwrap()),
+    );
     g.finish();
 }
 

@@ -34,10 +34,11 @@
 //! |---|---|
 //! | [`kernel`] | the eleven kernels of SPEC §2 |
 //! | [`shape`] | `sph`, `shepard`, `mls`, `corrected` |
-//! | [`forms`] | the rate functions |
+//! | [`forms`] | the rate functions (2D: allocation-free evaluation with [`forms::RateWorkspace`]) |
 //! | [`integrator`] | kick–drift–kick leapfrog |
 //! | [`vonneumann`] | linearisation, amplification, classification, closed forms, kernel transforms |
 //! | [`analysis`] | `query`, `dispersion`, `timestep` |
+//! | [`solver`] | the reference solver (1D, 2D), the Swegle test, [`solver::throughput`] |
 //! | [`plot`], [`figures`] | SVG output |
 //!
 //! References: \[B00] Belytschko, Guo, Liu, Xiao 2000; [V21\] Vignjevic, De Vuyst, Campbell 2021;

@@ -3,7 +3,10 @@
 //! used only by the von Neumann engine on hexagonal lattices, fall back to a direct scan.)
 
 /// A uniform grid of cells of side ≥ the search radius.
-#[derive(Clone, Debug)]
+///
+/// [`CellList::rebuild`] refills an existing list in place: once its buffers have grown to the
+/// particle and cell counts, a rebuild does not allocate (the solver's time loop relies on it).
+#[derive(Clone, Debug, Default)]
 pub struct CellList {
     origin: [f64; 2],
     size: f64,
@@ -12,12 +15,24 @@ pub struct CellList {
     period: Option<[f64; 2]>,
     start: Vec<usize>,
     items: Vec<usize>,
+    /// Cell of each particle (construction buffer, kept for reuse).
+    cell: Vec<usize>,
+    /// Fill pointers (construction buffer, kept for reuse).
+    fill: Vec<usize>,
 }
 
 impl CellList {
     /// Builds the list for `pts` with cell side ≥ `radius`. `period`: rectangular periodic box
     /// [Lx, Ly] with the particles' coordinates anywhere (they are wrapped into the box).
     pub fn new(pts: &[[f64; 2]], radius: f64, period: Option<[f64; 2]>) -> Self {
+        let mut c = Self::default();
+        c.rebuild(pts, radius, period);
+        c
+    }
+
+    /// Rebuilds the list for `pts` in place, reusing its buffers (same result as
+    /// [`CellList::new`]). O(N + number of cells).
+    pub fn rebuild(&mut self, pts: &[[f64; 2]], radius: f64, period: Option<[f64; 2]>) {
         let (origin, ext) = match period {
             Some(l) => ([0.0, 0.0], l),
             None => {
@@ -61,28 +76,29 @@ impl CellList {
             c[0] * dims[1] + c[1]
         };
         let ncell = dims[0] * dims[1];
-        let mut count = vec![0usize; ncell + 1];
-        let cells: Vec<usize> = pts.iter().map(cell_of).collect();
-        for &c in &cells {
+        let count = &mut self.start;
+        count.clear();
+        count.resize(ncell + 1, 0);
+        self.cell.clear();
+        self.cell.extend(pts.iter().map(cell_of));
+        for &c in &self.cell {
             count[c + 1] += 1;
         }
         for i in 0..ncell {
             count[i + 1] += count[i];
         }
-        let mut fill = count.clone();
-        let mut items = vec![0usize; pts.len()];
-        for (i, &c) in cells.iter().enumerate() {
-            items[fill[c]] = i;
-            fill[c] += 1;
+        self.fill.clear();
+        self.fill.extend_from_slice(count);
+        self.items.clear();
+        self.items.resize(pts.len(), 0);
+        for (i, &c) in self.cell.iter().enumerate() {
+            self.items[self.fill[c]] = i;
+            self.fill[c] += 1;
         }
-        Self {
-            origin,
-            size,
-            dims,
-            period,
-            start: count,
-            items,
-        }
+        self.origin = origin;
+        self.size = size;
+        self.dims = dims;
+        self.period = period;
     }
 
     /// Calls `f(j)` for every particle j in the 3×3 block of cells around `p` (a superset of
@@ -165,6 +181,30 @@ mod tests {
                 s.sort();
                 s.dedup();
                 assert_eq!(s.len(), got.len(), "duplicates");
+            }
+        }
+    }
+
+    /// A rebuilt list (after a different, larger particle set and another radius) visits the
+    /// same candidates in the same order as a fresh one.
+    #[test]
+    fn rebuild_matches_new() {
+        let pts: Vec<[f64; 2]> = (0..300)
+            .map(|k| {
+                let t = k as f64;
+                [(t * 0.37).sin() * 4.0, (t * 0.11).cos() * 3.0]
+            })
+            .collect();
+        let few = &pts[..97];
+        for period in [None, Some([8.0, 6.0])] {
+            let mut cl = CellList::new(&pts, 0.4, period);
+            cl.rebuild(few, 0.9, period);
+            let fresh = CellList::new(few, 0.9, period);
+            for p in few {
+                let (mut a, mut b) = (Vec::new(), Vec::new());
+                cl.for_candidates(*p, |j| a.push(j));
+                fresh.for_candidates(*p, |j| b.push(j));
+                assert_eq!(a, b);
             }
         }
     }

@@ -9,6 +9,7 @@ pub trait Scalar:
     Copy
     + Send
     + Sync
+    + PartialEq
     + std::fmt::Debug
     + Add<Output = Self>
     + Sub<Output = Self>
@@ -23,6 +24,9 @@ pub trait Scalar:
     + Mul<f64, Output = Self>
     + Div<f64, Output = Self>
 {
+    /// Whether the type carries a derivative part. `false` lets value-only evaluations (the
+    /// solver's `f64`) skip computing derivatives that [`Scalar::lift`] would discard.
+    const TANGENT: bool = true;
     /// A constant (zero derivative part).
     fn cst(v: f64) -> Self;
     /// The value part.
@@ -60,6 +64,7 @@ pub trait Scalar:
 }
 
 impl Scalar for f64 {
+    const TANGENT: bool = false;
     #[inline]
     fn cst(v: f64) -> Self {
         v

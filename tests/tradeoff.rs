@@ -93,31 +93,39 @@ fn least_squares_runs_with_its_consistent_mass() {
 }
 
 #[test]
-fn committed_tradeoff_figure_is_drawn_from_its_stored_data() {
+fn committed_tradeoff_figures_are_drawn_from_their_stored_data() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let cfg = parse_config(
-        "analysis/tradeoff.json",
-        &std::fs::read_to_string(root.join("analysis/tradeoff.json")).unwrap(),
-    )
-    .unwrap();
-    assert!(!cfg.note.is_empty());
-    let out = cfg.output.clone().unwrap();
-    let data = root.join("figures").join(&out).with_extension("json");
-    let rep: TradeoffReport =
-        serde_json::from_str(&std::fs::read_to_string(&data).unwrap()).unwrap();
-    // the stored study covers exactly the configured grid
-    let g = grid(&cfg).unwrap();
-    assert_eq!(rep.rows.len(), g.len());
-    for (r, (f, k, h)) in rep.rows.iter().zip(&g) {
-        assert_eq!((r.form.as_str(), r.kernel.as_str()), (f.name(), k.name()));
-        assert!((r.h_over_dx - h).abs() < 1e-12);
+    let mut n = 0;
+    for e in std::fs::read_dir(root.join("analysis")).unwrap() {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        if !(name.starts_with("tradeoff") && name.ends_with(".json")) {
+            continue;
+        }
+        let cfg = parse_config(&name, &std::fs::read_to_string(&p).unwrap()).unwrap();
+        assert!(!cfg.note.is_empty(), "{name}: every figure needs a note");
+        let out = cfg.output.clone().unwrap();
+        let data = root.join("figures").join(&out).with_extension("json");
+        let rep: TradeoffReport =
+            serde_json::from_str(&std::fs::read_to_string(&data).unwrap()).unwrap();
+        // the stored study covers exactly the configured grid
+        let g = grid(&cfg).unwrap();
+        assert_eq!(rep.dim, cfg.dim);
+        assert_eq!(rep.rows.len(), g.len(), "{name}");
+        for (r, (f, k, h)) in rep.rows.iter().zip(&g) {
+            assert_eq!((r.form.as_str(), r.kernel.as_str()), (f.name(), k.name()));
+            assert!((r.h_over_dx - h).abs() < 1e-12);
+        }
+        let svg = pareto_svg(&rep, &sphstab_title(&rep)).unwrap();
+        let committed = std::fs::read_to_string(root.join("figures").join(&out)).unwrap();
+        assert!(
+            svg == committed,
+            "figures/{out} differs from its data: run `cargo run --release -- tradeoff --from figures/{} --plot figures/{out}`",
+            data.file_name().unwrap().to_string_lossy()
+        );
+        n += 1;
     }
-    let svg = pareto_svg(&rep, &sphstab_title(&rep)).unwrap();
-    let committed = std::fs::read_to_string(root.join("figures").join(&out)).unwrap();
-    assert!(
-        svg == committed,
-        "figures/{out} differs from its data: run `cargo run --release -- tradeoff --from figures/tradeoff.json --plot figures/tradeoff.svg`"
-    );
+    assert!(n >= 1);
 }
 
 /// The CLI's title (src/bin/sphstab/tradeoff.rs), repeated here because the binary's modules

@@ -9,87 +9,30 @@
 //! ```
 //! plus −Σ_J m_J Π_IJ ∇_I W_IJ (Monaghan viscosity). Stress: hydro σ = −K(ρ/ρ0 − 1) I from the
 //! density; elastic σ (and τ) are state with the hypo-elastic rate of [`Material2D`].
+//!
+//! Evaluation: neighbour stencils from a cell list, then per-particle sums, in parallel over
+//! particles (rayon), with every buffer in a reusable [`RateWorkspace`]: a time loop that keeps
+//! its workspace does not allocate. Accelerations and auxiliary rates can be asked for
+//! separately ([`RateOut2D`]); each is the same function of the state either way.
 
 // Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
 use super::FormKind;
-use super::model2d::{Material2D, Model2D, ObjectiveRate, State2D};
+use super::model2d::{
+    AuxRates2D, Material2D, Model2D, ObjectiveRate, RateOut2D, State2D, StateView2D,
+};
+use super::workspace::{Nb2, RateWorkspace};
 use crate::error::Result;
 use crate::kernel;
-use crate::neighbours::CellList;
 use crate::scalar::Scalar;
-use crate::shape::ShapeFamily;
-use crate::shape2d::eval2;
 use rayon::prelude::*;
 
-/// Per-worker buffers of the stencil search: (relative position, volume), indices, (φ, ∇φ).
-type StencilBuffers<S> = (Vec<([S; 2], S)>, Vec<usize>, Vec<(S, [S; 2])>);
-
-/// Per-particle rates: (ρ̇, σ̇, τ̇, a).
-type ParticleRates<S> = (S, [S; 3], [S; 3], [S; 2]);
-
-/// Neighbour J of an evaluation point: index, d = x_J − x, φ_J, ∇φ_J.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Nb2<S> {
-    pub j: usize,
-    pub d: [S; 2],
-    pub g: [S; 2],
-}
-
-fn stencils<S: Scalar>(
-    m: &Model2D,
-    z: &State2D<S>,
-    family: ShapeFamily,
-    vol: &[S],
-) -> Result<Vec<Vec<Nb2<S>>>> {
-    let r = m.p.kp.support();
-    let pos: Vec<[f64; 2]> = z.x.iter().map(|p| [p[0].re(), p[1].re()]).collect();
-    // cell list for open domains and rectangular periodic boxes; direct scan otherwise
-    let grid = match m.period {
-        None => Some(CellList::new(&pos, r, None)),
-        Some(l) if l[0][1] == 0.0 && l[1][0] == 0.0 => {
-            Some(CellList::new(&pos, r, Some([l[0][0], l[1][1]])))
-        }
-        Some(_) => None,
-    };
-    // one stencil per particle, in parallel (rayon); each worker keeps its own buffers
-    (0..z.x.len())
-        .into_par_iter()
-        .map_init(
-            || (Vec::new(), Vec::new(), Vec::new()),
-            |(nodes, idx, vals): &mut StencilBuffers<S>, i| {
-                nodes.clear();
-                idx.clear();
-                let xi = z.x[i];
-                let mut visit = |j: usize| {
-                    let d = m.rel(xi, z.x[j]);
-                    if d[0].re().hypot(d[1].re()) < r {
-                        nodes.push((d, vol[j]));
-                        idx.push(j);
-                    }
-                };
-                match &grid {
-                    Some(g) => g.for_candidates(pos[i], &mut visit),
-                    None => (0..z.x.len()).for_each(&mut visit),
-                }
-                eval2(family, m.p.kp, nodes, pos[i], vals)?;
-                Ok(idx
-                    .iter()
-                    .zip(nodes.iter())
-                    .zip(vals.iter())
-                    .map(|((&j, &(d, _)), &(_, g))| Nb2 { j, d, g })
-                    .collect())
-            },
-        )
-        .collect()
-}
-
-fn vel_grad<S: Scalar>(z: &State2D<S>, i: usize, st: &[Nb2<S>]) -> [[S; 2]; 2] {
+fn vel_grad<S: Scalar>(v: &[[S; 2]], i: usize, st: &[Nb2<S>]) -> [[S; 2]; 2] {
     let mut l = [[S::zero(); 2]; 2];
     for nb in st {
         for a in 0..2 {
-            let dv = z.v[nb.j][a] - z.v[i][a];
+            let dv = v[nb.j][a] - v[i][a];
             for b in 0..2 {
                 l[a][b] += dv * nb.g[b];
             }
@@ -187,7 +130,7 @@ pub(crate) fn stress_rate<S: Scalar>(mat: &Material2D, s: [S; 3], l: [[S; 2]; 2]
     r
 }
 
-fn av_accel<S: Scalar>(m: &Model2D, z: &State2D<S>, i: usize, st: &[Nb2<S>]) -> [S; 2] {
+fn av_accel<S: Scalar>(m: &Model2D, z: StateView2D<'_, S>, i: usize, st: &[Nb2<S>]) -> [S; 2] {
     let Some(av) = m.p.av else {
         return [S::zero(); 2];
     };
@@ -284,53 +227,80 @@ fn art_accel<S: Scalar>(m: &Model2D, r: &[[S; 3]], i: usize, st: &[Nb2<S>]) -> [
     acc
 }
 
-/// The 2D rate of an Eulerian form.
-pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>) -> Result<()> {
+/// The 2D rate of an Eulerian form, into the requested parts of `out`.
+pub(crate) fn rate<S: Scalar>(
+    m: &Model2D,
+    z: StateView2D<'_, S>,
+    out: RateOut2D<'_, S>,
+    ws: &mut RateWorkspace<S>,
+) -> Result<()> {
     let form = m.p.form;
-    let vol: Vec<S> = z
-        .rho
-        .iter()
-        .zip(&m.mass)
-        .map(|(&r, &ms)| S::cst(ms) / r)
-        .collect();
-    let st_a = stencils(m, z, m.p.shape, &vol)?;
     let mixed = matches!(form, FormKind::Lnl | FormKind::Cll);
-    let st_b = if mixed {
-        stencils(m, z, ShapeFamily::Corrected, &vol)?
-    } else {
-        Vec::new()
-    };
-    let hydro_stress: Vec<[S; 3]> = match m.p.material {
-        Material2D::Hydro { bulk } => z
-            .rho
-            .iter()
-            .map(|&r| {
+    ws.build_stencils(m, z, mixed)?;
+    let c = m.p.c_partition;
+    if let Some(xo) = out.x {
+        xo.copy_from_slice(z.v);
+    }
+    if let Some(acc) = out.v {
+        ws.hydro.clear();
+        if let Material2D::Hydro { bulk } = m.p.material {
+            ws.hydro.extend(z.rho.iter().map(|&r| {
                 let sg = (r / m.p.rho0 - 1.0) * (-bulk);
                 [sg, sg, S::zero()]
-            })
-            .collect(),
-        _ => Vec::new(),
-    };
-    let (sig, tau): (&[[S; 3]], &[[S; 3]]) = match m.p.material {
-        Material2D::Hydro { .. } => (&hydro_stress, &hydro_stress),
-        _ => (&z.sigma, if mixed { &z.tau } else { &z.sigma }),
-    };
-    let c = m.p.c_partition;
-    let art: Vec<[S; 3]> = match (m.p.art_stress, form) {
-        (Some(a), FormKind::Classical | FormKind::Cll) => sig
-            .iter()
-            .zip(&z.rho)
-            .map(|(&s, &r)| art_tensor(s, r, a.eps))
-            .collect(),
-        _ => Vec::new(),
-    };
-    // per-particle rates in parallel (rayon), then scattered into `out`
-    let zero3 = [S::zero(); 3];
-    let rates: Vec<ParticleRates<S>> = (0..z.x.len())
-        .into_par_iter()
-        .map(|i| {
-            let la = vel_grad(z, i, &st_a[i]);
-            let lb = if mixed { vel_grad(z, i, &st_b[i]) } else { la };
+            }));
+        }
+        let (sig, tau): (&[[S; 3]], &[[S; 3]]) = match m.p.material {
+            Material2D::Hydro { .. } => (&ws.hydro, &ws.hydro),
+            _ => (z.sigma, if mixed { z.tau } else { z.sigma }),
+        };
+        ws.art.clear();
+        if let (Some(a), FormKind::Classical | FormKind::Cll) = (m.p.art_stress, form) {
+            ws.art.extend(
+                sig.iter()
+                    .zip(z.rho)
+                    .map(|(&s, &r)| art_tensor(s, r, a.eps)),
+            );
+        }
+        let (st, art) = (&ws.stencils, &ws.art);
+        // per-particle accelerations in parallel (rayon)
+        acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
+            let (st_a, st_b) = (&st[i].a, &st[i].b);
+            let a = match form {
+                FormKind::Classical => div_sum(sig, z.rho, i, st_a),
+                FormKind::Nonlocal | FormKind::Local => div_difference(sig, z.rho[i], i, st_a),
+                FormKind::Lnl | FormKind::Cll => {
+                    let p = if form == FormKind::Lnl {
+                        div_difference(sig, z.rho[i], i, st_a)
+                    } else {
+                        div_sum(sig, z.rho, i, st_a)
+                    };
+                    let q = div_difference(tau, z.rho[i], i, st_b);
+                    [p[0] * (1.0 - c) + q[0] * c, p[1] * (1.0 - c) + q[1] * c]
+                }
+                _ => [S::zero(); 2],
+            };
+            let av = av_accel(m, z, i, st_a);
+            let mut a = [a[0] + av[0], a[1] + av[1]];
+            if !art.is_empty() {
+                let ar = art_accel(m, art, i, st_a);
+                let w = if form == FormKind::Cll { 1.0 - c } else { 1.0 };
+                a = [a[0] + ar[0] * w, a[1] + ar[1] * w];
+            }
+            *out_a = a;
+        });
+    }
+    if let Some(AuxRates2D { rho, sigma, tau }) = out.aux {
+        let zero3 = [S::zero(); 3];
+        ws.aux.resize(z.x.len(), (S::zero(), zero3, zero3));
+        let st = &ws.stencils;
+        // per-particle auxiliary rates in parallel (rayon), then copied into `out`
+        ws.aux.par_iter_mut().enumerate().for_each(|(i, r)| {
+            let la = vel_grad(z.v, i, &st[i].a);
+            let lb = if mixed {
+                vel_grad(z.v, i, &st[i].b)
+            } else {
+                la
+            };
             let tra = la[0][0] + la[1][1];
             let trb = lb[0][0] + lb[1][1];
             let rho_rate = -z.rho[i]
@@ -349,40 +319,12 @@ pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>)
             } else {
                 stress_rate(&m.p.material, z.tau[i], lb)
             };
-            let a = match form {
-                FormKind::Classical => div_sum(sig, &z.rho, i, &st_a[i]),
-                FormKind::Nonlocal | FormKind::Local => div_difference(sig, z.rho[i], i, &st_a[i]),
-                FormKind::Lnl | FormKind::Cll => {
-                    let p = if form == FormKind::Lnl {
-                        div_difference(sig, z.rho[i], i, &st_a[i])
-                    } else {
-                        div_sum(sig, &z.rho, i, &st_a[i])
-                    };
-                    let q = div_difference(tau, z.rho[i], i, &st_b[i]);
-                    [p[0] * (1.0 - c) + q[0] * c, p[1] * (1.0 - c) + q[1] * c]
-                }
-                _ => [S::zero(); 2],
-            };
-            let av = av_accel(m, z, i, &st_a[i]);
-            let mut a = [a[0] + av[0], a[1] + av[1]];
-            if !art.is_empty() {
-                let ar = art_accel(m, &art, i, &st_a[i]);
-                let w = if form == FormKind::Cll { 1.0 - c } else { 1.0 };
-                a = [a[0] + ar[0] * w, a[1] + ar[1] * w];
-            }
-            (rho_rate, sig_rate, tau_rate, a)
-        })
-        .collect();
-    for (i, (rho_rate, sig_rate, tau_rate, a)) in rates.into_iter().enumerate() {
-        out.x[i] = z.v[i];
-        out.rho[i] = rho_rate;
-        if !z.sigma.is_empty() {
-            out.sigma[i] = sig_rate;
-        }
-        if !z.tau.is_empty() {
-            out.tau[i] = tau_rate;
-        }
-        out.v[i] = a;
+            *r = (rho_rate, sig_rate, tau_rate);
+        });
+        let aux = &ws.aux;
+        rho.par_iter_mut().zip(aux).for_each(|(o, r)| *o = r.0);
+        sigma.par_iter_mut().zip(aux).for_each(|(o, r)| *o = r.1);
+        tau.par_iter_mut().zip(aux).for_each(|(o, r)| *o = r.2);
     }
     Ok(())
 }
@@ -394,17 +336,33 @@ pub(crate) fn rate<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>)
 /// - elastic: St Venant–Kirchhoff about the pre-stress, S = σ0 I + λ_T tr E I + 2G_T E, P = F S,
 ///   with (λ_T, G_T) = (λ, G) for the Truesdell rate and (λ + σ0, G − σ0) for the Jaumann rate,
 ///   so that the tangent C_T + σ0 δ (\[B00\] eq 15) is that of the Eulerian law.
-pub(crate) fn rate_tl<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<S>) -> Result<()> {
+pub(crate) fn rate_tl<S: Scalar>(
+    m: &Model2D,
+    z: StateView2D<'_, S>,
+    out: RateOut2D<'_, S>,
+    ws: &mut RateWorkspace<S>,
+) -> Result<()> {
     let s0 = m.sigma0;
-    for (i, a) in out.v.iter_mut().enumerate() {
-        out.x[i] = z.v[i];
-        *a = [S::zero(); 2];
+    if let Some(xo) = out.x {
+        xo.copy_from_slice(z.v);
     }
-    let u: Vec<[S; 2]> =
+    if let Some(aux) = out.aux {
+        // the total-Lagrangian forms carry no auxiliary state
+        aux.rho.fill(S::zero());
+        aux.sigma.fill([S::zero(); 3]);
+        aux.tau.fill([S::zero(); 3]);
+    }
+    let Some(acc) = out.v else {
+        return Ok(());
+    };
+    acc.fill([S::zero(); 2]);
+    ws.disp.clear();
+    ws.disp.extend(
         z.x.iter()
             .zip(&m.x_ref)
-            .map(|(x, xr)| [x[0] - xr[0], x[1] - xr[1]])
-            .collect();
+            .map(|(x, xr)| [x[0] - xr[0], x[1] - xr[1]]),
+    );
+    let u = &ws.disp;
     for (j, st) in m.ref_master.iter().enumerate() {
         let sphi: f64 = st.iter().map(|e| e.1).sum();
         let mut ubar = [S::zero(); 2];
@@ -485,23 +443,48 @@ pub(crate) fn rate_tl<S: Scalar>(m: &Model2D, z: &State2D<S>, out: &mut State2D<
         let w = m.vol_ref[j];
         for &(k, _, gr) in st {
             for a in 0..2 {
-                out.v[k][a] -= (p[a][0] * gr[0] + p[a][1] * gr[1]) * w;
+                acc[k][a] -= (p[a][0] * gr[0] + p[a][1] * gr[1]) * w;
             }
         }
     }
-    for (a, &ms) in out.v.iter_mut().zip(&m.mass) {
+    for (a, &ms) in acc.iter_mut().zip(&m.mass) {
         *a = [a[0] / ms, a[1] / ms];
     }
     Ok(())
 }
 
 impl Model2D {
-    /// The rate function of the 2D system (same definitions as the 1D forms).
+    /// The rate function of the 2D system (same definitions as the 1D forms). `out` is resized
+    /// to the shape of `z`. Allocates a fresh [`RateWorkspace`]: the analysis' entry point; a
+    /// time loop uses [`Model2D::rate_with`] or [`Model2D::rate_into`].
     pub fn rate<S: Scalar>(&self, z: &State2D<S>, out: &mut State2D<S>) -> Result<()> {
-        *out = State2D::zeros_like(z);
+        self.rate_with(z, out, &mut RateWorkspace::new())
+    }
+
+    /// [`Model2D::rate`] with reusable buffers: `out` is resized to the shape of `z` (no
+    /// allocation when it already has it) and the workspace's buffers are reused.
+    pub fn rate_with<S: Scalar>(
+        &self,
+        z: &State2D<S>,
+        out: &mut State2D<S>,
+        ws: &mut RateWorkspace<S>,
+    ) -> Result<()> {
+        out.resize_like(z);
+        self.rate_into(z.view(), out.as_rate_out(), ws)
+    }
+
+    /// The rate function on borrowed buffers, computing only the requested parts of `out`
+    /// (accelerations, auxiliary rates, or both; each part is the same as in
+    /// [`Model2D::rate`]). Every output slice must have the length of the state's field.
+    pub fn rate_into<S: Scalar>(
+        &self,
+        z: StateView2D<'_, S>,
+        out: RateOut2D<'_, S>,
+        ws: &mut RateWorkspace<S>,
+    ) -> Result<()> {
         match self.p.form {
-            FormKind::TotalLagrangian => rate_tl(self, z, out),
-            _ => rate(self, z, out),
+            FormKind::TotalLagrangian => rate_tl(self, z, out, ws),
+            _ => rate(self, z, out, ws),
         }
     }
 }

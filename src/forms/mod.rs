@@ -18,13 +18,16 @@ mod model2d;
 mod nonlocal;
 mod stress_points;
 mod total_lagrangian;
+mod workspace;
 
 pub use model::{
     ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,
 };
 pub use model2d::{
-    ArtificialStress, Comp2, Material2D, Model2D, ModelParams2D, ObjectiveRate, State2D,
+    ArtificialStress, AuxRates2D, Comp2, Material2D, Model2D, ModelParams2D, ObjectiveRate,
+    RateOut2D, State2D, StateView2D,
 };
+pub use workspace::RateWorkspace;
 
 use crate::error::{Error, Result};
 use crate::shape::ShapeFamily;

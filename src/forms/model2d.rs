@@ -144,6 +144,52 @@ pub struct State2D<S> {
     pub tau: Vec<[S; 3]>,
 }
 
+/// A borrowed [`State2D`]: the same fields as slices, so that a rate can be evaluated on the
+/// solver's own buffers without assembling a `State2D`.
+#[derive(Debug)]
+pub struct StateView2D<'a, S> {
+    /// Positions.
+    pub x: &'a [[S; 2]],
+    /// Velocities.
+    pub v: &'a [[S; 2]],
+    /// Densities (empty if the form carries none).
+    pub rho: &'a [S],
+    /// Stress σ, [xx, yy, xy] (empty if not carried).
+    pub sigma: &'a [[S; 3]],
+    /// Local stress τ (empty if not carried).
+    pub tau: &'a [[S; 3]],
+}
+
+impl<S> Clone for StateView2D<'_, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<S> Copy for StateView2D<'_, S> {}
+
+/// Where a rate evaluation writes. A `None` part is neither computed nor written: the solver
+/// asks for the accelerations and the auxiliary rates in separate calls.
+#[derive(Debug, Default)]
+pub struct RateOut2D<'a, S> {
+    /// ẋ = v.
+    pub x: Option<&'a mut [[S; 2]]>,
+    /// Accelerations v̇.
+    pub v: Option<&'a mut [[S; 2]]>,
+    /// Auxiliary rates (ρ̇, σ̇, τ̇), each as long as the state's field (possibly empty).
+    pub aux: Option<AuxRates2D<'a, S>>,
+}
+
+/// The auxiliary part of a [`RateOut2D`].
+#[derive(Debug)]
+pub struct AuxRates2D<'a, S> {
+    /// ρ̇.
+    pub rho: &'a mut [S],
+    /// σ̇.
+    pub sigma: &'a mut [[S; 3]],
+    /// τ̇.
+    pub tau: &'a mut [[S; 3]],
+}
+
 /// A scalar component of the 2D state.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Comp2 {
@@ -190,6 +236,37 @@ impl<S: Scalar> State2D<S> {
             Comp2::Sigma(a) => &mut self.sigma[i][a],
             Comp2::Tau(a) => &mut self.tau[i][a],
         }
+    }
+    /// The state as a [`StateView2D`].
+    pub fn view(&self) -> StateView2D<'_, S> {
+        StateView2D {
+            x: &self.x,
+            v: &self.v,
+            rho: &self.rho,
+            sigma: &self.sigma,
+            tau: &self.tau,
+        }
+    }
+    /// Every field of the state as an output ([`RateOut2D`] with all parts).
+    pub fn as_rate_out(&mut self) -> RateOut2D<'_, S> {
+        RateOut2D {
+            x: Some(&mut self.x),
+            v: Some(&mut self.v),
+            aux: Some(AuxRates2D {
+                rho: &mut self.rho,
+                sigma: &mut self.sigma,
+                tau: &mut self.tau,
+            }),
+        }
+    }
+    /// Gives every field the length of `o`'s (new entries zero); allocates only when a field
+    /// grows beyond its capacity.
+    pub fn resize_like<T>(&mut self, o: &State2D<T>) {
+        self.x.resize(o.x.len(), [S::zero(); 2]);
+        self.v.resize(o.v.len(), [S::zero(); 2]);
+        self.rho.resize(o.rho.len(), S::zero());
+        self.sigma.resize(o.sigma.len(), [S::zero(); 3]);
+        self.tau.resize(o.tau.len(), [S::zero(); 3]);
     }
     /// Zeroed state shaped like `o`.
     pub fn zeros_like<T>(o: &State2D<T>) -> Self {

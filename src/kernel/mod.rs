@@ -71,7 +71,13 @@ pub trait Kernel: Send + Sync + std::fmt::Debug {
 pub fn w<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
     let q = r.re() / h;
     let s = k.sigma(dim) / h.powi(dim as i32);
-    r.lift(s * k.f(dim, q), s * k.df(dim, q) / h)
+    // the derivative part only for types that carry one (`lift` ignores it otherwise)
+    let g1 = if S::TANGENT {
+        s * k.df(dim, q) / h
+    } else {
+        0.0
+    };
+    r.lift(s * k.f(dim, q), g1)
 }
 
 /// dW/dr(r, h) in dimension `dim`.
@@ -79,7 +85,12 @@ pub fn w<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
 pub fn dw<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
     let q = r.re() / h;
     let s = k.sigma(dim) / h.powi(dim as i32 + 1);
-    r.lift(s * k.df(dim, q), s * k.d2f(dim, q) / h)
+    let g1 = if S::TANGENT {
+        s * k.d2f(dim, q) / h
+    } else {
+        0.0
+    };
+    r.lift(s * k.df(dim, q), g1)
 }
 
 /// d²W/dr²(r, h) in dimension `dim` (value only; its derivative is not available).

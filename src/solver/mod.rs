@@ -12,6 +12,7 @@ pub mod run2d;
 pub mod scene;
 pub mod swegle;
 pub mod thesis_wave;
+pub mod throughput;
 
 pub use run1d::Run1D;
 pub use run2d::{BoundaryDensity, Run2D};

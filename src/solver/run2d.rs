@@ -4,8 +4,10 @@
 //! stress, for elastic materials) either evolves by continuity like everyone else's or is frozen
 //! ([`BoundaryDensity`]).
 
+use std::cell::RefCell;
+
 use crate::error::{Error, Result};
-use crate::forms::{Comp2, FieldKind, Model2D, State2D};
+use crate::forms::{AuxRates2D, Comp2, Model2D, RateOut2D, RateWorkspace, State2D, StateView2D};
 use crate::integrator::{Scratch, SecondOrderSystem, kdk_step};
 
 /// Treatment of the boundary particles' auxiliary state.
@@ -19,6 +21,11 @@ pub enum BoundaryDensity {
 }
 
 /// A 2D run.
+///
+/// The time loop allocates nothing once its buffers have grown (first step): positions and
+/// velocities are advanced in place in [`Run2D::z`], the auxiliary state (ρ, σ, τ) in one
+/// persistent flat buffer, and the rate function works on borrowed slices with a reusable
+/// [`RateWorkspace`].
 #[derive(Clone, Debug)]
 pub struct Run2D {
     /// The model (form, kernel, material, masses, reference positions).
@@ -33,81 +40,127 @@ pub struct Run2D {
     pub t: f64,
     /// Steps taken.
     pub steps: usize,
-    flat: Flat,
+    layout: AuxLayout,
+    bufs: StepBuffers,
     scratch: Scratch<f64>,
 }
 
-/// Flat (x, v, q) layout of a [`State2D`].
-#[derive(Clone, Debug)]
-struct Flat {
-    aux: Vec<Comp2>,
-    n: usize,
+/// Which auxiliary fields the form integrates (the others are left untouched).
+#[derive(Clone, Copy, Debug)]
+struct AuxLayout {
+    rho: bool,
+    sigma: bool,
+    tau: bool,
 }
 
-impl Flat {
-    fn split(&self, z: &State2D<f64>) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-        let x = z.x.iter().flat_map(|p| [p[0], p[1]]).collect();
-        let v = z.v.iter().flat_map(|p| [p[0], p[1]]).collect();
-        let mut q = Vec::with_capacity(self.aux.len() * self.n);
-        for &c in &self.aux {
-            q.extend((0..self.n).map(|i| z.get(c, i)));
-        }
-        (x, v, q)
-    }
-    fn join(&self, template: &State2D<f64>, x: &[f64], v: &[f64], q: &[f64]) -> State2D<f64> {
-        let mut z = template.clone();
-        for i in 0..self.n {
-            z.x[i] = [x[2 * i], x[2 * i + 1]];
-            z.v[i] = [v[2 * i], v[2 * i + 1]];
-        }
-        for (k, &c) in self.aux.iter().enumerate() {
-            for i in 0..self.n {
-                *z.get_mut(c, i) = q[k * self.n + i];
-            }
-        }
-        z
+/// Buffers reused by every step.
+#[derive(Clone, Debug, Default)]
+struct StepBuffers {
+    /// The integrated auxiliary state, flat: [ρ (n) | σ (3n) | τ (3n)] (fields present only).
+    q: Vec<f64>,
+    /// Rate-function workspace.
+    ws: RateWorkspace<f64>,
+}
+
+impl AuxLayout {
+    fn lens(&self, n: usize) -> [usize; 3] {
+        [
+            if self.rho { n } else { 0 },
+            if self.sigma { 3 * n } else { 0 },
+            if self.tau { 3 * n } else { 0 },
+        ]
     }
 }
 
-/// The run as a second-order system for the integrator.
+/// Splits a flat auxiliary buffer into (ρ, σ, τ).
+fn split_aux(q: &[f64], lens: [usize; 3]) -> (&[f64], &[[f64; 3]], &[[f64; 3]]) {
+    let (rho, rest) = q.split_at(lens[0]);
+    let (sigma, tau) = rest.split_at(lens[1]);
+    (rho, sigma.as_chunks().0, tau.as_chunks().0)
+}
+
+/// The same, mutable.
+fn split_aux_mut(q: &mut [f64], lens: [usize; 3]) -> AuxRates2D<'_, f64> {
+    let (rho, rest) = q.split_at_mut(lens[0]);
+    let (sigma, tau) = rest.split_at_mut(lens[1]);
+    AuxRates2D {
+        rho,
+        sigma: sigma.as_chunks_mut().0,
+        tau: tau.as_chunks_mut().0,
+    }
+}
+
+/// The run as a second-order system for the integrator, on the integrator's flat slices.
 struct Sys<'a> {
-    run: &'a Run2D,
+    model: &'a Model2D,
+    fixed: &'a [bool],
+    frozen_aux: bool,
+    lens: [usize; 3],
+    ws: RefCell<&'a mut RateWorkspace<f64>>,
 }
 
 impl Sys<'_> {
-    fn rate(&self, x: &[f64], v: &[f64], q: &[f64]) -> State2D<f64> {
-        let z = self.run.flat.join(&self.run.z, x, v, q);
-        let mut out = State2D::default();
-        if self.run.model.rate(&z, &mut out).is_err() {
-            // A singular moment matrix mid-run: NaN rates stop the run at the divergence check.
-            out = State2D::zeros_like(&z);
-            for a in out.v.iter_mut() {
-                *a = [f64::NAN; 2];
-            }
+    fn view<'b>(&self, x: &'b [f64], v: &'b [f64], q: &'b [f64]) -> StateView2D<'b, f64> {
+        let (rho, sigma, tau) = split_aux(q, self.lens);
+        StateView2D {
+            x: x.as_chunks().0,
+            v: v.as_chunks().0,
+            rho,
+            sigma,
+            tau,
         }
-        out
     }
 }
 
 impl SecondOrderSystem<f64> for Sys<'_> {
     fn accel(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64]) {
-        let out = self.rate(x, v, q);
-        for (i, ai) in out.v.iter().enumerate() {
-            let keep = if self.run.fixed[i] { 0.0 } else { 1.0 };
-            a[2 * i] = ai[0] * keep;
-            a[2 * i + 1] = ai[1] * keep;
+        let out = RateOut2D {
+            v: Some(a.as_chunks_mut().0),
+            ..Default::default()
+        };
+        let mut ws = self.ws.borrow_mut();
+        if self
+            .model
+            .rate_into(self.view(x, v, q), out, &mut ws)
+            .is_err()
+        {
+            // A singular moment matrix mid-run: NaN rates stop the run at the divergence check.
+            a.fill(f64::NAN);
+        }
+        for (ai, &f) in a.as_chunks_mut::<2>().0.iter_mut().zip(self.fixed) {
+            let keep = if f { 0.0 } else { 1.0 };
+            *ai = [ai[0] * keep, ai[1] * keep];
         }
     }
     fn accel_depends_on_velocity(&self) -> bool {
-        self.run.model.p.av.is_some()
+        self.model.p.av.is_some()
     }
     fn qrate(&self, x: &[f64], v: &[f64], q: &[f64], r: &mut [f64]) {
-        let out = self.rate(x, v, q);
-        let n = self.run.flat.n;
-        for (k, &c) in self.run.flat.aux.iter().enumerate() {
-            for i in 0..n {
-                let frozen = self.run.fixed[i] && self.run.boundary == BoundaryDensity::Frozen;
-                r[k * n + i] = if frozen { 0.0 } else { out.get(c, i) };
+        let lens = self.lens;
+        let out = RateOut2D {
+            aux: Some(split_aux_mut(r, lens)),
+            ..Default::default()
+        };
+        let mut ws = self.ws.borrow_mut();
+        if self
+            .model
+            .rate_into(self.view(x, v, q), out, &mut ws)
+            .is_err()
+        {
+            r.fill(0.0);
+        }
+        if self.frozen_aux {
+            let out = split_aux_mut(r, lens);
+            for (i, _) in self.fixed.iter().enumerate().filter(|(_, f)| **f) {
+                if let Some(p) = out.rho.get_mut(i) {
+                    *p = 0.0;
+                }
+                if let Some(p) = out.sigma.get_mut(i) {
+                    *p = [0.0; 3];
+                }
+                if let Some(p) = out.tau.get_mut(i) {
+                    *p = [0.0; 3];
+                }
             }
         }
     }
@@ -126,40 +179,105 @@ impl Run2D {
                 "boundary mask length differs from the particle count".into(),
             ));
         }
-        let aux = model
-            .p
-            .form
-            .comps_2d(&model.p.material)
-            .into_iter()
-            .filter(|c| c.kind() == FieldKind::Auxiliary)
-            .collect();
-        let n = z.x.len();
-        Ok(Self {
+        let comps = model.p.form.comps_2d(&model.p.material);
+        let layout = AuxLayout {
+            rho: comps.contains(&Comp2::Rho),
+            sigma: comps.contains(&Comp2::Sigma(0)),
+            tau: comps.contains(&Comp2::Tau(0)),
+        };
+        let run = Self {
             model,
             z,
             fixed,
             boundary,
             t: 0.0,
             steps: 0,
-            flat: Flat { aux, n },
+            layout,
+            bufs: StepBuffers::default(),
             scratch: Scratch::default(),
-        })
+        };
+        run.check_state()?;
+        Ok(run)
     }
 
-    /// One leapfrog step of size `dt` (physical time). Fixed particles keep x and v.
+    /// The state has every field the form integrates, one entry per particle.
+    fn check_state(&self) -> Result<()> {
+        let n = self.z.x.len();
+        let z = &self.z;
+        let l = self.layout;
+        if z.v.len() != n
+            || self.fixed.len() != n
+            || (l.rho && z.rho.len() != n)
+            || (l.sigma && z.sigma.len() != n)
+            || (l.tau && z.tau.len() != n)
+        {
+            return Err(Error::Incompatible(
+                "2D state: x, v, the boundary mask and every integrated field (ρ, σ, τ) need one \
+                 entry per particle"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// One leapfrog step of size `dt` (physical time), in place. Fixed particles keep x and v.
+    /// If the run diverges (a non-finite velocity), the error is returned and the state holds
+    /// the non-finite values of the failed step.
     pub fn step(&mut self, dt: f64) -> Result<()> {
-        let (mut x, mut v, mut q) = self.flat.split(&self.z);
-        let mut scratch = std::mem::take(&mut self.scratch);
-        kdk_step(&Sys { run: self }, &mut x, &mut v, &mut q, dt, &mut scratch);
-        self.scratch = scratch;
-        let z = self.flat.join(&self.z, &x, &v, &q);
+        self.check_state()?;
+        let n = self.z.x.len();
+        let lens = self.layout.lens(n);
+        let z = &mut self.z;
+        let q = &mut self.bufs.q;
+        q.clear();
+        q.extend_from_slice(if self.layout.rho { &z.rho } else { &[] });
+        q.extend_from_slice(if self.layout.sigma {
+            z.sigma.as_flattened()
+        } else {
+            &[]
+        });
+        q.extend_from_slice(if self.layout.tau {
+            z.tau.as_flattened()
+        } else {
+            &[]
+        });
+        let sys = Sys {
+            model: &self.model,
+            fixed: &self.fixed,
+            frozen_aux: self.boundary == BoundaryDensity::Frozen,
+            lens,
+            ws: RefCell::new(&mut self.bufs.ws),
+        };
+        kdk_step(
+            &sys,
+            z.x.as_flattened_mut(),
+            z.v.as_flattened_mut(),
+            q,
+            dt,
+            &mut self.scratch,
+        );
+        let (rho, sigma, tau) = split_aux(q, lens);
+        if self.layout.rho {
+            z.rho.copy_from_slice(rho);
+        }
+        if self.layout.sigma {
+            z.sigma.copy_from_slice(sigma);
+        }
+        if self.layout.tau {
+            z.tau.copy_from_slice(tau);
+        }
         if z.v.iter().any(|p| !p[0].is_finite() || !p[1].is_finite()) {
             return Err(Error::NonFinite("solver state (the run diverged)"));
         }
-        self.z = z;
         self.t += dt;
         self.steps += 1;
         Ok(())
+    }
+
+    /// Mean number of neighbours per particle (itself included) in the last rate evaluation's
+    /// stencils (Eulerian forms; `None` before the first step and for total-Lagrangian forms).
+    pub fn mean_neighbours(&self) -> Option<f64> {
+        self.bufs.ws.mean_neighbours()
     }
 
     /// Largest |v| over the free particles.

@@ -1,71 +1,94 @@
-//! A counting global allocator: current and peak heap bytes, for the memory columns of
-//! `tradeoff` (two relaxed atomics per allocation; negligible next to the solver's work).
+//! The binary's global allocator: the system allocator, tracking the bytes currently
+//! allocated, their peak and the number of allocations, so that `sphstab throughput` reports
+//! *measured* memory. The cost is a few relaxed atomic operations per allocation.
 
+use sphstab::solver::throughput::MemoryProbe;
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
+
+/// The tracking allocator.
+pub struct Tracking;
 
 static CURRENT: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
+static COUNT: AtomicU64 = AtomicU64::new(0);
 
-/// The system allocator with byte counters.
-pub struct Counting;
+fn grew(bytes: usize) {
+    let now = CURRENT.fetch_add(bytes, Relaxed) + bytes;
+    PEAK.fetch_max(now, Relaxed);
+    COUNT.fetch_add(1, Relaxed);
+}
 
-// SAFETY: every call forwards to the system allocator unchanged; the counters only observe.
-unsafe impl GlobalAlloc for Counting {
+// SAFETY: every call is forwarded unchanged to the system allocator; only counters are kept.
+unsafe impl GlobalAlloc for Tracking {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         // SAFETY: same contract as the caller's.
         let p = unsafe { System.alloc(layout) };
         if !p.is_null() {
-            let now = CURRENT.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
-            PEAK.fetch_max(now, Ordering::Relaxed);
+            grew(layout.size());
+        }
+        p
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        // SAFETY: same contract as the caller's.
+        let p = unsafe { System.alloc_zeroed(layout) };
+        if !p.is_null() {
+            grew(layout.size());
         }
         p
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         // SAFETY: same contract as the caller's.
         unsafe { System.dealloc(ptr, layout) };
-        CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        // SAFETY: same contract as the caller's.
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if !p.is_null() {
-            let now = CURRENT.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
-            PEAK.fetch_max(now, Ordering::Relaxed);
-        }
-        p
+        CURRENT.fetch_sub(layout.size(), Relaxed);
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
         // SAFETY: same contract as the caller's.
         let p = unsafe { System.realloc(ptr, layout, new_size) };
         if !p.is_null() {
-            if new_size >= layout.size() {
-                let d = new_size - layout.size();
-                let now = CURRENT.fetch_add(d, Ordering::Relaxed) + d;
-                PEAK.fetch_max(now, Ordering::Relaxed);
-            } else {
-                CURRENT.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
-            }
+            CURRENT.fetch_sub(layout.size(), Relaxed);
+            grew(new_size);
         }
         p
     }
 }
 
-fn current() -> usize {
-    CURRENT.load(Ordering::Relaxed)
-}
-fn reset_peak() {
-    PEAK.store(CURRENT.load(Ordering::Relaxed), Ordering::Relaxed);
-}
-fn peak() -> usize {
-    PEAK.load(Ordering::Relaxed)
+#[global_allocator]
+static GLOBAL: Tracking = Tracking;
+
+/// Reads the counters of [`Tracking`].
+pub struct Probe;
+
+impl MemoryProbe for Probe {
+    fn current(&self) -> usize {
+        CURRENT.load(Relaxed)
+    }
+    fn peak(&self) -> usize {
+        PEAK.load(Relaxed)
+    }
+    fn reset_peak(&self) {
+        PEAK.store(CURRENT.load(Relaxed), Relaxed);
+    }
+    fn allocations(&self) -> u64 {
+        COUNT.load(Relaxed)
+    }
 }
 
-/// The probe handed to the library.
+fn probe_current() -> usize {
+    CURRENT.load(Relaxed)
+}
+fn probe_peak() -> usize {
+    PEAK.load(Relaxed)
+}
+fn probe_reset_peak() {
+    PEAK.store(CURRENT.load(Relaxed), Relaxed);
+}
+
+/// The same counters as plain function pointers, for `tradeoff`.
 pub fn probe() -> sphstab::tradeoff::MemoryProbe {
     sphstab::tradeoff::MemoryProbe {
-        current,
-        reset_peak,
-        peak,
+        current: probe_current,
+        reset_peak: probe_reset_peak,
+        peak: probe_peak,
     }
 }

@@ -13,11 +13,9 @@ mod query;
 mod simulate;
 mod stiffness;
 mod swegle;
+mod throughput;
 mod timestep;
 mod tradeoff;
-
-#[global_allocator]
-static ALLOC: alloc::Counting = alloc::Counting;
 
 use clap::{Parser, Subcommand};
 
@@ -58,6 +56,8 @@ enum Cmd {
     Atlas(atlas::Args),
     /// Merge the shards of an atlas.
     Merge(merge::Args),
+    /// Speed and memory of the 2D solver on an open square block (and its scaling with N).
+    Throughput(throughput::Args),
 }
 
 fn main() {
@@ -95,6 +95,7 @@ fn main() {
         Cmd::Tradeoff(a) => tradeoff::run(a),
         Cmd::Atlas(a) => atlas::run(a),
         Cmd::Merge(a) => merge::run(a),
+        Cmd::Throughput(a) => throughput::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");

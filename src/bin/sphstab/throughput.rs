@@ -1,0 +1,195 @@
+//! `sphstab throughput`: speed and memory of the 2D solver on an open square block.
+
+use anyhow::Result;
+use sphstab::error::Error;
+use sphstab::forms::{FormKind, ObjectiveRate};
+use sphstab::solver::throughput::{BlockMaterial, ThroughputConfig, run_throughput};
+
+/// Flags of `throughput`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Particles per side of the block (N = size²), in [4, 3000].
+    #[arg(long, default_value_t = 200)]
+    size: usize,
+    /// Several sizes, comma-separated (e.g. 100,316,1000), to fit the scaling exponent p of
+    /// time per step ∝ N^p; replaces --size.
+    #[arg(long, value_delimiter = ',', num_args = 1..)]
+    sizes: Option<Vec<usize>>,
+    /// classical, nonlocal, local, lnl, cll, total-lagrangian.
+    #[arg(long, default_value = "classical")]
+    form: String,
+    /// Shape family (default: the form's).
+    #[arg(long)]
+    shape: Option<String>,
+    /// Kernel name (m4 = cubic spline).
+    #[arg(long, default_value = "m4")]
+    kernel: String,
+    /// h/Δx, in (0, 10].
+    #[arg(long, default_value_t = 1.3, allow_hyphen_values = true)]
+    h: f64,
+    /// hydro (p = K(ρ/ρ0 − 1)) or elastic (hypo-elastic, P-wave modulus 1).
+    #[arg(long, default_value = "elastic")]
+    material: String,
+    /// Elastic Poisson ratio ν (plane strain), in [−0.99, 0.5).
+    #[arg(long, default_value_t = 0.3, allow_hyphen_values = true)]
+    poisson: f64,
+    /// Elastic objective stress rate: jaumann or truesdell.
+    #[arg(long, default_value = "jaumann")]
+    rate: String,
+    /// Monaghan artificial viscosity "α,β" (each in [0, 100]), or "off".
+    #[arg(long, default_value = "1,1", allow_hyphen_values = true)]
+    av: String,
+    /// Monaghan–Gray artificial stress ε in [0, 10] (classical and cll; 0: off). Default 0.3
+    /// for classical and cll, off for the other forms.
+    #[arg(long = "art-eps", allow_hyphen_values = true)]
+    art_eps: Option<f64>,
+    /// Artificial-stress exponent n, in [1, 12].
+    #[arg(long = "art-n", default_value_t = 4, allow_hyphen_values = true)]
+    art_n: i32,
+    /// Time step in Δx/c, in (0, 2].
+    #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
+    dt: f64,
+    /// Timed steps per repeat (after one warm-up step), in [1, 10⁶].
+    #[arg(long, default_value_t = 50)]
+    steps: usize,
+    /// Repeats; the median time is reported. In [1, 1000].
+    #[arg(long, default_value_t = 3)]
+    repeats: usize,
+    /// Threads of the rayon pool (default: one per core), in [1, 1024].
+    #[arg(long)]
+    threads: Option<usize>,
+    /// JSON on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+fn parse_av(s: &str) -> Result<Option<(f64, f64)>> {
+    if s == "off" {
+        return Ok(None);
+    }
+    let bad = || {
+        Error::Incompatible(format!(
+            "--av `{s}`: expected \"alpha,beta\" (e.g. 1,1) or off"
+        ))
+    };
+    let mut it = s.split(',').map(|t| t.trim().parse::<f64>());
+    match (it.next(), it.next(), it.next()) {
+        (Some(Ok(a)), Some(Ok(b)), None) => Ok(Some((a, b))),
+        _ => Err(bad().into()),
+    }
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let form = FormKind::by_name(&a.form)?;
+    let kernel = sphstab::kernel::by_name(&a.kernel)?;
+    let mut cfg = ThroughputConfig::new(kernel);
+    cfg.form = form;
+    cfg.shape = match &a.shape {
+        Some(s) => sphstab::shape::ShapeFamily::by_name(s)?,
+        None => form.default_shape_2d(),
+    };
+    cfg.h_over_dx = a.h;
+    let rate = match a.rate.as_str() {
+        "jaumann" => ObjectiveRate::Jaumann,
+        "truesdell" => ObjectiveRate::Truesdell,
+        r => {
+            return Err(Error::UnknownName {
+                what: "--rate",
+                given: r.into(),
+                valid: "jaumann, truesdell".into(),
+            }
+            .into());
+        }
+    };
+    cfg.material = match a.material.as_str() {
+        "hydro" => BlockMaterial::Hydro,
+        "elastic" => BlockMaterial::Elastic {
+            poisson: a.poisson,
+            rate,
+        },
+        m => {
+            return Err(Error::UnknownName {
+                what: "--material",
+                given: m.into(),
+                valid: "hydro, elastic".into(),
+            }
+            .into());
+        }
+    };
+    cfg.av = parse_av(&a.av)?;
+    let art_form = matches!(form, FormKind::Classical | FormKind::Cll);
+    cfg.art_stress = match a.art_eps {
+        Some(0.0) => None,
+        Some(e) => Some((e, a.art_n)),
+        None if art_form => Some((0.3, a.art_n)),
+        None => None,
+    };
+    cfg.dt = a.dt;
+    cfg.steps = a.steps;
+    cfg.repeats = a.repeats;
+    cfg.validate()?;
+    let sizes = a.sizes.clone().unwrap_or_else(|| vec![a.size]);
+    let pb = crate::progress::bar(crate::progress::wanted(a.json));
+    let probe = crate::alloc::Probe;
+    let r = run_throughput(&cfg, &sizes, a.threads, Some(&probe), |f| {
+        crate::progress::set(&pb, f)
+    })?;
+    pb.finish_and_clear();
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(());
+    }
+    let material = match r.poisson {
+        Some(nu) => format!("{} ν = {nu}", r.material),
+        None => r.material.clone(),
+    };
+    let av = match r.av {
+        Some([al, be]) => format!("AV α = {al}, β = {be}"),
+        None => "no AV".into(),
+    };
+    let art = match (r.art_eps, r.art_n) {
+        (Some(e), Some(n)) => format!("artificial stress ε = {e}, n = {n}"),
+        _ => "no artificial stress".into(),
+    };
+    println!(
+        "sphstab throughput: open block, {} / {} / {} h = {}Δx, {material}, {av}, {art}",
+        r.form, r.shape, r.kernel, r.h_over_dx
+    );
+    println!(
+        "Δt = {} Δx/c; {} timed steps × {} repeats (median) after 1 warm-up step; {} thread{}",
+        r.dt,
+        r.steps,
+        r.repeats,
+        r.threads,
+        if r.threads == 1 { "" } else { "s" }
+    );
+    println!(
+        "{:>6} {:>10} {:>14} {:>18} {:>11} {:>15} {:>12}",
+        "size",
+        "particles",
+        "ns/particle-step",
+        "particle-steps/s",
+        "neighbours",
+        "bytes/particle",
+        "allocs/step"
+    );
+    for b in &r.blocks {
+        println!(
+            "{:>6} {:>10} {:>16.1} {:>18.4e} {:>11.2} {:>15.0} {:>12.2}",
+            b.size,
+            b.particles,
+            b.ns_per_particle_step,
+            b.particle_steps_per_second,
+            b.neighbours_per_particle,
+            b.bytes_per_particle.unwrap_or(f64::NAN),
+            b.allocations_per_step.unwrap_or(f64::NAN),
+        );
+    }
+    if let Some(p) = r.scaling_exponent {
+        println!(
+            "scaling: time per step ∝ N^p with p = {p:.3} (least squares on log–log over {} sizes)",
+            r.blocks.len()
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,455 @@
+//! Throughput of the 2D solver ([`Run2D::step`]) on an open square block: time per
+//! particle-step, neighbours per particle, memory per particle, and the scaling exponent of
+//! the time per step with the particle count.
+//!
+//! The block is n × n particles on a square lattice, Δx = 1, ρ0 = 1, tangent modulus C = 1 (so
+//! c = 1 and times are in Δx/c), open (no periodicity, no fixed particles), initially
+//! unstressed at ρ0 with the smooth velocity field v_x = A c sin(π y/L), v_y = A c sin(π x/L),
+//! L = (n − 1)Δx. One warm-up step (the buffers grow), then `repeats` × `steps` timed steps;
+//! the time per step is the median over the repeats. Memory is measured by the caller's
+//! allocator ([`MemoryProbe`]): the peak of the bytes allocated while the block is built and
+//! run, above those allocated before, per particle.
+
+use super::run2d::{BoundaryDensity, Run2D};
+use crate::error::{Error, Result, check_range};
+use crate::forms::{
+    ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model2D, ModelParams2D,
+    ObjectiveRate,
+};
+use crate::kernel::Kernel;
+use crate::neighbours::CellList;
+use crate::shape::ShapeFamily;
+use crate::shape2d::KernelParams2;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Material of the block (ρ0 = 1 and tangent modulus 1 in both cases).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BlockMaterial {
+    /// p = K(ρ/ρ0 − 1), K = 1.
+    Hydro,
+    /// Hypo-elastic, P-wave modulus 1, Poisson ratio ν (plane strain).
+    Elastic {
+        /// ν.
+        poisson: f64,
+        /// Objective stress rate.
+        rate: ObjectiveRate,
+    },
+}
+
+/// What to run.
+#[derive(Clone, Copy, Debug)]
+pub struct ThroughputConfig {
+    /// The form.
+    pub form: FormKind,
+    /// Shape family.
+    pub shape: ShapeFamily,
+    /// Kernel.
+    pub kernel: &'static dyn Kernel,
+    /// h/Δx.
+    pub h_over_dx: f64,
+    /// Material.
+    pub material: BlockMaterial,
+    /// Monaghan artificial viscosity (α, β), `None`: off.
+    pub av: Option<(f64, f64)>,
+    /// Monaghan–Gray artificial stress (ε, n), classical and cll forms; `None`: off.
+    pub art_stress: Option<(f64, i32)>,
+    /// Time step in Δx/c.
+    pub dt: f64,
+    /// Timed steps per repeat.
+    pub steps: usize,
+    /// Repeats (the median is reported).
+    pub repeats: usize,
+    /// Amplitude A of the initial velocity field, in units of c.
+    pub amplitude: f64,
+}
+
+impl ThroughputConfig {
+    /// The defaults of `sphstab throughput`: classical / m4, h = 1.3Δx, elastic (Jaumann,
+    /// ν = 0.3), AV (1, 1), artificial stress (0.3, 4), Δt = 0.2Δx/c, 50 steps × 3 repeats,
+    /// A = 10⁻³.
+    pub fn new(kernel: &'static dyn Kernel) -> Self {
+        Self {
+            form: FormKind::Classical,
+            shape: FormKind::Classical.default_shape_2d(),
+            kernel,
+            h_over_dx: 1.3,
+            material: BlockMaterial::Elastic {
+                poisson: 0.3,
+                rate: ObjectiveRate::Jaumann,
+            },
+            av: Some((1.0, 1.0)),
+            art_stress: Some((0.3, 4)),
+            dt: 0.2,
+            steps: 50,
+            repeats: 3,
+            amplitude: 1e-3,
+        }
+    }
+
+    /// Checks every parameter; errors name the CLI flag.
+    pub fn validate(&self) -> Result<()> {
+        if !self.form.in_2d() {
+            return Err(Error::Incompatible(format!(
+                "--form {} is not available in 2D (classical, nonlocal, local, lnl, cll, total-lagrangian)",
+                self.form.name()
+            )));
+        }
+        self.form.check_shape(self.shape)?;
+        check_range("--h", self.h_over_dx, 0.0, 10.0, false, true)?;
+        if let BlockMaterial::Elastic { poisson, .. } = self.material {
+            check_range("--poisson", poisson, -0.99, 0.5, true, false)?;
+        }
+        if let Some((a, b)) = self.av {
+            check_range("--av", a, 0.0, 100.0, true, true)?;
+            check_range("--av", b, 0.0, 100.0, true, true)?;
+        }
+        if let Some((eps, n)) = self.art_stress {
+            check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
+            check_range("--art-n", n as f64, 1.0, 12.0, true, true)?;
+            if !matches!(self.form, FormKind::Classical | FormKind::Cll) {
+                return Err(Error::Incompatible(format!(
+                    "--art-eps: artificial stress is defined for the classical and cll forms, not {}",
+                    self.form.name()
+                )));
+            }
+        }
+        check_range("--dt", self.dt, 0.0, 2.0, false, true)?;
+        check_range("--steps", self.steps as f64, 1.0, 1e6, true, true)?;
+        check_range("--repeats", self.repeats as f64, 1.0, 1000.0, true, true)?;
+        check_range("--amplitude", self.amplitude, 0.0, 0.1, true, true)?;
+        Ok(())
+    }
+
+    fn params(&self) -> Result<ModelParams2D> {
+        let material = match self.material {
+            BlockMaterial::Hydro => Material2D::Hydro { bulk: 1.0 },
+            BlockMaterial::Elastic { poisson, rate } => Material2D::elastic(1.0, poisson, rate)?,
+        };
+        Ok(ModelParams2D {
+            form: self.form,
+            shape: self.shape,
+            kp: KernelParams2 {
+                kernel: self.kernel,
+                h: self.h_over_dx,
+            },
+            material,
+            rho0: 1.0,
+            c_partition: 0.5,
+            av: self.av.map(|(alpha, beta)| ArtificialViscosity {
+                alpha,
+                beta,
+                sound_speed: 1.0,
+                approaching_only: true,
+            }),
+            art_stress: self.art_stress.map(|(eps, n)| ArtificialStress {
+                eps,
+                n,
+                spacing: 1.0,
+            }),
+        })
+    }
+}
+
+/// Smallest and largest block side.
+pub const SIZE_RANGE: (usize, usize) = (4, 3000);
+
+/// Checks a block side (the flag is named in the error).
+pub fn check_size(name: &'static str, size: usize) -> Result<()> {
+    if size < SIZE_RANGE.0 || size > SIZE_RANGE.1 {
+        return Err(Error::OutOfRange {
+            name,
+            value: size as f64,
+            range: format!(
+                "particles per side must be an integer in [{}, {}]",
+                SIZE_RANGE.0, SIZE_RANGE.1
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The open `size` × `size` block of the module docs, ready to run.
+pub fn build_block(cfg: &ThroughputConfig, size: usize) -> Result<Run2D> {
+    cfg.validate()?;
+    check_size("--size", size)?;
+    let mut x = Vec::with_capacity(size * size);
+    for i in 0..size {
+        for j in 0..size {
+            x.push([i as f64, j as f64]);
+        }
+    }
+    let n = x.len();
+    let model = Model2D::new(cfg.params()?, x, vec![1.0; n], 1.0, 0.0, None)?;
+    let mut z = model.rest_state(1.0);
+    let l = (size - 1) as f64;
+    let pi = std::f64::consts::PI;
+    for (v, x) in z.v.iter_mut().zip(&model.x_ref) {
+        *v = [
+            cfg.amplitude * (pi * x[1] / l).sin(),
+            cfg.amplitude * (pi * x[0] / l).sin(),
+        ];
+    }
+    Run2D::new(model, z, vec![false; n], BoundaryDensity::Evolve)
+}
+
+/// The caller's view of its global allocator (the binary installs a tracking one).
+pub trait MemoryProbe: Sync {
+    /// Bytes allocated now.
+    fn current(&self) -> usize;
+    /// Peak of [`MemoryProbe::current`] since the last reset.
+    fn peak(&self) -> usize;
+    /// Sets the peak to the current value.
+    fn reset_peak(&self);
+    /// Allocations (and reallocations) so far.
+    fn allocations(&self) -> u64;
+}
+
+/// Timing of one block size.
+#[derive(Clone, Debug, Serialize)]
+pub struct BlockTiming {
+    /// Particles per side.
+    pub size: usize,
+    /// Particles N = size².
+    pub particles: usize,
+    /// Median time per step over the repeats (s).
+    pub seconds_per_step: f64,
+    /// Time per step of each repeat (s).
+    pub seconds_per_step_repeats: Vec<f64>,
+    /// Median time per particle-step (ns).
+    pub ns_per_particle_step: f64,
+    /// Particle-steps per second (N / median time per step).
+    pub particle_steps_per_second: f64,
+    /// Mean neighbours per particle within the support ζh, itself included, at the end.
+    pub neighbours_per_particle: f64,
+    /// Measured peak bytes while building and running the block, per particle (null without
+    /// a memory probe).
+    pub bytes_per_particle: Option<f64>,
+    /// Allocations per timed step (null without a memory probe).
+    pub allocations_per_step: Option<f64>,
+    /// max |v| at the end (c), a sanity check that the run stayed small and finite.
+    pub max_speed_end: f64,
+}
+
+/// Mean number of particles within the support of each particle (itself included): the
+/// Eulerian stencils' sizes, or a cell-list count at the current positions for the
+/// total-Lagrangian forms.
+fn mean_neighbours(run: &Run2D) -> f64 {
+    if let Some(m) = run.mean_neighbours() {
+        return m;
+    }
+    let r = run.model.p.kp.support();
+    let cl = CellList::new(&run.z.x, r, None);
+    let mut total = 0usize;
+    for p in &run.z.x {
+        cl.for_candidates(*p, |j| {
+            let d = [run.z.x[j][0] - p[0], run.z.x[j][1] - p[1]];
+            if d[0] * d[0] + d[1] * d[1] < r * r {
+                total += 1;
+            }
+        });
+    }
+    total as f64 / run.z.x.len().max(1) as f64
+}
+
+/// Builds and runs one block: 1 warm-up step, then `repeats` × `steps` timed steps.
+/// `progress(f)` gets the fraction of this block's steps done.
+pub fn time_block(
+    cfg: &ThroughputConfig,
+    size: usize,
+    mem: Option<&dyn MemoryProbe>,
+    mut progress: impl FnMut(f64),
+) -> Result<BlockTiming> {
+    let before = mem.map(|m| {
+        m.reset_peak();
+        m.current()
+    });
+    let mut run = build_block(cfg, size)?;
+    let n = run.z.x.len();
+    run.step(cfg.dt)?;
+    let total = (cfg.steps * cfg.repeats) as f64;
+    let mut per_step = Vec::with_capacity(cfg.repeats);
+    let allocs0 = mem.map(|m| m.allocations());
+    // allocations of the progress callback (a progress bar drawing) are not the solver's
+    let mut by_progress = 0;
+    for r in 0..cfg.repeats {
+        let t0 = Instant::now();
+        for s in 0..cfg.steps {
+            run.step(cfg.dt)?;
+            if s % 16 == 15 {
+                let a = mem.map_or(0, |m| m.allocations());
+                progress(((r * cfg.steps + s + 1) as f64) / total);
+                by_progress += mem.map_or(0, |m| m.allocations()) - a;
+            }
+        }
+        per_step.push(t0.elapsed().as_secs_f64() / cfg.steps as f64);
+    }
+    let allocations_per_step = mem
+        .zip(allocs0)
+        .map(|(m, a0)| (m.allocations() - a0 - by_progress) as f64 / total);
+    let bytes_per_particle = mem
+        .zip(before)
+        .map(|(m, b)| m.peak().saturating_sub(b) as f64 / n as f64);
+    let mut sorted = per_step.clone();
+    sorted.sort_by(f64::total_cmp);
+    let median = sorted[sorted.len() / 2];
+    progress(1.0);
+    Ok(BlockTiming {
+        size,
+        particles: n,
+        seconds_per_step: median,
+        seconds_per_step_repeats: per_step,
+        ns_per_particle_step: median / n as f64 * 1e9,
+        particle_steps_per_second: n as f64 / median,
+        neighbours_per_particle: mean_neighbours(&run),
+        bytes_per_particle,
+        allocations_per_step,
+        max_speed_end: run.max_free_speed(),
+    })
+}
+
+/// Least-squares slope p of ln(time per step) against ln N: time per step ∝ N^p. `None` with
+/// fewer than two distinct particle counts.
+pub fn scaling_exponent(blocks: &[BlockTiming]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = blocks
+        .iter()
+        .map(|b| ((b.particles as f64).ln(), b.seconds_per_step.ln()))
+        .collect();
+    let m = pts.len() as f64;
+    let mx = pts.iter().map(|p| p.0).sum::<f64>() / m;
+    let my = pts.iter().map(|p| p.1).sum::<f64>() / m;
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 1e-12).then(|| sxy / sxx)
+}
+
+/// A throughput run over one or more block sizes.
+#[derive(Clone, Debug, Serialize)]
+pub struct ThroughputReport {
+    /// Form.
+    pub form: &'static str,
+    /// Shape family.
+    pub shape: &'static str,
+    /// Kernel.
+    pub kernel: &'static str,
+    /// h/Δx.
+    pub h_over_dx: f64,
+    /// "hydro", "elastic-jaumann" or "elastic-truesdell".
+    pub material: String,
+    /// Poisson ratio (elastic).
+    pub poisson: Option<f64>,
+    /// Artificial viscosity [α, β] (null: off).
+    pub av: Option<[f64; 2]>,
+    /// Artificial stress ε (null: off).
+    pub art_eps: Option<f64>,
+    /// Artificial-stress exponent n.
+    pub art_n: Option<i32>,
+    /// Time step (Δx/c).
+    pub dt: f64,
+    /// Timed steps per repeat.
+    pub steps: usize,
+    /// Repeats.
+    pub repeats: usize,
+    /// Threads of the rayon pool.
+    pub threads: usize,
+    /// One entry per size, in the order given.
+    pub blocks: Vec<BlockTiming>,
+    /// p in time per step ∝ N^p (least squares on log–log), null with fewer than 2 sizes.
+    pub scaling_exponent: Option<f64>,
+}
+
+/// Times the block at each size in `sizes` on a rayon pool of `threads` threads (`None`: one
+/// per core). `progress(f)` gets the fraction of the whole run done (weighted by N).
+pub fn run_throughput(
+    cfg: &ThroughputConfig,
+    sizes: &[usize],
+    threads: Option<usize>,
+    mem: Option<&dyn MemoryProbe>,
+    mut progress: impl FnMut(f64) + Send,
+) -> Result<ThroughputReport> {
+    cfg.validate()?;
+    if sizes.is_empty() {
+        return Err(Error::Incompatible(
+            "--sizes: give at least one size".into(),
+        ));
+    }
+    for &s in sizes {
+        check_size(if sizes.len() > 1 { "--sizes" } else { "--size" }, s)?;
+    }
+    if let Some(t) = threads {
+        check_range("--threads", t as f64, 1.0, 1024.0, true, true)?;
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| Error::Incompatible(format!("--threads: cannot start the pool: {e}")))?;
+    let weights: Vec<f64> = sizes.iter().map(|&s| (s * s) as f64).collect();
+    let total: f64 = weights.iter().sum();
+    let mut done = 0.0;
+    let mut blocks = Vec::with_capacity(sizes.len());
+    for (&s, &w) in sizes.iter().zip(&weights) {
+        let b = pool.install(|| time_block(cfg, s, mem, |f| progress((done + f * w) / total)))?;
+        done += w;
+        blocks.push(b);
+    }
+    let (material, poisson) = match cfg.material {
+        BlockMaterial::Hydro => ("hydro".to_string(), None),
+        BlockMaterial::Elastic { poisson, rate } => (
+            match rate {
+                ObjectiveRate::Jaumann => "elastic-jaumann",
+                ObjectiveRate::Truesdell => "elastic-truesdell",
+            }
+            .to_string(),
+            Some(poisson),
+        ),
+    };
+    Ok(ThroughputReport {
+        form: cfg.form.name(),
+        shape: cfg.shape.name(),
+        kernel: cfg.kernel.name(),
+        h_over_dx: cfg.h_over_dx,
+        material,
+        poisson,
+        av: cfg.av.map(|(a, b)| [a, b]),
+        art_eps: cfg.art_stress.map(|a| a.0),
+        art_n: cfg.art_stress.map(|a| a.1),
+        dt: cfg.dt,
+        steps: cfg.steps,
+        repeats: cfg.repeats,
+        threads: pool.current_num_threads(),
+        scaling_exponent: scaling_exponent(&blocks),
+        blocks,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn timing(particles: usize, seconds_per_step: f64) -> BlockTiming {
+        BlockTiming {
+            size: 0,
+            particles,
+            seconds_per_step,
+            seconds_per_step_repeats: vec![seconds_per_step],
+            ns_per_particle_step: 0.0,
+            particle_steps_per_second: 0.0,
+            neighbours_per_particle: 0.0,
+            bytes_per_particle: None,
+            allocations_per_step: None,
+            max_speed_end: 0.0,
+        }
+    }
+
+    /// The fit recovers an exact power law and refuses a single size.
+    #[test]
+    fn scaling_exponent_of_a_power_law() {
+        let b: Vec<_> = [1e4, 1e5, 1e6]
+            .iter()
+            .map(|&n: &f64| timing(n as usize, 3e-7 * n.powf(1.5)))
+            .collect();
+        let p = scaling_exponent(&b).unwrap();
+        assert!((p - 1.5).abs() < 1e-12, "{p}");
+        assert!(scaling_exponent(&b[..1]).is_none());
+    }
+}

@@ -1,0 +1,175 @@
+//! The 2D solver's time loop does not allocate: a counting global allocator sees no allocation
+//! in 10 steps after 2 warm-up steps (the buffers grow in the first step), for the classical
+//! form with a Jaumann elastic material, artificial viscosity and artificial stress, for a
+//! hydrodynamic material, for a mixed form and for the total-Lagrangian form.
+//!
+//! Rayon itself allocates a little when work is *injected* into its pool from outside (the
+//! injector queue takes a new block every 63 jobs; a step injects a few parallel loops). So the
+//! steps are run twice: inside one `ThreadPool::install` (one injection for all 10 steps) the
+//! count must be exactly zero; from the test thread on the global pool it must not depend on
+//! the number of particles (same count at 30×30 and 60×60, at most one block per step).
+//!
+//! Everything runs in one test function: the counter is global, and tests of one binary run in
+//! parallel.
+
+use sphstab::forms::{
+    ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model2D, ModelParams2D,
+    ObjectiveRate,
+};
+use sphstab::kernel;
+use sphstab::shape2d::KernelParams2;
+use sphstab::solver::{BoundaryDensity, Run2D};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The system allocator, counting allocations and reallocations.
+struct Counting;
+
+static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+
+// SAFETY: every call is forwarded unchanged to the system allocator.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract as the caller's.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations() -> u64 {
+    ALLOCATIONS.load(Ordering::SeqCst)
+}
+
+/// An open n × n block (Δx = 1, ρ0 = 1, P-wave modulus 1) with a smooth velocity field.
+fn block(n: usize, form: FormKind, material: Material2D, av: bool, art: bool) -> Run2D {
+    let p = ModelParams2D {
+        form,
+        shape: form.default_shape_2d(),
+        kp: KernelParams2 {
+            kernel: kernel::by_name("m4").unwrap(),
+            h: 1.3,
+        },
+        material,
+        rho0: 1.0,
+        c_partition: 0.5,
+        av: av.then_some(ArtificialViscosity {
+            alpha: 1.0,
+            beta: 1.0,
+            sound_speed: 1.0,
+            approaching_only: true,
+        }),
+        art_stress: art.then_some(ArtificialStress {
+            eps: 0.3,
+            n: 4,
+            spacing: 1.0,
+        }),
+    };
+    let mut x = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            x.push([i as f64, j as f64]);
+        }
+    }
+    let model = Model2D::new(p, x, vec![1.0; n * n], 1.0, 0.0, None).unwrap();
+    let mut z = model.rest_state(1.0);
+    let l = (n - 1) as f64;
+    for (v, x) in z.v.iter_mut().zip(&model.x_ref) {
+        let pi = std::f64::consts::PI;
+        *v = [1e-3 * (pi * x[1] / l).sin(), 1e-3 * (pi * x[0] / l).sin()];
+    }
+    Run2D::new(model, z, vec![false; n * n], BoundaryDensity::Evolve).unwrap()
+}
+
+/// Allocations during 10 steps after 2 warm-up steps; `pool`: all 10 inside one `install`.
+fn count(mut run: Run2D, pool: Option<&rayon::ThreadPool>) -> u64 {
+    run.step(0.2).unwrap();
+    run.step(0.2).unwrap();
+    let steps = |run: &mut Run2D| {
+        for _ in 0..10 {
+            run.step(0.2).unwrap();
+        }
+    };
+    let before = allocations();
+    match pool {
+        Some(p) => p.install(|| steps(&mut run)),
+        None => steps(&mut run),
+    }
+    let n = allocations() - before;
+    // the run did something
+    assert!(run.max_free_speed() > 1e-4 && run.steps == 12);
+    n
+}
+
+#[test]
+fn time_loop_does_not_allocate() {
+    let jaumann = Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
+    let hydro = Material2D::Hydro { bulk: 1.0 };
+    let cases = [
+        (
+            "classical elastic (Jaumann) + AV + art. stress",
+            FormKind::Classical,
+            jaumann,
+            true,
+            true,
+        ),
+        ("classical hydro", FormKind::Classical, hydro, false, false),
+        (
+            "classical hydro + AV",
+            FormKind::Classical,
+            hydro,
+            true,
+            false,
+        ),
+        (
+            "lnl elastic (Jaumann) + AV",
+            FormKind::Lnl,
+            jaumann,
+            true,
+            false,
+        ),
+        (
+            "total-lagrangian elastic",
+            FormKind::TotalLagrangian,
+            jaumann,
+            false,
+            false,
+        ),
+    ];
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    for (name, form, material, av, art) in cases {
+        for n in [30, 60] {
+            let run = block(n, form, material, av, art);
+            let inside = count(run, Some(&pool));
+            eprintln!("{name}, {n}×{n}, inside one install: {inside} allocations in 10 steps");
+            assert_eq!(inside, 0, "{name}, {n}×{n}: the time loop allocated");
+        }
+        let small = count(block(30, form, material, av, art), None);
+        let large = count(block(60, form, material, av, art), None);
+        eprintln!("{name}, global pool from the test thread: {small} (30×30), {large} (60×60)");
+        assert!(
+            small <= 10 && large <= 10,
+            "{name}: more than one allocation per step on the global pool"
+        );
+        assert_eq!(small, large, "{name}: allocations grow with N");
+    }
+}
