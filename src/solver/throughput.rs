@@ -383,6 +383,9 @@ pub fn run_throughput(
         .num_threads(threads.unwrap_or(0))
         .build()
         .map_err(|e| Error::Incompatible(format!("--threads: cannot start the pool: {e}")))?;
+    // every worker runs once before anything is timed or counted: a thread that starts late
+    // (a loaded machine) would otherwise allocate its thread-locals inside the timed steps
+    pool.broadcast(|_| ());
     let weights: Vec<f64> = sizes.iter().map(|&s| (s * s) as f64).collect();
     let total: f64 = weights.iter().sum();
     let mut done = 0.0;
