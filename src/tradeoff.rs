@@ -23,6 +23,7 @@ use crate::error::{Error, Result};
 use crate::forms::{FormKind, Model1D, Model2D};
 use crate::kernel::{self, Kernel};
 use crate::lattice::Lattice2D;
+use crate::solver::throughput::MemoryProbe;
 use crate::solver::{BoundaryDensity, Run1D, Run2D};
 use crate::vonneumann::amplification::critical_dt;
 use crate::vonneumann::classify::GROWTH_TOL;
@@ -30,17 +31,6 @@ use crate::vonneumann::linearise::Linearisation;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
-
-/// Reads the heap counters of a counting global allocator (the `sphstab` binary installs one).
-#[derive(Clone, Copy, Debug)]
-pub struct MemoryProbe {
-    /// Bytes currently allocated.
-    pub current: fn() -> usize,
-    /// Sets the peak to the current level.
-    pub reset_peak: fn(),
-    /// Peak bytes since the last reset.
-    pub peak: fn() -> usize,
-}
 
 /// What to sweep.
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -376,13 +366,13 @@ struct SceneRun {
 }
 
 /// Measures peak heap above the current level while `f` runs.
-fn with_memory<T>(probe: Option<MemoryProbe>, f: impl FnOnce() -> T) -> (T, Option<usize>) {
+fn with_memory<T>(probe: Option<&dyn MemoryProbe>, f: impl FnOnce() -> T) -> (T, Option<usize>) {
     let base = probe.map(|p| {
-        (p.reset_peak)();
-        (p.current)()
+        p.reset_peak();
+        p.current()
     });
     let out = f();
-    let bytes = probe.zip(base).map(|(p, b)| (p.peak)().saturating_sub(b));
+    let bytes = probe.zip(base).map(|(p, b)| p.peak().saturating_sub(b));
     (out, bytes)
 }
 
@@ -395,7 +385,7 @@ fn scene_1d(
     form: FormKind,
     k: &'static dyn Kernel,
     h: f64,
-    probe: Option<MemoryProbe>,
+    probe: Option<&dyn MemoryProbe>,
 ) -> Result<SceneRun> {
     let n = SCENE_1D_N;
     let kw = 2.0 * PI / SCENE_PPW as f64;
@@ -440,7 +430,7 @@ fn scene_2d(
     form: FormKind,
     k: &'static dyn Kernel,
     h: f64,
-    probe: Option<MemoryProbe>,
+    probe: Option<&dyn MemoryProbe>,
 ) -> Result<SceneRun> {
     let [nx, ny] = SCENE_2D_N;
     let kw = 2.0 * PI / SCENE_PPW as f64;
@@ -503,7 +493,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// runs in parallel (rayon); the timed scene runs one at a time so they do not compete.
 pub fn run(
     cfg: &TradeoffConfig,
-    probe: Option<MemoryProbe>,
+    probe: Option<&dyn MemoryProbe>,
     progress: impl Fn(usize, usize) + Sync,
 ) -> Result<TradeoffReport> {
     let configs = grid(cfg)?;

@@ -73,22 +73,3 @@ impl MemoryProbe for Probe {
         COUNT.load(Relaxed)
     }
 }
-
-fn probe_current() -> usize {
-    CURRENT.load(Relaxed)
-}
-fn probe_peak() -> usize {
-    PEAK.load(Relaxed)
-}
-fn probe_reset_peak() {
-    PEAK.store(CURRENT.load(Relaxed), Relaxed);
-}
-
-/// The same counters as plain function pointers, for `tradeoff`.
-pub fn probe() -> sphstab::tradeoff::MemoryProbe {
-    sphstab::tradeoff::MemoryProbe {
-        current: probe_current,
-        reset_peak: probe_reset_peak,
-        peak: probe_peak,
-    }
-}

@@ -85,7 +85,7 @@ pub fn run(a: Args) -> Result<()> {
     };
     let total = sphstab::tradeoff::grid(&cfg)?.len();
     let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::tradeoff::run(&cfg, Some(crate::alloc::probe()), |d, t| {
+    let rep = sphstab::tradeoff::run(&cfg, Some(&crate::alloc::Probe), |d, t| {
         progress::set(&pb, d as f64 / t.max(1) as f64)
     })?;
     pb.finish_and_clear();
