@@ -26,6 +26,7 @@ use super::workspace::{Nb2, RateWorkspace};
 use crate::error::Result;
 use crate::kernel;
 use crate::scalar::Scalar;
+use crate::shape2d::kernel_and_gradient_2d;
 use rayon::prelude::*;
 
 fn vel_grad<S: Scalar>(v: &[[S; 2]], i: usize, st: &[Nb2<S>]) -> [[S; 2]; 2] {
@@ -150,10 +151,10 @@ fn av_accel<S: Scalar>(m: &Model2D, z: StateView2D<'_, S>, i: usize, st: &[Nb2<S
         let mu = vx * h / (r2 + 0.01 * h * h);
         let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
         let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
-        let r = r2.sqrt();
-        let dw = kernel::dw(m.p.kp.kernel, 2, r, h);
+        // ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
+        let (_, grad) = kernel_and_gradient_2d(m.p.kp.kernel, h, nb.d);
         for c in 0..2 {
-            a[c] -= pi * dw * xij[c] / r * m.mass[nb.j];
+            a[c] -= pi * grad[c] * m.mass[nb.j];
         }
     }
     a
@@ -206,15 +207,13 @@ fn art_accel<S: Scalar>(m: &Model2D, r: &[[S; 3]], i: usize, st: &[Nb2<S>]) -> [
         if nb.j == i {
             continue;
         }
-        let rr = (nb.d[0] * nb.d[0] + nb.d[1] * nb.d[1]).sqrt();
-        let f = kernel::w(m.p.kp.kernel, 2, rr, h) / w_dp;
+        // W(r) and ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
+        let (w, g) = kernel_and_gradient_2d(m.p.kp.kernel, h, nb.d);
+        let f = w / w_dp;
         let mut fnn = S::cst(1.0);
         for _ in 0..a.n {
             fnn *= f;
         }
-        // ∇_I W(x_I − x_J) = W'(r) (x_I − x_J)/r = −W'(r) d/r
-        let dw = kernel::dw(m.p.kp.kernel, 2, rr, h);
-        let g = [-dw * nb.d[0] / rr, -dw * nb.d[1] / rr];
         let t = [
             r[i][0] + r[nb.j][0],
             r[i][1] + r[nb.j][1],

@@ -3,7 +3,6 @@
 
 use super::model::{Model1D, State1D};
 use crate::error::Result;
-use crate::kernel;
 use crate::scalar::Scalar;
 use crate::shape::{self, ShapeFamily};
 
@@ -164,10 +163,8 @@ pub(crate) fn av_accel<S: Scalar>(m: &Model1D, z: &State1D<S>, i: usize, st: &[N
         let mu = vx * h / (xij * xij + 0.01 * h * h);
         let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
         let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
-        // ∇_I W(x_I − x_J) = W'(|d|) sign(x_I − x_J)
-        let r = nb.d.abs();
-        let dw = kernel::dw(m.p.kp.kernel, 1, r, h);
-        let grad = if xij.re() > 0.0 { dw } else { -dw };
+        // ∇_I W(x_I − x_J) = W'(|d|) sign(x_I − x_J), differentiable through d = 0
+        let (_, grad) = shape::kernel_and_gradient_1d(m.p.kp.kernel, h, nb.d);
         a -= pi * grad * m.mass[nb.j];
     }
     a

@@ -69,7 +69,9 @@ pub trait Kernel: Send + Sync + std::fmt::Debug {
 /// (value and exact derivative for dual numbers).
 #[inline]
 pub fn w<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
-    let q = r.re() / h;
+    let Some(q) = q_inside(k, r.re(), h) else {
+        return r.lift(0.0, 0.0);
+    };
     let s = k.sigma(dim) / h.powi(dim as i32);
     // the derivative part only for types that carry one (`lift` ignores it otherwise)
     let g1 = if S::TANGENT {
@@ -83,7 +85,9 @@ pub fn w<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
 /// dW/dr(r, h) in dimension `dim`.
 #[inline]
 pub fn dw<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
-    let q = r.re() / h;
+    let Some(q) = q_inside(k, r.re(), h) else {
+        return r.lift(0.0, 0.0);
+    };
     let s = k.sigma(dim) / h.powi(dim as i32 + 1);
     let g1 = if S::TANGENT {
         s * k.d2f(dim, q) / h
@@ -96,7 +100,21 @@ pub fn dw<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
 /// d²W/dr²(r, h) in dimension `dim` (value only; its derivative is not available).
 #[inline]
 pub fn d2w(k: &dyn Kernel, dim: usize, r: f64, h: f64) -> f64 {
-    k.sigma(dim) / h.powi(dim as i32 + 2) * k.d2f(dim, r / h)
+    let Some(q) = q_inside(k, r, h) else {
+        return 0.0;
+    };
+    k.sigma(dim) / h.powi(dim as i32 + 2) * k.d2f(dim, q)
+}
+
+/// `q = |r|/h` inside the support, `None` on or beyond it. The support test is `|r| ≥ ζh`,
+/// exactly the test every neighbour search applies (`|d| < R` with `R = ζh`), so a node sitting
+/// on the support edge is outside for the kernel too: `r/h` alone can round to just below ζ
+/// there (3 · 1.4 = 4.199999999999999 but 4.199999999999999 / 1.4 < 3), which for the
+/// truncated Gaussian, discontinuous at ζ, would switch the node back on.
+#[inline]
+fn q_inside(k: &dyn Kernel, r: f64, h: f64) -> Option<f64> {
+    let r = r.abs();
+    if r >= k.zeta() * h { None } else { Some(r / h) }
 }
 
 /// All kernels, in the order of SPEC §2.

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod exact;
+
 use sphstab::forms::{FormKind, ModelParams};
 use sphstab::kernel::{self, Kernel};
 use sphstab::shape::{KernelParams, ShapeFamily, lattice_shape};
