@@ -92,26 +92,49 @@ fn time_step_instability_above_critical() {
     assert!(r.stable && r.max_amplification.unwrap() <= 1.0 + 1e-9);
 }
 
-/// [B00 §4.3]: least squares with too large α_s at D_mx = 2.5 makes ω² negative at zero stress
-/// (eq 108's denominator changes sign) → growth that does not need stress: `rank-deficiency`
-/// (the discrete operator itself is indefinite). At D_mx = 1.5 any α_s > 0 removes the
-/// spurious mode at π.
+/// [B00 §4.3] states that least squares fails at D_mx ≥ 2.5 when α_s is too large: "the
+/// stabilization term in the mass … will change to positive for large wave numbers, causing the
+/// denominator [of eq 108] to be zero or negative". With the exact φ'' on the nodes it does not
+/// (ERRATA E9). Independent route: the exact rational lattice values (`common::exact`) give
+/// P(κ) = Σφ(j) cos κj > 0 and Q(κ) = Σφ''(j) cos κj ≤ 0 on (0, π] at D_mx = 1.5 and 2.5, so
+/// the denominator P(P − α_s Q) is positive for every α_s ≥ 0; the engine agrees (stable, no
+/// instability, for α_s up to 2). The paper's statement is what one gets with W''(0) dropped
+/// from a node's own weight — the defect of issue 9: then Q(π) > 0 and α_s = 0.5 makes the
+/// denominator negative at κ = π. At D_mx = 1.5 any α_s > 0 removes the spurious mode at π.
 #[test]
 fn least_squares_b00_section_4_3() {
-    let mut qq = q(FormKind::LeastSquares, "efg-quartic", 2.5, 0.0);
-    qq.alpha_s = 0.5;
-    let r = query(&qq).unwrap();
-    assert!(!r.stable);
-    assert!(kinds(&r).iter().all(|&k| k == Kind::RankDeficiency));
-    let phi = shape_fn(ShapeFamily::Mls, "efg-quartic", 2.5);
-    assert!(cf::b00_eq108_least_squares(&phi, 2.5, 0.5, r.kappa_at_max.unwrap()) < 0.0);
-    for alpha_s in [0.0, 0.01] {
-        let mut qq = q(FormKind::LeastSquares, "efg-quartic", 1.5, 0.0);
-        qq.alpha_s = alpha_s;
-        let r = query(&qq).unwrap();
-        assert!(r.stable);
-        assert_eq!(r.has_zero_energy_modes, alpha_s == 0.0, "α_s = {alpha_s}");
+    use common::exact::{Q, mls_quartic_lattice};
+    let sums = |r: Q, defect: bool, kap: f64| -> (f64, f64) {
+        mls_quartic_lattice(r, defect)
+            .into_iter()
+            .fold((0.0, 0.0), |(p, q), (j, v)| {
+                let c = (kap * j as f64).cos();
+                (p + v[0].to_f64() * c, q + v[2].to_f64() * c)
+            })
+    };
+    for (d_mx, r) in [(1.5, Q::new(3, 2)), (2.5, Q::new(5, 2))] {
+        for i in 1..=512 {
+            let kap = PI * i as f64 / 512.0;
+            let (p, qv) = sums(r, false, kap);
+            assert!(p > 0.0 && qv <= 1e-14, "D_mx={d_mx} κ={kap}: P={p} Q={qv}");
+        }
+        for alpha_s in [0.001, 0.01, 0.1, 0.5, 1.0, 2.0] {
+            let mut qq = q(FormKind::LeastSquares, "efg-quartic", d_mx, 0.0);
+            qq.alpha_s = alpha_s;
+            let r = query(&qq).unwrap();
+            assert!(
+                r.stable && r.instabilities.is_empty(),
+                "D_mx={d_mx} α_s={alpha_s}"
+            );
+            assert!(!r.has_zero_energy_modes);
+        }
     }
+    // the defect reproduces the paper's statement
+    let (p, qv) = sums(Q::new(5, 2), true, PI);
+    assert!(qv > 0.0 && p * (p - 0.5 * qv) < 0.0, "P={p} Q={qv}");
+    // α_s = 0 is plain nodal integration: the zero-energy mode at π
+    let r = query(&q(FormKind::LeastSquares, "efg-quartic", 1.5, 0.0)).unwrap();
+    assert!(r.stable && r.has_zero_energy_modes);
 }
 
 /// Linearised artificial viscosity (α = 1, acting on all pairs as in [V21 App. B]) damps every

@@ -245,9 +245,10 @@ pub fn b00_eq108_terms(phi: ShapeFn, support: f64, alpha_s: f64, kappa: f64) -> 
 /// Assumptions of the paper: σ = 0 (the weak form (104) has no initial-stress term), identical
 /// uniformly spaced nodes, symmetric weight, nodal integration of the *consistent* matrices
 /// (106)–(107). Because the mass is consistent, α_s = 0 gives S₁²/(Σφ cos κj)², which equals
-/// eq. (82) only for an interpolating shape (φ(j) = δ_j0). The denominator changes sign for
-/// large α_s and dilation (B00 §4.3); then the returned ω² is negative or ±∞ (a zero
-/// denominator) — use [`b00_eq108_terms`] to inspect it.
+/// eq. (82) only for an interpolating shape (φ(j) = δ_j0). B00 §4.3 says the denominator
+/// changes sign for large α_s at D_mx ≥ 2.5; with the exact φ'' on the nodes it stays positive
+/// for the EFG weights (ERRATA E9), but for a shape where it does vanish the returned ω² is
+/// negative or ±∞ — use [`b00_eq108_terms`] to inspect it.
 pub fn b00_eq108_least_squares(phi: ShapeFn, support: f64, alpha_s: f64, kappa: f64) -> f64 {
     let (num, den) = b00_eq108_terms(phi, support, alpha_s, kappa);
     num / den

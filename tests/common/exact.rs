@@ -82,6 +82,8 @@ impl Mul for Q {
 }
 impl Div for Q {
     type Output = Q;
+    // division is multiplication by the reciprocal
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn div(self, o: Q) -> Q {
         assert!(o.num != 0, "division by zero");
         self * Q::new(o.den, o.num)
@@ -142,6 +144,8 @@ impl Mul for T {
 }
 impl Div for T {
     type Output = T;
+    // division is multiplication by the reciprocal series
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn div(self, o: T) -> T {
         self * o.recip()
     }
