@@ -462,7 +462,17 @@ fn gaussian_transform_fft_quadrature_analytic() {
     }
     // The truncation tail ≈ 2W(3) sin(3k)/k makes W* change sign although e^{−k²/4} does not.
     let first = first_nonpositive_k(&ks, &ws).expect("truncated Gaussian W* goes negative");
-    assert!(first > 5.0 && first < 8.0, "first non-positive k = {first}");
+    // The exact transform (1/√π)∫₋₃³ e^{−x²} cos kx dx first changes sign at k* = 7.5743823
+    // (computed independently: composite Simpson with 20,000 intervals and bisection, in a
+    // throw-away script; W* = +5.3e-6 at the grid point 57π/24 below it and −8.2e-7 at 58π/24
+    // above it, both far above the FFT error ≈ 1e-8), so the FFT's first non-positive grid
+    // point must be the first grid point above k*.
+    let kstar = 7.5743823;
+    let i = ks.iter().position(|&k| k == first).unwrap();
+    assert!(
+        ks[i - 1] < kstar && kstar <= first,
+        "first non-positive k = {first}"
+    );
     assert!(ws.iter().any(|&w| w < -1e-7));
 }
 
