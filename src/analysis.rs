@@ -19,8 +19,37 @@ pub const H_RANGE: (f64, f64) = (0.05, 50.0);
 /// Allowed range of σ̄.
 pub const STRESS_RANGE: (f64, f64) = (-10.0, 10.0);
 
-/// Checks shared by the 1D and 2D questions: h/Δx, σ̄, c, viscosity, Δt, and that the support
-/// reaches the nearest neighbours (ζh > Δx).
+/// The names under which the common parameters reach the user: CLI flags or scene fields.
+#[derive(Clone, Copy, Debug)]
+pub struct ParamNames {
+    /// h/Δx.
+    pub h: &'static str,
+    /// σ̄.
+    pub stress: &'static str,
+    /// Partition coefficient.
+    pub c: &'static str,
+    /// Viscosity α.
+    pub av_alpha: &'static str,
+    /// Viscosity β.
+    pub av_beta: &'static str,
+    /// Δt.
+    pub dt: &'static str,
+}
+
+impl ParamNames {
+    /// The CLI flags.
+    pub const CLI: ParamNames = ParamNames {
+        h: "--h",
+        stress: "--stress",
+        c: "--c",
+        av_alpha: "--av-alpha",
+        av_beta: "--av-beta",
+        dt: "--dt",
+    };
+}
+
+/// Validates the parameters shared by every question and run (one path for CLI flags, scene
+/// files, configs and the library API), naming them as the CLI does.
 pub fn check_common(
     kernel: &'static dyn Kernel,
     h: f64,
@@ -29,26 +58,39 @@ pub fn check_common(
     av: Option<(f64, f64)>,
     dt: Option<f64>,
 ) -> Result<()> {
-    check_range("--h", h, H_RANGE.0, H_RANGE.1, true, true)?;
+    check_common_named(&ParamNames::CLI, kernel, h, stress, c, av, dt)
+}
+
+/// [`check_common`] with the names of the caller (e.g. scene fields).
+pub fn check_common_named(
+    names: &ParamNames,
+    kernel: &'static dyn Kernel,
+    h: f64,
+    stress: f64,
+    c: f64,
+    av: Option<(f64, f64)>,
+    dt: Option<f64>,
+) -> Result<()> {
+    check_range(names.h, h, H_RANGE.0, H_RANGE.1, true, true)?;
     check_range(
-        "--stress",
+        names.stress,
         stress,
         STRESS_RANGE.0,
         STRESS_RANGE.1,
         true,
         true,
     )?;
-    check_range("--c", c, 0.0, 1.0, true, true)?;
+    check_range(names.c, c, 0.0, 1.0, true, true)?;
     if let Some((a, b)) = av {
-        check_range("--av-alpha", a, 0.0, 100.0, true, true)?;
-        check_range("--av-beta", b, 0.0, 100.0, true, true)?;
+        check_range(names.av_alpha, a, 0.0, 100.0, true, true)?;
+        check_range(names.av_beta, b, 0.0, 100.0, true, true)?;
     }
     if let Some(dt) = dt {
-        check_range("--dt", dt, 0.0, 1e6, false, true)?;
+        check_range(names.dt, dt, 0.0, 1e6, false, true)?;
     }
     if kernel.zeta() * h <= 1.0 {
         return Err(Error::OutOfRange {
-            name: "--h",
+            name: names.h,
             value: h,
             range: format!(
                 "the support ζh must exceed Δx so that particles have neighbours: h/Δx > {} for {} (ζ = {})",

@@ -97,13 +97,7 @@ impl Query2D {
             self.av,
             self.dt,
         )?;
-        if self.grid < 2 || self.grid > 4096 {
-            return Err(Error::OutOfRange {
-                name: "--grid",
-                value: self.grid as f64,
-                range: "must be an integer in [2, 4096]".into(),
-            });
-        }
+        check_count("--grid", self.grid, 2, MAX_GRID)?;
         if !self.form.in_2d() {
             return Err(Error::Incompatible(format!(
                 "--form {} is not available with --dim 2 (classical, nonlocal, local, lnl, cll, total-lagrangian)",
@@ -505,11 +499,35 @@ pub struct Dispersion2D {
     pub omega2_continuum: Vec<[f64; 2]>,
 }
 
+/// Largest `--grid` (wave vectors per reciprocal direction): 1024² wave vectors take ~8 s for
+/// the elastic classical form on this project's 2-core machine (512²: 2.0 s, measured).
+pub const MAX_GRID: usize = 1024;
+/// Largest `map --n` (same cost per wave vector as `--grid`).
+pub const MAX_MAP_N: usize = 1024;
+/// Largest `--box` (free particles per side): 1000² standing modes take ~4 s.
+pub const MAX_BOX: usize = 1000;
+/// Largest `dispersion --dim 2 --points` (per path segment).
+pub const MAX_PATH_POINTS: usize = 100_000;
+
+/// `Err(OutOfRange)` unless `lo ≤ n ≤ hi`.
+pub fn check_count(name: &'static str, n: usize, lo: usize, hi: usize) -> Result<()> {
+    if (lo..=hi).contains(&n) {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange {
+            name,
+            value: n as f64,
+            range: format!("must be an integer in [{lo}, {hi}]"),
+        })
+    }
+}
+
 /// Dispersion along Γ–X–M–Γ (square) or Γ–M–K–Γ (hexagonal), `n` points per segment.
 pub fn dispersion2d(q: &Query2D, n: usize) -> Result<Dispersion2D> {
+    check_count("--points", n, 2, MAX_PATH_POINTS)?;
     let lin = q.linearise_at(q.stress)?;
     let (cp, cs) = continuum_moduli(q)?;
-    let path = q.lattice.symmetry_path(n.max(2));
+    let path = q.lattice.symmetry_path(n);
     let mut labels = Vec::new();
     let pts = q.lattice.symmetry_points();
     let mut s = 0.0;
@@ -557,6 +575,7 @@ pub struct GrowthMap {
 
 /// Growth over the square [−π, π] × [−π, π] (n × n), any lattice.
 pub fn growth_map(q: &Query2D, n: usize) -> Result<GrowthMap> {
+    check_count("--n", n, 2, MAX_MAP_N)?;
     let lin = q.linearise_at(q.stress)?;
     let ax: Vec<f64> = (0..n)
         .map(|i| -PI + 2.0 * PI * (i as f64 + 0.5) / n as f64)
@@ -581,6 +600,7 @@ pub fn growth_map(q: &Query2D, n: usize) -> Result<GrowthMap> {
 /// show: standing modes sin(mπi/(n+1)) admit k = (mπ/(n+1), lπ/(n+1)), m, l = 1..n; the largest
 /// growth over those wave vectors, and where.
 pub fn box_prediction(lin: &Linearisation2D, n_free: usize) -> Result<(f64, [f64; 2])> {
+    check_count("--box", n_free, 1, MAX_BOX)?;
     let mut best = (0.0, [0.0; 2]);
     let d = PI / (n_free as f64 + 1.0);
     for m in 1..=n_free {

@@ -16,7 +16,7 @@ pub enum Error {
         valid: String,
     },
     /// A number outside its allowed range (or NaN).
-    #[error("{name} = {value} is out of range: {range}")]
+    #[error("{name} = {} is out of range: {range}", fmt_num(*.value))]
     OutOfRange {
         /// Parameter (flag or field) name.
         name: &'static str,
@@ -51,6 +51,33 @@ pub enum Error {
     /// A numerical result that is not finite.
     #[error("non-finite result in {0}")]
     NonFinite(&'static str),
+    /// A run whose estimated memory or time steps exceed the resource budget
+    /// ([`crate::budget`]); names the flags that drive the estimate.
+    #[error("{flags}: {what} needs about {estimate}, more than the limit {limit}")]
+    Budget {
+        /// The flag(s) or field(s) that drive the estimate.
+        flags: &'static str,
+        /// What would be allocated or run.
+        what: String,
+        /// The estimate, with its unit.
+        estimate: String,
+        /// The limit and the flag that raises it.
+        limit: String,
+    },
+    /// A time integration that blew up: the first non-finite value or a runaway.
+    #[error(
+        "DIVERGED at step {step} (t = {t:.6e}): {what} (max |v| = {max_amplitude:.3e}); the run was stopped"
+    )]
+    Diverged {
+        /// Time step index.
+        step: usize,
+        /// Simulated time.
+        t: f64,
+        /// The criterion that fired.
+        what: &'static str,
+        /// Largest velocity magnitude at that point (may be non-finite).
+        max_amplitude: f64,
+    },
 }
 
 /// Library result type.
@@ -80,17 +107,7 @@ pub fn check_range(
     } else {
         let l = if lo_inclusive { "[" } else { "(" };
         let r = if hi_inclusive { "]" } else { ")" };
-        let fmt = |v: f64| {
-            if v.is_infinite() {
-                if v > 0.0 {
-                    "inf".to_string()
-                } else {
-                    "-inf".to_string()
-                }
-            } else {
-                format!("{v}")
-            }
-        };
+        let fmt = fmt_num;
         Err(Error::OutOfRange {
             name,
             value,
@@ -119,4 +136,18 @@ pub fn name_in<T: Copy + PartialEq>(table: &[(T, &'static str)], v: T) -> &'stat
         .find(|(x, _)| *x == v)
         .map(|(_, n)| *n)
         .unwrap_or("?")
+}
+
+/// A number as a user reads it in a message: the shortest round-trip form for ordinary
+/// magnitudes, scientific notation (`1e308`, `2.5e-7`) for very large or small ones.
+pub fn fmt_num(v: f64) -> String {
+    if v.is_nan() {
+        "NaN".into()
+    } else if v.is_infinite() {
+        if v > 0.0 { "inf".into() } else { "-inf".into() }
+    } else if v != 0.0 && (v.abs() >= 1e6 || v.abs() < 1e-4) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
 }

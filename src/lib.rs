@@ -47,6 +47,7 @@
 pub mod analysis;
 pub mod analysis2d;
 pub mod atlas;
+pub mod budget;
 pub mod error;
 pub mod figures;
 pub mod forms;

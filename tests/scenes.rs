@@ -8,12 +8,11 @@ fn run(name: &str, form: &str) -> sphstab::solver::scene::SceneReport {
     s.form = form.to_string();
     let r = s.run(|_| {}).unwrap();
     eprintln!(
-        "{name} / {form}: velocity L2 error {}, max |v| {:.4e}, diverged {}, {} steps in {:.2} s",
+        "{name} / {form}: velocity L2 error {}, max |v| {:.4e}, {} steps in {:.2} s",
         r.velocity_error_l2
             .map(|e| format!("{e:.4e}"))
             .unwrap_or("—".into()),
         r.max_velocity,
-        r.diverged,
         r.steps,
         r.runtime_s
     );
@@ -33,8 +32,13 @@ fn uniform_bar_in_tension() {
             "{form}"
         );
     }
-    let c = run("uniform-bar", "classical");
-    assert!(c.diverged || c.velocity_error_l2.unwrap() > 1.0);
+    let mut s = builtin("uniform-bar").unwrap();
+    s.form = "classical".into();
+    match s.run(|_| {}) {
+        Err(sphstab::error::Error::Diverged { .. }) => {}
+        Ok(c) => assert!(c.velocity_error_l2.unwrap() > 1.0),
+        Err(e) => panic!("{e}"),
+    }
 }
 
 /// [V21 §7.4] impact on a rigid wall, compared at 5 μs with the step wave v = 0 behind the front
@@ -63,16 +67,19 @@ fn tensile_wave_classical_unstable_nonlocal_not() {
         s.form = form.into();
         s.t_end = 4e-5;
         s.analytic = None;
-        s.run(|_| {}).unwrap()
+        s.run(|_| {})
     };
-    let c = long("classical");
-    assert!(
-        c.diverged || c.max_velocity > 1.5 * 70.0,
-        "classical max |v| {}",
-        c.max_velocity
-    );
+    match long("classical") {
+        Err(sphstab::error::Error::Diverged { .. }) => {}
+        Ok(c) => assert!(
+            c.max_velocity > 1.5 * 70.0,
+            "classical max |v| {}",
+            c.max_velocity
+        ),
+        Err(e) => panic!("{e}"),
+    }
     for form in ["nonlocal", "lnl"] {
-        let r = long(form);
+        let r = long(form).unwrap();
         assert!(
             r.max_velocity < 1.3 * 70.0,
             "{form}: max |v| {}",

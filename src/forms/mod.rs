@@ -18,7 +18,7 @@ mod model2d;
 mod nonlocal;
 mod stress_points;
 mod total_lagrangian;
-mod workspace;
+pub(crate) mod workspace;
 
 pub use model::{
     ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,

@@ -203,8 +203,6 @@ pub struct SceneReport {
     pub velocity_error_l2: Option<f64>,
     /// Largest |v| over the run.
     pub max_velocity: f64,
-    /// The run diverged (non-finite state) before t_end.
-    pub diverged: bool,
     /// Wall-clock seconds.
     pub runtime_s: f64,
     /// History: (t, max |v|, kinetic energy).
@@ -215,27 +213,128 @@ pub struct SceneReport {
     pub final_state: Option<crate::forms::State1D<f64>>,
 }
 
-impl Scene1D {
-    fn validate(&self) -> Result<()> {
-        crate::error::check_range("particles", self.particles as f64, 4.0, 1e7, true, true)?;
-        crate::error::check_range("length", self.length, 0.0, f64::INFINITY, false, false)?;
-        crate::error::check_range("modulus", self.modulus, 0.0, f64::INFINITY, false, false)?;
-        crate::error::check_range("rho0", self.rho0, 0.0, f64::INFINITY, false, false)?;
-        crate::error::check_range("t_end", self.t_end, 0.0, f64::INFINITY, false, false)?;
-        crate::error::check_range("cfl", self.cfl, 0.0, 2.0, false, true)?;
-        crate::error::check_range("h_over_dx", self.h_over_dx, 0.05, 50.0, true, true)?;
-        Ok(())
-    }
+/// A run is stopped as diverged when max |v| exceeds this multiple of c + max |v(0)|: a
+/// particle crossing a thousand spacings per acoustic transit time is no longer a solution of
+/// the continuum problem (the first non-finite value stops it too).
+pub const RUNAWAY_FACTOR: f64 = 1e3;
 
-    /// Builds and runs the scene, calling `progress` with the fraction done.
-    pub fn run(&self, mut progress: impl FnMut(f64)) -> Result<SceneReport> {
-        self.validate()?;
+/// Field names of a scene for the shared validation ([`crate::analysis::check_common_named`]).
+const SCENE_NAMES: crate::analysis::ParamNames = crate::analysis::ParamNames {
+    h: "h_over_dx",
+    stress: "initial_stress / modulus",
+    c: "c_partition",
+    av_alpha: "artificial_viscosity[0]",
+    av_beta: "artificial_viscosity[1]",
+    dt: "cfl",
+};
+
+impl Scene1D {
+    /// Validates every field through the same checks as the CLI flags, then the resources
+    /// (memory, particle-steps) against [`crate::budget`]. Returns (form, kernel, shape).
+    pub fn validate(&self) -> Result<(FormKind, &'static dyn kernel::Kernel, ShapeFamily)> {
         let form = FormKind::by_name(&self.form)?;
         let k = kernel::by_name(&self.kernel)?;
         let shape = match &self.shape {
             Some(s) => ShapeFamily::by_name(s)?,
             None => form.default_shape(),
         };
+        form.check_shape(shape)?;
+        crate::error::check_range("particles", self.particles as f64, 4.0, 1e7, true, true)?;
+        crate::error::check_range("length", self.length, 0.0, f64::INFINITY, false, false)?;
+        crate::error::check_range("modulus", self.modulus, 0.0, f64::INFINITY, false, false)?;
+        crate::error::check_range("rho0", self.rho0, 0.0, f64::INFINITY, false, false)?;
+        crate::error::check_range("t_end", self.t_end, 0.0, f64::INFINITY, false, false)?;
+        crate::error::check_range("cfl", self.cfl, 0.0, 2.0, false, true)?;
+        crate::error::check_range(
+            "initial_stress",
+            self.initial_stress,
+            f64::MIN,
+            f64::MAX,
+            true,
+            true,
+        )?;
+        crate::analysis::check_common_named(
+            &SCENE_NAMES,
+            k,
+            self.h_over_dx,
+            self.initial_stress / self.modulus,
+            self.c_partition,
+            self.artificial_viscosity,
+            None,
+        )?;
+        let dx = self.length / (self.particles - 1) as f64;
+        // positions origin + i Δx must stay distinct to ~1e-7 Δx in f64
+        crate::error::check_range("origin", self.origin, -1e9 * dx, 1e9 * dx, true, true)?;
+        let c = (self.modulus / self.rho0).sqrt();
+        if !(c.is_finite() && c > 0.0) {
+            return Err(Error::OutOfRange {
+                name: "modulus / rho0",
+                value: self.modulus / self.rho0,
+                range: "the sound speed sqrt(modulus/rho0) must be a positive finite number".into(),
+            });
+        }
+        let vmax = self.initial_speed_bound();
+        crate::error::check_range("initial_velocity", vmax, 0.0, 100.0 * c, true, true)?;
+        let (l, r) = (
+            self.left.as_ref().map_or(0, |e| e.layers),
+            self.right.as_ref().map_or(0, |e| e.layers),
+        );
+        for (name, e) in [
+            ("left.velocity", &self.left),
+            ("right.velocity", &self.right),
+        ] {
+            if let Some(v) = e.as_ref().and_then(|e| e.velocity) {
+                crate::error::check_range(name, v, -100.0 * c, 100.0 * c, true, true)?;
+            }
+        }
+        if l + r + 2 > self.particles {
+            return Err(Error::OutOfRange {
+                name: "left.layers + right.layers",
+                value: (l + r) as f64,
+                range: format!(
+                    "must leave at least 2 free particles: at most {} for {} particles",
+                    self.particles - 2,
+                    self.particles
+                ),
+            });
+        }
+        // resources (crate::budget): stencils of ~2R/Δx + 1 neighbours (index, φ, φ', φ'':
+        // 32 B) per particle and evaluation point, ~60 f64 of state, integrator copies and
+        // scratch per particle, the history (3 f64 per step)
+        let n = self.particles as f64;
+        let neighbours = 2.0 * k.zeta() * self.h_over_dx + 1.0;
+        let steps = (self.t_end / (self.cfl * dx / c)).ceil();
+        crate::budget::check_steps(
+            "t_end/cfl/particles",
+            &format!("the scene ({} time steps)", crate::budget::fmt_count(steps)),
+            n * steps,
+        )?;
+        crate::budget::check_memory(
+            "particles/h_over_dx",
+            &format!(
+                "the scene ({} particles, ~{neighbours:.0} neighbours each)",
+                self.particles
+            ),
+            n * (neighbours * 32.0 * 3.0 + 480.0) + 24.0 * steps,
+        )?;
+        Ok((form, k, shape))
+    }
+
+    /// The largest initial speed of any particle.
+    fn initial_speed_bound(&self) -> f64 {
+        match self.initial_velocity {
+            InitialVelocity::Rest => 0.0,
+            InitialVelocity::Uniform { value } => value.abs(),
+            InitialVelocity::Point { value, .. } => value.abs(),
+            InitialVelocity::Linear { gradient } => {
+                gradient.abs() * self.origin.abs().max((self.origin + self.length).abs())
+            }
+        }
+    }
+
+    /// Builds and runs the scene, calling `progress` with the fraction done.
+    pub fn run(&self, mut progress: impl FnMut(f64)) -> Result<SceneReport> {
+        let (form, k, shape) = self.validate()?;
         let n = self.particles;
         let dx = self.length / (n - 1) as f64;
         let x: Vec<f64> = (0..n).map(|i| self.origin + i as f64 * dx).collect();
@@ -302,14 +401,31 @@ impl Scene1D {
         let mass = self.rho0 * dx;
         let mut history = Vec::with_capacity(steps + 1);
         let mut vmax: f64 = 0.0;
-        let mut diverged = false;
+        let runaway = RUNAWAY_FACTOR
+            * (c + v_init.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+                + prescribed
+                    .iter()
+                    .flatten()
+                    .fold(0.0f64, |m, v| m.max(v.abs())));
         let start = std::time::Instant::now();
         for s in 0..steps {
             if run.step(dt).is_err() {
-                diverged = true;
-                break;
+                return Err(Error::Diverged {
+                    step: s + 1,
+                    t: run.t + dt,
+                    what: "a non-finite velocity",
+                    max_amplitude: f64::INFINITY,
+                });
             }
             let vm = run.z.v.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if vm > runaway {
+                return Err(Error::Diverged {
+                    step: s + 1,
+                    t: run.t,
+                    what: "max |v| above 1000 × (c + the largest initial or prescribed speed)",
+                    max_amplitude: vm,
+                });
+            }
             vmax = vmax.max(vm);
             let ke = 0.5 * mass * run.z.v.iter().map(|v| v * v).sum::<f64>();
             history.push((run.t, vm, ke));
@@ -318,32 +434,28 @@ impl Scene1D {
             }
         }
         let runtime_s = start.elapsed().as_secs_f64();
-        let error = if diverged {
-            None
-        } else {
-            self.analytic.map(|a| {
-                let ends = (
-                    prescribed[0].unwrap_or(0.0),
-                    prescribed[n - 1].unwrap_or(0.0),
-                );
-                let exact: Vec<f64> = (0..n)
-                    .map(|i| self.exact_velocity(a, x[i], v_init[i], ends, run.t * c))
-                    .collect();
-                let (mut num, mut den, mut cnt) = (0.0, 0.0, 0usize);
-                let mut scale: f64 = 0.0;
-                for i in (0..n).filter(|&i| free[i]) {
-                    num += (run.z.v[i] - exact[i]).powi(2);
-                    den += exact[i].powi(2);
-                    cnt += 1;
-                    scale = scale.max(exact[i].abs()).max(v_init[i].abs());
-                }
-                if den > 0.0 {
-                    (num / den).sqrt()
-                } else {
-                    (num / cnt.max(1) as f64).sqrt() / scale.max(1e-300)
-                }
-            })
-        };
+        let error = self.analytic.map(|a| {
+            let ends = (
+                prescribed[0].unwrap_or(0.0),
+                prescribed[n - 1].unwrap_or(0.0),
+            );
+            let exact: Vec<f64> = (0..n)
+                .map(|i| self.exact_velocity(a, x[i], v_init[i], ends, run.t * c))
+                .collect();
+            let (mut num, mut den, mut cnt) = (0.0, 0.0, 0usize);
+            let mut scale: f64 = 0.0;
+            for i in (0..n).filter(|&i| free[i]) {
+                num += (run.z.v[i] - exact[i]).powi(2);
+                den += exact[i].powi(2);
+                cnt += 1;
+                scale = scale.max(exact[i].abs()).max(v_init[i].abs());
+            }
+            if den > 0.0 {
+                (num / den).sqrt()
+            } else {
+                (num / cnt.max(1) as f64).sqrt() / scale.max(1e-300)
+            }
+        });
         Ok(SceneReport {
             name: self.name.clone(),
             form: form.name(),
@@ -351,7 +463,6 @@ impl Scene1D {
             steps: run.steps,
             velocity_error_l2: error,
             max_velocity: vmax,
-            diverged,
             runtime_s,
             history,
             final_state: Some(run.z),

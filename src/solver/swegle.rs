@@ -94,6 +94,8 @@ impl SwegleConfig {
 
     /// Validates the inputs (flag names as on the CLI).
     pub fn validate(&self) -> Result<()> {
+        // the density ratio first: the stress σ̄ = 1 − f checked below derives from it
+        check_range("--density-ratio", self.density_ratio, 0.5, 1.5, true, true)?;
         crate::analysis::check_common(
             self.kernel,
             self.h_over_dx,
@@ -102,7 +104,6 @@ impl SwegleConfig {
             None,
             None,
         )?;
-        check_range("--density-ratio", self.density_ratio, 0.5, 1.5, true, true)?;
         check_range("--t-end", self.t_end, 0.0, 1e6, false, true)?;
         check_range("--cfl", self.cfl, 0.0, 2.0, false, true)?;
         if self.size < 2 * self.layers + 3 || self.size > 2001 {
@@ -118,7 +119,36 @@ impl SwegleConfig {
                 self.form.name()
             )));
         }
-        self.form.check_shape(self.shape)
+        self.form.check_shape(self.shape)?;
+        // resources, before anything is allocated (crate::budget)
+        let particles = (self.size * self.size) as f64;
+        let r = self.kernel.zeta() * self.h_over_dx;
+        let neighbours = PI * r * r + 1.0;
+        let stencils = if matches!(self.form, FormKind::Lnl | FormKind::Cll) {
+            2.0
+        } else {
+            1.0
+        };
+        // stencil entries (index, offset, gradient: 40 B) with a quarter spare, and ~50 f64 of
+        // state, integrator copies and diagnostics per particle
+        let bytes = particles * (neighbours * 40.0 * stencils * 1.25 + 400.0);
+        crate::budget::check_memory(
+            "--size/--h",
+            &format!(
+                "the Swegle box ({} × {} particles, ~{neighbours:.0} neighbours each)",
+                self.size, self.size
+            ),
+            bytes,
+        )?;
+        let steps = (self.t_end / (self.cfl * self.dx / self.sound_speed())).ceil();
+        crate::budget::check_steps(
+            "--t-end/--cfl/--size",
+            &format!(
+                "the Swegle run ({} time steps)",
+                crate::budget::fmt_count(steps)
+            ),
+            particles * steps,
+        )
     }
 
     fn params(&self) -> ModelParams2D {
@@ -289,6 +319,17 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
     } else {
         cfg.t_end
     };
+    if t_end > cfg.t_end {
+        let steps = (t_end / dt).ceil();
+        crate::budget::check_steps(
+            "--until-window/--density-ratio",
+            &format!(
+                "running until the predicted mode (growth {box_rate:.3e} c/Δx) reaches the fit window ({} time steps)",
+                crate::budget::fmt_count(steps)
+            ),
+            (cfg.size * cfg.size) as f64 * steps,
+        )?;
+    }
     let steps = (t_end / dt).ceil() as usize;
     let mut t = vec![0.0];
     let mut y = vec![run.max_free_speed().max(cfg.kick)];

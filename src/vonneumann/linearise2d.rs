@@ -9,7 +9,7 @@
 
 use super::linearise::{check_rest, eigen, zero_sums};
 use crate::error::{Error, Result};
-use crate::forms::{Comp2, FieldKind, Material2D, Model2D, ModelParams2D, State2D};
+use crate::forms::{Comp2, FieldKind, FormKind, Material2D, Model2D, ModelParams2D, State2D};
 use crate::lattice::Lattice2D;
 use crate::scalar::{Dual, Scalar};
 use nalgebra::DMatrix;
@@ -58,6 +58,7 @@ impl Linearisation2D {
         let hmin = lat.area() / lat.a.iter().map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
         let range = (2.0 * p.kp.support() / (dx * hmin)).ceil() as usize + 2;
         let n = 2 * range + 1;
+        check_patch_budget(&p, lat, dx, n)?;
         let model = Model2D::periodic_patch(p, lat, dx, [n, n], rho, s0)?;
         let base = model.rest_state(rho);
         let comps = p.form.comps_2d(&p.material);
@@ -241,4 +242,28 @@ impl Linearisation2D {
     pub fn eigenvalues(&self, k: [f64; 2]) -> Result<Vec<Complex64>> {
         eigen(self.jacobian(k) * Complex64::new(self.time_scale, 0.0))
     }
+}
+
+/// Memory estimate of linearising on an n × n periodic patch, checked against the budget
+/// ([`crate::budget`]) before anything is allocated: every particle keeps a stencil of dual
+/// numbers per shape family (two for the mixed forms), ~πR²/A neighbours each (A the area per
+/// particle), with a quarter of spare capacity; plus the dual state and rate of every particle.
+pub fn check_patch_budget(p: &ModelParams2D, lat: &Lattice2D, dx: f64, n: usize) -> Result<()> {
+    let r = p.kp.support() / dx;
+    let particles = (n * n) as f64;
+    let neighbours = std::f64::consts::PI * r * r / lat.area() + 1.0;
+    let stencils = if matches!(p.form, FormKind::Lnl | FormKind::Cll) {
+        2.0
+    } else {
+        1.0
+    };
+    let entry = std::mem::size_of::<crate::forms::workspace::Nb2<Dual>>() as f64;
+    let bytes = particles * (neighbours * entry * stencils * 1.25 + 64.0 * 16.0);
+    crate::budget::check_memory(
+        "--h/--support",
+        &format!(
+            "the 2D linearisation ({n} × {n} periodic patch, ~{neighbours:.0} neighbours per particle)"
+        ),
+        bytes,
+    )
 }

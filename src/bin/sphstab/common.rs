@@ -45,40 +45,41 @@ pub struct Config {
     /// Monaghan artificial viscosity β (vanishes in the linearisation), ≥ 0.
     #[arg(long = "av-beta", allow_hyphen_values = true)]
     pub av_beta: Option<f64>,
-    /// Dimension: 1 (plane wave in a bar) or 2 (in-plane Bloch analysis of a lattice).
-    #[arg(long, default_value_t = 1)]
-    pub dim: u8,
-    /// 2D lattice: square or hex.
-    #[arg(long, default_value = "square")]
-    pub lattice: String,
-    /// 2D square lattice aspect ratio γ = Δy/Δx, in [0.1, 10].
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    pub gamma: f64,
+    /// Dimension: 1 (plane wave in a bar, default) or 2 (in-plane Bloch analysis of a lattice).
+    #[arg(long)]
+    pub dim: Option<u8>,
+    /// 2D lattice: square (default) or hex.
+    #[arg(long)]
+    pub lattice: Option<String>,
+    /// 2D square lattice aspect ratio γ = Δy/Δx, in [0.1, 10] (default 1; square lattice only).
+    #[arg(long, allow_hyphen_values = true)]
+    pub gamma: Option<f64>,
     /// 2D material: hydro (p = K(ρ/ρ0 − 1), G = 0, σ̄ = 1 − ρ/ρ0), elastic, or neo-hookean
-    /// (total-lagrangian only, unstressed reference).
-    #[arg(long, default_value = "elastic")]
-    pub material: String,
-    /// 2D elastic Poisson ratio ν (plane strain), in [−0.99, 0.5).
-    #[arg(long, default_value_t = 0.3, allow_hyphen_values = true)]
-    pub poisson: f64,
-    /// 2D elastic objective stress rate: jaumann or truesdell (the 1D law).
-    #[arg(long, default_value = "jaumann")]
-    pub rate: String,
+    /// (total-lagrangian only, unstressed reference). Default elastic.
+    #[arg(long)]
+    pub material: Option<String>,
+    /// 2D elastic Poisson ratio ν (plane strain), in [−0.99, 0.5) (default 0.3).
+    #[arg(long, allow_hyphen_values = true)]
+    pub poisson: Option<f64>,
+    /// 2D elastic objective stress rate: jaumann (default) or truesdell (the 1D law).
+    #[arg(long)]
+    pub rate: Option<String>,
     /// 2D classical/cll: Monaghan–Gray artificial stress ε (≥ 0; typical 0.2–0.3).
     #[arg(long = "art-eps", allow_hyphen_values = true)]
     pub art_eps: Option<f64>,
-    /// Artificial-stress exponent n of f = W(r)/W(Δx), in [1, 12].
-    #[arg(long = "art-n", default_value_t = 4)]
-    pub art_n: i32,
-    /// 2D: wave vectors per reciprocal direction (the zone is sampled grid × grid), in [2, 4096].
-    #[arg(long, default_value_t = 64)]
-    pub grid: usize,
+    /// Artificial-stress exponent n of f = W(r)/W(Δx), in [1, 12] (default 4; needs --art-eps).
+    #[arg(long = "art-n")]
+    pub art_n: Option<i32>,
+    /// 2D: wave vectors per reciprocal direction (the zone is sampled grid × grid), in
+    /// [2, 1024] (default 64).
+    #[arg(long)]
+    pub grid: Option<usize>,
 }
 
 impl Config {
     /// Whether this is a 2D question (`--dim 2`); any other value than 1 or 2 is an error.
     pub fn is_2d(&self) -> Result<bool> {
-        match self.dim {
+        match self.dim.unwrap_or(1) {
             1 => Ok(false),
             2 => Ok(true),
             d => Err(sphstab::error::Error::OutOfRange {
@@ -102,14 +103,45 @@ impl Config {
         q.c_partition = q1.c_partition;
         q.av = q1.av;
         q.dt = q1.dt;
-        q.grid = self.grid;
-        if let Some(eps) = self.art_eps {
-            sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
-            sphstab::error::check_range("--art-n", self.art_n as f64, 1.0, 12.0, true, true)?;
-            q.art_stress = Some((eps, self.art_n));
+        q.grid = self.grid.unwrap_or(64);
+        match (self.art_eps, self.art_n) {
+            (Some(eps), n) => {
+                let n = n.unwrap_or(4);
+                sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
+                sphstab::error::check_range("--art-n", n as f64, 1.0, 12.0, true, true)?;
+                q.art_stress = Some((eps, n));
+            }
+            (None, Some(_)) => {
+                return Err(crate::query::not_in(
+                    "--art-n",
+                    "no --art-eps (it is the exponent of the artificial stress)",
+                ));
+            }
+            (None, None) => {}
         }
-        q.lattice = sphstab::lattice::Lattice2D::by_name(&self.lattice, self.gamma)?;
-        let rate = match self.rate.as_str() {
+        let lattice = self.lattice.as_deref().unwrap_or("square");
+        if lattice != "square" && self.gamma.is_some() {
+            return Err(crate::query::not_in(
+                "--gamma",
+                "--lattice hex (the aspect ratio is for the square lattice)",
+            ));
+        }
+        q.lattice = sphstab::lattice::Lattice2D::by_name(lattice, self.gamma.unwrap_or(1.0))?;
+        let material = self.material.as_deref().unwrap_or("elastic");
+        if material == "hydro" && (self.poisson.is_some() || self.rate.is_some()) {
+            return Err(crate::query::not_in(
+                "--poisson/--rate",
+                "--material hydro (G = 0)",
+            ));
+        }
+        if material == "neo-hookean" && self.rate.is_some() {
+            return Err(crate::query::not_in(
+                "--rate",
+                "--material neo-hookean (a hyperelastic law has no stress rate)",
+            ));
+        }
+        let poisson = self.poisson.unwrap_or(0.3);
+        let rate = match self.rate.as_deref().unwrap_or("jaumann") {
             "jaumann" => ObjectiveRate::Jaumann,
             "truesdell" => ObjectiveRate::Truesdell,
             r => {
@@ -121,20 +153,15 @@ impl Config {
                 .into());
             }
         };
-        q.material = match self.material.as_str() {
+        q.material = match material {
             "hydro" => MaterialSpec::Hydro,
             "neo-hookean" => {
-                sphstab::error::check_range("--poisson", self.poisson, -0.99, 0.5, true, false)?;
-                MaterialSpec::NeoHookean {
-                    poisson: self.poisson,
-                }
+                sphstab::error::check_range("--poisson", poisson, -0.99, 0.5, true, false)?;
+                MaterialSpec::NeoHookean { poisson }
             }
             "elastic" => {
-                sphstab::error::check_range("--poisson", self.poisson, -0.99, 0.5, true, false)?;
-                MaterialSpec::Elastic {
-                    poisson: self.poisson,
-                    rate,
-                }
+                sphstab::error::check_range("--poisson", poisson, -0.99, 0.5, true, false)?;
+                MaterialSpec::Elastic { poisson, rate }
             }
             m => {
                 return Err(sphstab::error::Error::UnknownName {
@@ -150,8 +177,28 @@ impl Config {
     }
 
     /// Builds and validates the library query.
+    /// Errors for 2D-only flags given with `--dim 1`.
+    pub fn reject_2d_flags(&self) -> Result<()> {
+        let given = [
+            ("--lattice", self.lattice.is_some()),
+            ("--gamma", self.gamma.is_some()),
+            ("--material", self.material.is_some()),
+            ("--poisson", self.poisson.is_some()),
+            ("--rate", self.rate.is_some()),
+            ("--art-n", self.art_n.is_some()),
+            ("--grid", self.grid.is_some()),
+        ];
+        match given.iter().find(|(_, g)| *g) {
+            Some((flag, _)) => Err(crate::query::not_in(
+                flag,
+                "--dim 1 (it is a 2D flag; add --dim 2)",
+            )),
+            None => Ok(()),
+        }
+    }
+
     pub fn query(&self, points: usize) -> Result<Query1D> {
-        if self.art_eps.is_some() && self.dim == 1 {
+        if self.art_eps.is_some() && self.dim.unwrap_or(1) == 1 {
             return Err(sphstab::error::Error::Incompatible(
                 "--art-eps: artificial stress is implemented in 2D (--dim 2) only".into(),
             )
@@ -162,7 +209,24 @@ impl Config {
         let h = match (self.h, self.support) {
             (Some(h), _) => h,
             (None, Some(r)) => {
-                sphstab::error::check_range("--support", r, 0.0, f64::INFINITY, false, false)?;
+                let (lo, hi) = sphstab::analysis::H_RANGE;
+                sphstab::error::check_range(
+                    "--support",
+                    r,
+                    lo * k.zeta(),
+                    hi * k.zeta(),
+                    true,
+                    true,
+                )?;
+                if r <= 1.0 {
+                    return Err(sphstab::error::Error::OutOfRange {
+                        name: "--support",
+                        value: r,
+                        range: "the support R/Δx must exceed 1 so that particles have neighbours"
+                            .into(),
+                    }
+                    .into());
+                }
                 r / k.zeta()
             }
             (None, None) => 1.2,
@@ -181,4 +245,22 @@ impl Config {
         q.validate()?;
         Ok(q)
     }
+}
+
+/// Fails early (before a long run) when `path` cannot be written: a directory, a missing
+/// parent directory or no permission. A file created only for the check is removed again.
+pub fn check_writable(flag: &str, path: &std::path::Path) -> Result<()> {
+    if path.is_dir() {
+        anyhow::bail!("{flag}: {} is a directory, not a file", path.display());
+    }
+    let existed = path.exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map_err(|e| anyhow::anyhow!("{flag}: cannot write {}: {e}", path.display()))?;
+    if !existed {
+        let _ = std::fs::remove_file(path);
+    }
+    Ok(())
 }

@@ -20,9 +20,13 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if let Some(p) = &a.plot {
+        crate::common::check_writable("--plot", p)?;
+    }
     if a.cfg.is_2d()? {
         return run2d(a);
     }
+    a.cfg.reject_2d_flags()?;
     let q = a.cfg.query(a.points)?;
     let r = sphstab::analysis::dispersion(&q)?;
     if let Some(path) = &a.plot {
@@ -54,7 +58,7 @@ pub fn run(a: Args) -> Result<()> {
 fn run2d(a: Args) -> Result<()> {
     use sphstab::plot::{Curve, lines_svg};
     let q = a.cfg.query2d()?;
-    let r = sphstab::analysis2d::dispersion2d(&q, a.points.max(2))?;
+    let r = sphstab::analysis2d::dispersion2d(&q, a.points)?;
     if let Some(path) = &a.plot {
         let col = |i: usize, v: &Vec<[f64; 2]>| v.iter().map(|b| b[i]).collect::<Vec<_>>();
         let curves = [

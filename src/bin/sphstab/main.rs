@@ -28,6 +28,22 @@ use clap::{Parser, Subcommand};
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
+    /// Memory budget (bytes, or with K/M/G/T suffix): a run whose estimated memory exceeds it
+    /// is refused before it starts. Default: 2G, or a quarter of the machine's RAM if less.
+    #[arg(long = "max-memory", global = true, value_parser = sphstab::budget::parse_bytes)]
+    max_memory: Option<f64>,
+    /// Cap on particle-steps (particles × time steps) of one time integration (simulate,
+    /// swegle, throughput, tradeoff): longer runs are refused before they start. Default 5e7
+    /// (about a minute here).
+    #[arg(long = "max-steps", global = true, value_parser = parse_steps)]
+    max_steps: Option<f64>,
+}
+
+fn parse_steps(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 1.0 => Ok(v),
+        _ => Err(format!("`{s}` must be a number ≥ 1 (e.g. 1e9)")),
+    }
 }
 
 #[derive(Subcommand)]
@@ -82,6 +98,14 @@ fn main() {
             std::process::exit(2);
         }
     };
+    let mut budget = sphstab::budget::Budget::for_machine();
+    if let Some(m) = cli.max_memory {
+        budget.max_memory = m;
+    }
+    if let Some(n) = cli.max_steps {
+        budget.max_steps = n;
+    }
+    sphstab::budget::set(budget);
     let res = match cli.cmd {
         Cmd::Query(a) => query::run(a),
         Cmd::Dispersion(a) => dispersion::run(a),
@@ -100,6 +124,11 @@ fn main() {
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");
         eprintln!("error: {msg}");
-        std::process::exit(2);
+        // 3: the run itself blew up (a result, not bad input); 2: bad input or over budget
+        let diverged = matches!(
+            e.downcast_ref::<sphstab::error::Error>(),
+            Some(sphstab::error::Error::Diverged { .. })
+        );
+        std::process::exit(if diverged { 3 } else { 2 });
     }
 }

@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 pub struct Args {
     #[command(flatten)]
     cfg: Config,
-    /// Wave vectors per direction over [−π, π]² (n × n), in [2, 4096].
+    /// Wave vectors per direction over [−π, π]² (n × n), in [2, 1024].
     #[arg(long, default_value_t = 128)]
     n: usize,
     /// Print one JSON document (kx, ky, growth) instead of a summary.
@@ -20,17 +20,18 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let mut cfg = a.cfg.clone();
-    cfg.dim = 2;
-    let q = cfg.query2d()?;
-    if a.n < 2 || a.n > 4096 {
-        return Err(sphstab::error::Error::OutOfRange {
-            name: "--n",
-            value: a.n as f64,
-            range: "must be an integer in [2, 4096]".into(),
-        }
-        .into());
+    if a.cfg.dim.is_some_and(|d| d != 2) {
+        return Err(crate::query::not_in(
+            "--dim other than 2",
+            "map (the map is over the 2D zone; omit --dim)",
+        ));
     }
+    if let Some(p) = &a.plot {
+        crate::common::check_writable("--plot", p)?;
+    }
+    let mut cfg = a.cfg.clone();
+    cfg.dim = Some(2);
+    let q = cfg.query2d()?;
     let t = std::time::Instant::now();
     let m = sphstab::analysis2d::growth_map(&q, a.n)?;
     let secs = t.elapsed().as_secs_f64();

@@ -8,23 +8,33 @@ use anyhow::Result;
 pub struct Args {
     #[command(flatten)]
     cfg: Config,
-    /// Number of κ points in (0, π].
-    #[arg(long, default_value_t = 512)]
-    points: usize,
+    /// 1D: number of κ points in (0, π], in [2, 10000000] (default 512).
+    #[arg(long)]
+    points: Option<usize>,
     /// Print one JSON document instead of a table.
     #[arg(long)]
     json: bool,
     /// 2D: also predict the growth a box of N × N free particles between fixed layers can show
-    /// (standing modes k = (mπ/(N+1), lπ/(N+1))), N in [1, 10000].
+    /// (standing modes k = (mπ/(N+1), lπ/(N+1))), N in [1, 1000].
     #[arg(long = "box")]
     box_free: Option<usize>,
 }
 
 pub fn run(a: Args) -> Result<()> {
     if a.cfg.is_2d()? {
+        if a.points.is_some() {
+            return Err(not_in(
+                "--points",
+                "--dim 2 (use --grid for the zone sampling)",
+            ));
+        }
         return run2d(a);
     }
-    let q = a.cfg.query(a.points)?;
+    a.cfg.reject_2d_flags()?;
+    if a.box_free.is_some() {
+        return Err(not_in("--box", "--dim 1 (it predicts a 2D box)"));
+    }
+    let q = a.cfg.query(a.points.unwrap_or(512))?;
     let r = sphstab::analysis::query(&q)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
@@ -75,20 +85,15 @@ pub fn run(a: Args) -> Result<()> {
 
 fn run2d(a: Args) -> Result<()> {
     let q = a.cfg.query2d()?;
+    if let Some(n) = a.box_free {
+        sphstab::analysis2d::check_count("--box", n, 1, sphstab::analysis2d::MAX_BOX)?;
+    }
     let r = sphstab::analysis2d::query2d(&q)?;
     let boxp = match a.box_free {
-        Some(n) if (1..=10_000).contains(&n) => Some(sphstab::analysis2d::box_prediction(
+        Some(n) => Some(sphstab::analysis2d::box_prediction(
             &q.linearise_at(q.stress)?,
             n,
         )?),
-        Some(n) => {
-            return Err(sphstab::error::Error::OutOfRange {
-                name: "--box",
-                value: n as f64,
-                range: "must be an integer in [1, 10000]".into(),
-            }
-            .into());
-        }
         None => None,
     };
     if a.json {
@@ -160,4 +165,9 @@ fn run2d(a: Args) -> Result<()> {
         println!("at Δt = {dt} Δx/c: max |λ| = {m:.9}");
     }
     Ok(())
+}
+
+/// The error for a flag that does not apply here.
+pub fn not_in(flag: &str, context: &str) -> anyhow::Error {
+    sphstab::error::Error::Incompatible(format!("{flag} does not apply with {context}")).into()
 }

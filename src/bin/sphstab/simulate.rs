@@ -47,6 +47,12 @@ pub fn run(a: Args) -> Result<()> {
         return crate::swegle::run(parsed);
     }
     if a.scene == "thesis-wave" {
+        if a.t_end.is_some() || a.out.is_some() {
+            return Err(crate::query::not_in(
+                "--t-end/--out",
+                "the thesis-wave scene (its four runs end when the pulse has crossed the interface)",
+            ));
+        }
         let form = sphstab::forms::FormKind::by_name(a.form.as_deref().unwrap_or("nonlocal"))?;
         let k = sphstab::kernel::by_name("m4")?;
         let mut rows = Vec::new();
@@ -76,12 +82,15 @@ pub fn run(a: Args) -> Result<()> {
         return Ok(());
     }
     let mut scene = if a.scene.ends_with(".json") || std::path::Path::new(&a.scene).exists() {
-        let text = std::fs::read_to_string(&a.scene)
-            .with_context(|| format!("cannot read scene {}", a.scene))?;
-        parse(&a.scene, &text)?
+        parse(&a.scene, &read_scene(&a.scene)?)?
     } else {
         builtin(&a.scene)?
     };
+    if let Some(dir) = &a.out {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("--out: cannot create {}", dir.display()))?;
+        crate::common::check_writable("--out", &dir.join("history.csv"))?;
+    }
     if let Some(f) = a.form {
         scene.form = f;
     }
@@ -114,7 +123,7 @@ pub fn run(a: Args) -> Result<()> {
         return Ok(());
     }
     println!(
-        "{} / {}: t = {:.4e} s in {} steps ({:.2} s); max |v| {:.4e}; velocity L2 error vs analytic: {}{}",
+        "{} / {}: t = {:.4e} s in {} steps ({:.2} s); max |v| {:.4e}; velocity L2 error vs analytic: {}",
         r.name,
         r.form,
         r.t,
@@ -124,7 +133,23 @@ pub fn run(a: Args) -> Result<()> {
         r.velocity_error_l2
             .map(|e| format!("{e:.4e}"))
             .unwrap_or("n/a".into()),
-        if r.diverged { " — DIVERGED" } else { "" }
     );
     Ok(())
+}
+
+/// Largest scene file read (a scene is a few hundred bytes; this stops an endless device).
+const MAX_SCENE_BYTES: u64 = 1 << 20;
+
+/// Reads a scene file of at most [`MAX_SCENE_BYTES`].
+fn read_scene(path: &str) -> Result<String> {
+    use std::io::Read;
+    let f = std::fs::File::open(path).with_context(|| format!("cannot read scene {path}"))?;
+    let mut buf = Vec::new();
+    f.take(MAX_SCENE_BYTES + 1)
+        .read_to_end(&mut buf)
+        .with_context(|| format!("cannot read scene {path}"))?;
+    if buf.len() as u64 > MAX_SCENE_BYTES {
+        anyhow::bail!("scene {path}: larger than 1 MiB, not a scene file");
+    }
+    String::from_utf8(buf).map_err(|_| anyhow::anyhow!("scene {path}: not UTF-8 text"))
 }

@@ -17,6 +17,12 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if a.cfg.dt.is_some() {
+        return Err(crate::query::not_in(
+            "--dt",
+            "timestep (it computes the critical Δt; check a given Δt with `query --dt`)",
+        ));
+    }
     if a.cfg.is_2d()? {
         let q = a.cfg.query2d()?;
         let lin = q.linearise_at(q.stress)?;
@@ -52,6 +58,7 @@ pub fn run(a: Args) -> Result<()> {
         }
         return Ok(());
     }
+    a.cfg.reject_2d_flags()?;
     let q = a.cfg.query(a.points)?;
     let r = sphstab::analysis::timestep(&q)?;
     if a.json {
