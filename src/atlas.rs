@@ -150,6 +150,24 @@ pub fn grid(cfg: &AtlasConfig) -> Result<Vec<CellSpec>> {
             lo + (hi - lo) * i as f64 / (n - 1) as f64
         }
     };
+    // resources before the grid is built (crate::budget): the cell list, results and their
+    // JSON text (~400 B per cell), and the κ-evaluations, which cost ~0.3 µs each on 2 threads
+    // (66 s for the full 450,560 × 512 atlas) and are checked against 10 × --max-steps
+    let cells = (forms.len() * kernels.len()) as f64 * (cfg.h_points * cfg.stress_points) as f64;
+    crate::budget::check_memory(
+        "--h-points/--stress-points",
+        &format!("the atlas ({} cells)", crate::budget::fmt_count(cells)),
+        cells * 400.0 + 64.0 * cfg.kappas as f64 * 16.0,
+    )?;
+    let evals = cells * cfg.kappas as f64;
+    let b = crate::budget::current();
+    b.work(
+        "--h-points/--stress-points/--kappas",
+        &format!("the atlas ({} cells)", crate::budget::fmt_count(cells)),
+        evals,
+        "κ-evaluations",
+        10.0 * b.max_steps,
+    )?;
     let mut out = Vec::new();
     for &f in &forms {
         for &k in &kernels {

@@ -9,7 +9,8 @@
 //! memory [`DEFAULT_MAX_MEMORY`] (2 GiB, or a quarter of the machine's RAM if that is less —
 //! see [`Budget::for_machine`]), time integration [`DEFAULT_MAX_STEPS`] particle-steps
 //! (particles × time steps; the 2D solver does ~1e6 particle-steps per second per core here,
-//! so the default is of the order of a minute).
+//! so the default is of the order of a minute). The atlas counts κ-evaluations (cells × κ
+//! points, ~0.3 µs each) against 10 × `--max-steps`.
 //!
 //! Estimates are deliberately simple upper-bound-like formulas (documented where they are
 //! computed); they only have to be right within a small factor to keep a run inside the
@@ -88,14 +89,32 @@ impl Budget {
 
     /// Refuses an estimated number of particle-steps above the budget.
     pub fn steps(&self, flags: &'static str, what: &str, particle_steps: f64) -> Result<()> {
-        if particle_steps.is_finite() && particle_steps <= self.max_steps {
+        self.work(
+            flags,
+            what,
+            particle_steps,
+            "particle-steps",
+            self.max_steps,
+        )
+    }
+
+    /// Refuses `amount` units of work above `limit` (derived from `--max-steps`).
+    pub fn work(
+        &self,
+        flags: &'static str,
+        what: &str,
+        amount: f64,
+        unit: &str,
+        limit: f64,
+    ) -> Result<()> {
+        if amount.is_finite() && amount <= limit {
             return Ok(());
         }
         Err(Error::Budget {
             flags,
             what: what.to_string(),
-            estimate: format!("{} particle-steps", fmt_count(particle_steps)),
-            limit: format!("{} (--max-steps)", fmt_count(self.max_steps)),
+            estimate: format!("{} {unit}", fmt_count(amount)),
+            limit: format!("{} {unit} (--max-steps)", fmt_count(limit)),
         })
     }
 }

@@ -20,7 +20,7 @@ use serde::Deserialize;
 use std::f64::consts::PI;
 
 /// How a series is computed.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, serde::Serialize, PartialEq, Eq)]
 #[serde(rename_all = "kebab-case")]
 pub enum Route {
     /// The numeric von Neumann engine (the form's rate function, linearised).
@@ -164,13 +164,16 @@ impl Series {
         }
         let label = self.label.clone().unwrap_or_else(|| {
             format!(
-                "{} {} {} R={}Δx σ̄={} [{:?}]",
+                "{} {} {} R={}Δx σ̄={} [{}]",
                 q.form.name(),
                 q.kernel.name(),
                 q.shape.name(),
                 r,
                 s,
-                self.route
+                serde_json::to_value(self.route)
+                    .ok()
+                    .and_then(|v| v.as_str().map(str::to_string))
+                    .unwrap_or_default()
             )
         });
         Ok(Curve {
@@ -184,10 +187,54 @@ impl Series {
 
 /// Parses a figure config; `file` names it in errors (unknown fields are rejected by name).
 pub fn parse(file: &str, text: &str) -> Result<FigureConfig> {
-    serde_json::from_str(text).map_err(|e| Error::Config {
+    let cfg: FigureConfig = serde_json::from_str(text).map_err(|e| Error::Config {
         file: file.to_string(),
         msg: e.to_string(),
-    })
+    })?;
+    cfg.validate().map_err(|msg| Error::Config {
+        file: file.to_string(),
+        msg,
+    })?;
+    Ok(cfg)
+}
+
+impl FigureConfig {
+    /// The fields serde cannot check: a plain `.svg` file name (no directory, no `..`: figures
+    /// go into the output directory), 1–64 series, 2–100000 points, an increasing finite
+    /// `y_range`.
+    pub fn validate(&self) -> std::result::Result<(), String> {
+        let o = &self.output;
+        if o.is_empty()
+            || o.contains('/')
+            || o.contains('\\')
+            || o.contains("..")
+            || !o.ends_with(".svg")
+        {
+            return Err(format!(
+                "`output` = {o:?} must be a plain file name ending in .svg (no directory, no ..)"
+            ));
+        }
+        if self.series.is_empty() || self.series.len() > 64 {
+            return Err(format!(
+                "`series` has {} entries: give 1 to 64 curves",
+                self.series.len()
+            ));
+        }
+        if !(2..=100_000).contains(&self.points) {
+            return Err(format!(
+                "`points` = {} must be an integer in [2, 100000]",
+                self.points
+            ));
+        }
+        if let Some((lo, hi)) = self.y_range
+            && !(lo.is_finite() && hi.is_finite() && lo < hi)
+        {
+            return Err(format!(
+                "`y_range` = [{lo}, {hi}] must be two finite numbers, the smaller first"
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// Renders a figure to an SVG string.

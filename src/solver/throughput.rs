@@ -97,6 +97,20 @@ impl ThroughputConfig {
         }
         self.form.check_shape(self.shape)?;
         check_range("--h", self.h_over_dx, 0.0, 10.0, false, true)?;
+        // the same checks as every other command (support must reach the neighbours, …)
+        crate::analysis::check_common_named(
+            &crate::analysis::ParamNames {
+                av_alpha: "--av",
+                av_beta: "--av",
+                ..crate::analysis::ParamNames::CLI
+            },
+            self.kernel,
+            self.h_over_dx,
+            0.0,
+            0.5,
+            self.av,
+            None,
+        )?;
         if let BlockMaterial::Elastic { poisson, .. } = self.material {
             check_range("--poisson", poisson, -0.99, 0.5, true, false)?;
         }
@@ -373,6 +387,35 @@ pub fn run_throughput(
             "--sizes: give at least one size".into(),
         ));
     }
+    // resources of the largest block and of all runs together (crate::budget): stencil
+    // entries of 40 B with a quarter spare and ~400 B of state per particle (1,439 B measured
+    // at 20.8 neighbours, README), and 1 warm-up + steps × repeats steps per size
+    let r = cfg.kernel.zeta() * cfg.h_over_dx;
+    let neighbours = std::f64::consts::PI * r * r + 1.0;
+    let stencils = if matches!(cfg.form, FormKind::Lnl | FormKind::Cll) {
+        2.0
+    } else {
+        1.0
+    };
+    for &n in sizes {
+        check_size("--size", n)?;
+    }
+    let largest = sizes.iter().copied().max().unwrap_or(0) as f64;
+    crate::budget::check_memory(
+        "--size/--sizes",
+        &format!("the {largest} × {largest} block (~{neighbours:.0} neighbours per particle)"),
+        largest * largest * (neighbours * 50.0 * stencils + 400.0),
+    )?;
+    let steps = (1 + cfg.steps * cfg.repeats) as f64;
+    let particle_steps: f64 = sizes.iter().map(|&n| (n * n) as f64 * steps).sum();
+    crate::budget::check_steps(
+        "--steps/--repeats/--size",
+        &format!(
+            "timing the blocks ({} steps per size)",
+            crate::budget::fmt_count(steps)
+        ),
+        particle_steps,
+    )?;
     for &s in sizes {
         check_size(if sizes.len() > 1 { "--sizes" } else { "--size" }, s)?;
     }

@@ -25,15 +25,15 @@ pub struct Args {
     /// square or hex (stress-hex needs hex).
     #[arg(long, default_value = "square")]
     lattice: String,
-    /// Square-lattice aspect ratio γ.
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    gamma: f64,
+    /// Square-lattice aspect ratio γ = Δy/Δx, in [0.1, 10] (default 1; square lattice only).
+    #[arg(long, allow_hyphen_values = true)]
+    gamma: Option<f64>,
     /// Also print ωΔx/c along this direction θ (degrees) for κΔx ∈ (0, κ_cut].
     #[arg(long, allow_hyphen_values = true)]
     theta: Option<f64>,
-    /// Points along θ.
-    #[arg(long, default_value_t = 32)]
-    points: usize,
+    /// Points along θ, in [2, 1000000] (default 32; needs --theta).
+    #[arg(long)]
+    points: Option<usize>,
     /// Use the consistent mass (default lumped, as Table I / eq 119).
     #[arg(long)]
     consistent: bool,
@@ -45,7 +45,23 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let k = sphstab::kernel::by_name(&a.kernel)?;
     sphstab::error::check_range("--support", a.support, 0.0, 50.0, false, true)?;
-    let lat = Lattice2D::by_name(&a.lattice, a.gamma)?;
+    if a.lattice != "square" && a.gamma.is_some() {
+        return Err(crate::query::not_in(
+            "--gamma",
+            "--lattice hex (the aspect ratio is for the square lattice)",
+        ));
+    }
+    let points = match (a.points, a.theta) {
+        (Some(_), None) => {
+            return Err(crate::query::not_in(
+                "--points",
+                "no --theta (it is the number of points along θ)",
+            ));
+        }
+        (p, _) => p.unwrap_or(32),
+    };
+    sphstab::analysis2d::check_count("--points", points, 2, 1_000_000)?;
+    let lat = Lattice2D::by_name(&a.lattice, a.gamma.unwrap_or(1.0))?;
     let q = Quadrature::by_name(&a.quadrature)?;
     let fam = ShapeFamily::by_name(&a.shape)?;
     let ap = AntiPlane::new(
@@ -56,7 +72,20 @@ pub fn run(a: Args) -> Result<()> {
             kernel: k,
             h: a.support / k.zeta(),
         },
-    )?;
+    )
+    .map_err(|e| match e {
+        sphstab::error::Error::SingularMoment { what, .. } => {
+            sphstab::error::Error::OutOfRange {
+                name: "--support",
+                value: a.support,
+                range: format!(
+                    "the {what} is singular: the support covers too few neighbours for --shape {}; use a larger --support (Table I uses 2)",
+                    a.shape
+                ),
+            }
+        }
+        e => e,
+    })?;
     let mass = if a.consistent {
         Mass::Consistent
     } else {
@@ -69,8 +98,8 @@ pub fn run(a: Args) -> Result<()> {
         let (c, s) = (t.cos(), t.sin());
         // cut-off: the first-zone boundary along θ
         let kcut = lat.zone_boundary(t);
-        for i in 1..=a.points.max(2) {
-            let kap = kcut * i as f64 / a.points.max(2) as f64;
+        for i in 1..=points {
+            let kap = kcut * i as f64 / points as f64;
             let w2 = ap.omega2([kap * c, kap * s], mass)?;
             disp.push((
                 kap,
