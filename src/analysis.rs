@@ -361,6 +361,7 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
     } else {
         None
     };
+    let scale = w2.iter().fold(0.0f64, |m, &x| m.max(x.abs()));
     for r in runs_g {
         let b = branch(Kind::Material, &kappas, &g, r);
         let kind = if cbar <= 0.0 {
@@ -368,22 +369,41 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
         } else if let Some(l0) = &lin0 {
             let g0 = l0.growth(b.kappa_at_max)?;
             if g0 > GROWTH_TOL {
-                Kind::RankDeficiency
+                Kind::Indefinite
             } else if q.stress > 0.0 {
                 Kind::Tensile
             } else {
                 Kind::Compressive
             }
         } else {
-            Kind::RankDeficiency
+            Kind::Indefinite
         };
-        inst.push(Instability { kind, ..b });
+        // a pole: ω² changes sign between neighbours through ±∞ (both sides large), not
+        // through 0; the first one at or before the branch
+        let pole_at = (r.0.max(1)..=r.1).find_map(|i| {
+            let (a, b) = (w2[i - 1], w2[i]);
+            (a.signum() != b.signum() && a.abs().min(b.abs()) > 0.05 * scale)
+                .then(|| 0.5 * (kappas[i - 1] + kappas[i]))
+        });
+        inst.push(Instability { kind, pole_at, ..b });
     }
-    let scale = w2.iter().fold(0.0f64, |m, &x| m.max(x.abs()));
+    // cbar ≤ 0 with nothing growing (C̄ = 0: ω ≡ 0 in the continuum): still material
+    if cbar <= 0.0 && !inst.iter().any(|i| i.kind == Kind::Material) {
+        inst.push(branch(
+            Kind::Material,
+            &kappas,
+            &vec![0.0; kappas.len()],
+            (0, kappas.len() - 1),
+        ));
+    }
     let zero: Vec<bool> = w2
         .iter()
         .zip(&growing)
-        .map(|(&o, &gr)| !gr && o.abs() <= ZERO_OMEGA2_TOL * scale.max(1e-300))
+        .zip(&kappas)
+        .map(|((&o, &gr), &k)| {
+            !gr && o.abs() <= ZERO_OMEGA2_TOL * scale.max(1e-300)
+                && o.abs() <= ZERO_OMEGA2_TOL.sqrt() * cbar.abs().max(1e-3) * k * k
+        })
         .collect();
     let zero_runs = runs(&zero);
     let has_zero = !zero_runs.is_empty();
@@ -417,16 +437,19 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
             inst.push(branch(Kind::TimeStep, &kappas, &rate, r));
         }
     }
+    // the largest growth over every row, time-step rows (growth per unit time ln|λ|/Δt) included,
+    // so that the verdict line and the JSON agree with the rows
     let (mut gmax, mut kmax) = (0.0, None);
-    for (&gi, &k) in g.iter().zip(&kappas) {
-        if gi > GROWTH_TOL && gi > gmax {
-            gmax = gi;
-            kmax = Some(k);
+    for i in &inst {
+        if i.growth_rate > GROWTH_TOL && i.growth_rate > gmax {
+            gmax = i.growth_rate;
+            kmax = Some(i.kappa_at_max);
         }
     }
+    let material = cbar <= 0.0;
     Ok(QueryReport {
         header: Header::of(q),
-        stable: semi_stable && !ts_unstable,
+        stable: semi_stable && !ts_unstable && !material,
         max_growth_rate: gmax,
         kappa_at_max: kmax,
         instabilities: inst,

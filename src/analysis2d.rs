@@ -350,11 +350,11 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
         let kind = if cp <= 0.0 || cs < 0.0 {
             Kind::Material
         } else if q.stress == 0.0 {
-            Kind::RankDeficiency
+            Kind::Indefinite
         } else {
             let l0 = q.linearise_at(0.0)?;
             if l0.growth(ks[imax])?.0 > GROWTH_TOL {
-                Kind::RankDeficiency
+                Kind::Indefinite
             } else if q.stress > 0.0 {
                 Kind::Tensile
             } else {
@@ -613,4 +613,20 @@ pub fn box_prediction(lin: &Linearisation2D, n_free: usize) -> Result<(f64, [f64
         }
     }
     Ok(best)
+}
+
+impl std::fmt::Display for MaterialSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            MaterialSpec::Hydro => write!(f, "hydro"),
+            MaterialSpec::NeoHookean { poisson } => write!(f, "neo-hookean ν = {poisson}"),
+            MaterialSpec::Elastic { poisson, rate } => {
+                let r = match rate {
+                    ObjectiveRate::Jaumann => "jaumann",
+                    ObjectiveRate::Truesdell => "truesdell",
+                };
+                write!(f, "elastic ν = {poisson}, {r} rate")
+            }
+        }
+    }
 }

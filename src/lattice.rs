@@ -175,6 +175,16 @@ impl Lattice2D {
     }
 }
 
+impl std::fmt::Display for LatticeKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LatticeKind::Square { gamma } if *gamma == 1.0 => write!(f, "square lattice"),
+            LatticeKind::Square { gamma } => write!(f, "square lattice γ = {gamma}"),
+            LatticeKind::Hexagonal => write!(f, "hexagonal lattice"),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -89,8 +89,13 @@ pub fn box_growth(run: &Run2D) -> Result<(f64, usize)> {
             "box operator eigenvalues (no convergence)",
         ))?
         .complex_eigenvalues();
+    // eigenvalues within ZERO_OMEGA2_TOL of zero (relative to the largest) are zero-energy
+    // modes or round-off of the non-symmetric Schur decomposition: no exponential growth
+    let scale = ev.iter().map(|w| w.norm()).fold(0.0, f64::max);
+    let tol = crate::vonneumann::classify::ZERO_OMEGA2_TOL * scale;
     let g = ev
         .iter()
+        .filter(|w| w.norm() > tol)
         .map(|&w2: &Complex64| (-w2).sqrt().re.abs())
         .fold(0.0, f64::max);
     Ok((g, nx))

@@ -305,7 +305,7 @@ impl Scene1D {
         let neighbours = 2.0 * k.zeta() * self.h_over_dx + 1.0;
         let steps = (self.t_end / (self.cfl * dx / c)).ceil();
         crate::budget::check_steps(
-            "t_end/cfl/particles",
+            "t_end, cfl, length/particles, modulus/rho0 (steps = t_end c/(cfl Δx))",
             &format!("the scene ({} time steps)", crate::budget::fmt_count(steps)),
             n * steps,
         )?;

@@ -416,8 +416,13 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         predicted_growth_rate_box: box_rate,
         box_method: method,
         predicted_growth_rate_infinite: inf,
-        ratio_box: measured.map(|m| m / box_rate),
-        ratio_infinite: measured.map(|m| m / inf),
+        // a ratio only means something when the prediction is growth (above GROWTH_TOL)
+        ratio_box: measured
+            .filter(|_| box_rate > crate::vonneumann::classify::GROWTH_TOL)
+            .map(|m| m / box_rate),
+        ratio_infinite: measured
+            .filter(|_| inf > crate::vonneumann::classify::GROWTH_TOL)
+            .map(|m| m / inf),
         fit,
         max_velocity_end: *y.last().unwrap_or(&0.0),
         grew: vmax_ever > 2.0 * cfg.kick,

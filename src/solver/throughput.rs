@@ -398,7 +398,7 @@ pub fn run_throughput(
         1.0
     };
     for &n in sizes {
-        check_size("--size", n)?;
+        check_size(if sizes.len() > 1 { "--sizes" } else { "--size" }, n)?;
     }
     let largest = sizes.iter().copied().max().unwrap_or(0) as f64;
     crate::budget::check_memory(

@@ -4,8 +4,13 @@
 //! |---|---|
 //! | `material` | C̄ = C + σ ≤ 0: the continuum itself is unstable (\[B00\] eq 33) |
 //! | `tensile` / `compressive` | growth (ω² < 0) with C̄ > 0 that disappears when the pre-stress is set to zero |
-//! | `rank-deficiency` | ω = 0 at κ ≠ 0 (zero-energy / hourglass mode, secular growth), or growth that persists at zero stress (the discrete operator itself is indefinite) |
+//! | `rank-deficiency` | ω = 0 at κ ≠ 0 (zero-energy / hourglass mode, secular growth, growth rate 0); never a growing branch |
+//! | `indefinite` | growth that persists at zero stress: the discrete operator itself (stiffness, or the stabilised mass of least squares) is indefinite; where ω² changes sign through ±∞ between two grid points the mass symbol vanished there, reported as `pole_at` |
 //! | `time-step` | semi-discrete stable but the leapfrog amplification |λ| > 1 |
+//!
+//! A zero-energy mode needs ω² ≈ 0 relative to max|ω²| *and* relative to the long-wave
+//! acoustic value C̄κ² at that κ, so that the acoustic zero at κ → 0 of a fine grid is not
+//! reported as one.
 
 use serde::Serialize;
 
@@ -18,8 +23,10 @@ pub const ZERO_OMEGA2_TOL: f64 = 1e-10;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Kind {
-    /// Zero-energy (hourglass) mode or a stress-independent indefinite operator.
+    /// Zero-energy (hourglass) mode: ω = 0 at κ ≠ 0 (no exponential growth).
     RankDeficiency,
+    /// Growth without stress: the discrete operator itself is indefinite.
+    Indefinite,
     /// Stress–kernel interaction in tension.
     Tensile,
     /// Stress–kernel interaction in compression.
@@ -43,6 +50,9 @@ pub struct Instability {
     pub growth_rate: f64,
     /// κΔx where the growth rate is largest.
     pub kappa_at_max: f64,
+    /// κΔx where ω² passes through ±∞ (a vanishing mass symbol), if it does on this branch.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pole_at: Option<f64>,
 }
 
 /// Contiguous runs of `true` in `flags`, as index ranges.
@@ -80,5 +90,6 @@ pub fn branch(kind: Kind, kappas: &[f64], rate: &[f64], (a, b): (usize, usize)) 
         kappa_max: kappas[b],
         growth_rate: g,
         kappa_at_max: km,
+        pole_at: None,
     }
 }

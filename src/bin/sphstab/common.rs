@@ -16,10 +16,11 @@ pub struct Config {
     /// Kernel: m4 m5 m6 wendland-c2 wendland-c4 wendland-c6 gaussian lucy efg-cubic efg-quartic mollifier.
     #[arg(long, default_value = "m4")]
     pub kernel: String,
-    /// Smoothing length h/Δx in the kernel's own convention (default 1.2 unless --support is given).
+    /// Smoothing length h/Δx in the kernel's own convention, in [0.05, 50] with support ζh > Δx
+    /// (default 1.2 unless --support is given).
     #[arg(long, conflicts_with = "support", allow_hyphen_values = true)]
     pub h: Option<f64>,
-    /// Support radius R/Δx = ζ h/Δx (Belytschko's dilation D_mx); alternative to --h.
+    /// Support radius R/Δx = ζ h/Δx (Belytschko's dilation D_mx), > 1; alternative to --h.
     #[arg(long, allow_hyphen_values = true)]
     pub support: Option<f64>,
     /// Shape family: sph, shepard, mls, corrected. Default: sph for classical/nonlocal/lnl/cll,

@@ -114,9 +114,18 @@ fn run2d(a: Args) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
+    let path: Vec<String> = r
+        .labels
+        .iter()
+        .map(|(l, s)| format!("{l} (s = {s:.4})"))
+        .collect();
     println!(
-        "# {} / {} h/Δx {} σ̄ {} — path {:?}",
-        r.form, r.kernel, r.h_over_dx, r.stress, r.labels
+        "# {} / {} h/Δx {} σ̄ {} — path {}",
+        r.form,
+        r.kernel,
+        r.h_over_dx,
+        r.stress,
+        path.join(" – ")
     );
     println!(
         "{:>8} {:>10} {:>10} {:>14} {:>14} {:>12}",
@@ -128,9 +137,14 @@ fn run2d(a: Args) -> Result<()> {
             r.path[i],
             r.kappa[i][0] / std::f64::consts::PI,
             r.kappa[i][1] / std::f64::consts::PI,
-            r.omega2[i][0],
-            r.omega2[i][1],
-            r.growth_rate[i]
+            r.omega2[i][0] + 0.0,
+            r.omega2[i][1] + 0.0,
+            // below the growth tolerance is not growth (eigenvalue round-off)
+            if r.growth_rate[i] > sphstab::vonneumann::classify::GROWTH_TOL {
+                r.growth_rate[i]
+            } else {
+                0.0
+            }
         );
     }
     Ok(())

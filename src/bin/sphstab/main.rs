@@ -22,9 +22,11 @@ use clap::{Parser, Subcommand};
 /// Stability of SPH forms, kernels, smoothing lengths, stress states and time steps.
 ///
 /// Units: lengths in Δx, wave numbers as κΔx ∈ (0, π], frequencies and growth rates in c/Δx,
-/// time steps in Δx/c, stress σ̄ = σ/C (positive in tension). Bad input exits with status 2.
+/// time steps in Δx/c, stress σ̄ = σ/C (positive in tension). Bad input, or a run whose
+/// estimated memory or particle-steps exceed --max-memory / --max-steps, exits with status 2
+/// before it starts; a time integration that diverges stops with status 3.
 #[derive(Parser)]
-#[command(name = "sphstab", version, about, long_about = None)]
+#[command(name = "sphstab", version, about)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
@@ -48,7 +50,7 @@ fn parse_steps(s: &str) -> Result<f64, String> {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Is this configuration stable? Names and classifies every instability.
+    /// Is this configuration stable? Names and classifies every instability (growth rates in c/Δx).
     Query(query::Args),
     /// Dispersion curve ω²(κ) of the mechanical branch, with the continuum overlaid.
     Dispersion(dispersion::Args),

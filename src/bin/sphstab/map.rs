@@ -41,11 +41,14 @@ pub fn run(a: Args) -> Result<()> {
         let ys: Vec<f64> = m.ky.iter().map(|k| k / pi).collect();
         let svg = sphstab::plot::heatmap_svg(
             &format!(
-                "growth rate (c/Δx): {} / {} h = {}Δx, σ̄ = {}",
+                "growth rate (c/Δx): {} / {} h = {}Δx, σ̄ = {}; max {:.4} on this {}×{} grid",
                 q.form.name(),
                 q.kernel.name(),
                 q.h_over_dx,
-                q.stress
+                q.stress,
+                m.growth.iter().flatten().fold(0.0f64, |x, &y| x.max(y)),
+                a.n,
+                a.n
             ),
             "κxΔx / π",
             "κyΔx / π",
@@ -62,7 +65,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     let gmax = m.growth.iter().flatten().fold(0.0f64, |x, &y| x.max(y));
     println!(
-        "{}×{} wave vectors in {:.3} s; max growth rate {:.6} c/Δx",
+        "{}×{} wave vectors (cell centres of [−π, π]², not the first-zone grid of `query --dim 2`, so maxima differ by the resolution) in {:.3} s; max growth rate {:.6} c/Δx",
         a.n, a.n, secs, gmax
     );
     Ok(())

@@ -44,11 +44,29 @@ pub fn run(a: Args) -> Result<()> {
     if r.stable {
         println!("verdict: STABLE (no exponentially growing mode)");
     } else {
-        println!(
-            "verdict: UNSTABLE — max growth rate {:.6} c/Δx at κΔx = {:.4}π",
-            r.max_growth_rate,
-            r.kappa_at_max.unwrap_or(0.0) / std::f64::consts::PI
-        );
+        let kinds: Vec<String> = r
+            .instabilities
+            .iter()
+            .filter(|i| i.kind != sphstab::vonneumann::classify::Kind::RankDeficiency)
+            .map(|i| kind_name(i.kind))
+            .fold(Vec::new(), |mut v, k| {
+                if !v.contains(&k) {
+                    v.push(k);
+                }
+                v
+            });
+        match r.kappa_at_max {
+            Some(k) => println!(
+                "verdict: UNSTABLE ({}) — max growth rate {:.6} c/Δx at κΔx = {:.4}π",
+                kinds.join(", "),
+                r.max_growth_rate,
+                k / std::f64::consts::PI
+            ),
+            None => println!(
+                "verdict: UNSTABLE ({}) — no exponential growth on the grid (marginal)",
+                kinds.join(", ")
+            ),
+        }
     }
     if r.instabilities.is_empty() {
         println!("no unstable or marginal branch");
@@ -58,16 +76,18 @@ pub fn run(a: Args) -> Result<()> {
             "kind", "κΔx/π min", "κΔx/π max", "growth (c/Δx)"
         );
         for i in &r.instabilities {
-            let kind = serde_json::to_value(i.kind)?
-                .as_str()
-                .unwrap_or("?")
-                .to_string();
             println!(
-                "{:<16} {:>12.4} {:>12.4} {:>14.6}",
-                kind,
+                "{:<16} {:>12.4} {:>12.4} {:>14.6}{}",
+                kind_name(i.kind),
                 i.kappa_min / std::f64::consts::PI,
                 i.kappa_max / std::f64::consts::PI,
-                i.growth_rate
+                i.growth_rate,
+                i.pole_at
+                    .map(|p| format!(
+                        "  (ω² passes a pole at κΔx ≈ {:.4}π: the mass symbol vanishes)",
+                        p / std::f64::consts::PI
+                    ))
+                    .unwrap_or_default()
             );
         }
     }
@@ -115,7 +135,7 @@ fn run2d(a: Args) -> Result<()> {
         );
     }
     println!(
-        "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}, {:?}, {:?}, zone sampled {}×{}",
+        "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}, {}, {}, first zone sampled {}×{}",
         r.form,
         r.kernel,
         r.shape,
@@ -127,10 +147,17 @@ fn run2d(a: Args) -> Result<()> {
         r.grid,
         r.grid
     );
+    let kinds2: Vec<String> = r
+        .instabilities
+        .iter()
+        .filter(|i| i.kind != sphstab::vonneumann::classify::Kind::RankDeficiency)
+        .map(|i| kind_name(i.kind))
+        .collect();
     match (r.stable, r.kappa_at_max, &r.polarisation) {
         (true, _, _) => println!("verdict: STABLE (no exponentially growing mode)"),
         (false, Some(k), Some(p)) => println!(
-            "verdict: UNSTABLE — max growth rate {:.6} c/Δx at κΔx = ({:.4}π, {:.4}π), polarisation ({:.3}, {:.3}), longitudinal fraction {:.3}",
+            "verdict: UNSTABLE ({}) — max growth rate {:.6} c/Δx at κΔx = ({:.4}π, {:.4}π), polarisation ({:.3}, {:.3}), longitudinal fraction {:.3}",
+            kinds2.join(", "),
             r.max_growth_rate,
             k[0] / std::f64::consts::PI,
             k[1] / std::f64::consts::PI,
@@ -138,16 +165,12 @@ fn run2d(a: Args) -> Result<()> {
             p.vector[1],
             p.longitudinal_fraction
         ),
-        _ => println!("verdict: UNSTABLE (time step)"),
+        _ => println!("verdict: UNSTABLE (time-step: max |λ| > 1 at the given --dt)"),
     }
     for i in &r.instabilities {
-        let kind = serde_json::to_value(i.kind)?
-            .as_str()
-            .unwrap_or("?")
-            .to_string();
         println!(
             "{:<16} growth {:.6} c/Δx at κΔx = ({:.4}π, {:.4}π), {:.1}% of the zone",
-            kind,
+            kind_name(i.kind),
             i.growth_rate,
             i.kappa_at_max[0] / std::f64::consts::PI,
             i.kappa_at_max[1] / std::f64::consts::PI,
@@ -170,4 +193,12 @@ fn run2d(a: Args) -> Result<()> {
 /// The error for a flag that does not apply here.
 pub fn not_in(flag: &str, context: &str) -> anyhow::Error {
     sphstab::error::Error::Incompatible(format!("{flag} does not apply with {context}")).into()
+}
+
+/// The kebab-case name of an instability kind (as in the JSON).
+pub fn kind_name(k: sphstab::vonneumann::classify::Kind) -> String {
+    serde_json::to_value(k)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
 }

@@ -174,11 +174,12 @@ pub fn run(a: Args) -> Result<()> {
     }
     for (kap, w) in disp {
         println!(
-            "κΔx = {:>8.5}  ωΔx/c = {:?}",
+            "κΔx = {:>8.5}  ωΔx/c = {}",
             kap,
             w.iter()
-                .map(|x| (x * 1e6).round() / 1e6)
+                .map(|x| format!("{x:.6}"))
                 .collect::<Vec<_>>()
+                .join(", ")
         );
     }
     Ok(())

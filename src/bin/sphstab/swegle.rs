@@ -14,7 +14,7 @@ pub struct Args {
     /// Kernel name.
     #[arg(long, default_value = "m4")]
     kernel: String,
-    /// h/Δx.
+    /// Smoothing length h/Δx in the kernel's own convention, in [0.05, 50] (support ζh > Δx).
     #[arg(long, default_value_t = 1.2, allow_hyphen_values = true)]
     h: f64,
     /// Shape family (default: the form's).
@@ -27,10 +27,12 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     density_ratio: f64,
-    /// Particles per side (21, 41, 81, …).
+    /// Particles per side (21 = the published box, 41, 81, …), at least 2 × 3 fixed layers + 3;
+    /// bounded by --max-memory / --max-steps.
     #[arg(long, default_value_t = 21)]
     size: usize,
-    /// End time.
+    /// End time in the test's units (Δx = 0.1, c = √(K/ρ) ≈ 0.495: t = 40 is ≈ 198 Δx/c), in
+    /// (0, 1e6]; the run (size² × t_end/Δt particle-steps) must fit --max-steps.
     #[arg(long = "t-end", default_value_t = 40.0, allow_hyphen_values = true)]
     t_end: f64,
     /// Run past --t-end until a mode growing at the box prediction reaches the fit window.
@@ -39,18 +41,18 @@ pub struct Args {
     /// Boundary layers' density: evolve (continuity) or frozen.
     #[arg(long = "boundary-density", default_value = "evolve")]
     boundary_density: String,
-    /// Time step in Δx/c.
+    /// Time step Δt in Δx/c (the CFL number), in (0, 2].
     #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
     cfl: f64,
-    /// Partition coefficient c of lnl/cll.
+    /// Partition coefficient c of lnl/cll, in [0, 1].
     #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     c: f64,
     /// Monaghan–Gray artificial stress ε of the classical form (off by default, as published).
     #[arg(long = "art-eps", allow_hyphen_values = true)]
     art_eps: Option<f64>,
-    /// Artificial-stress exponent n.
-    #[arg(long = "art-n", default_value_t = 4)]
-    art_n: i32,
+    /// Artificial-stress exponent n, in [1, 12] (needs --art-eps).
+    #[arg(long = "art-n")]
+    art_n: Option<i32>,
     /// JSON on stdout.
     #[arg(long)]
     json: bool,
@@ -75,10 +77,29 @@ pub fn run(a: Args) -> Result<()> {
     cfg.cfl = a.cfl;
     cfg.c_partition = a.c;
     cfg.until_window = a.until_window;
-    if let Some(eps) = a.art_eps {
-        sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
-        sphstab::error::check_range("--art-n", a.art_n as f64, 1.0, 12.0, true, true)?;
-        cfg.art_stress = Some((eps, a.art_n));
+    match (a.art_eps, a.art_n) {
+        (Some(eps), n) => {
+            let n = n.unwrap_or(4);
+            sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
+            sphstab::error::check_range("--art-n", n as f64, 1.0, 12.0, true, true)?;
+            if !matches!(form, FormKind::Classical | FormKind::Cll) {
+                return Err(crate::query::not_in(
+                    "--art-eps",
+                    &format!(
+                        "--form {} (artificial stress is defined for classical and cll)",
+                        form.name()
+                    ),
+                ));
+            }
+            cfg.art_stress = Some((eps, n));
+        }
+        (None, Some(_)) => {
+            return Err(crate::query::not_in(
+                "--art-n",
+                "no --art-eps (it is the exponent of the artificial stress)",
+            ));
+        }
+        (None, None) => {}
     }
     cfg.boundary = match a.boundary_density.as_str() {
         "evolve" => BoundaryDensity::Evolve,
@@ -180,14 +201,20 @@ pub fn run(a: Args) -> Result<()> {
         r.size, r.size, r.form, r.kernel, r.h_over_dx, r.density_ratio
     );
     match r.measured_growth_rate {
-        Some(m) => println!(
-            "measured growth {:.5} c/Δx; box prediction {:.5} ({}); infinite lattice {:.5}; measured/box {:.4}, measured/infinite {:.4}",
+        Some(m) if r.ratio_box.is_some() => println!(
+            "measured growth {:.5} c/Δx; box prediction {:.5} ({}); infinite lattice {:.5}; measured/box {:.4}{}",
             m,
             r.predicted_growth_rate_box,
             r.box_method,
             r.predicted_growth_rate_infinite,
-            r.ratio_box.unwrap_or(f64::NAN),
-            r.ratio_infinite.unwrap_or(f64::NAN)
+            r.ratio_box.unwrap_or(0.0),
+            r.ratio_infinite
+                .map(|x| format!(", measured/infinite {x:.4}"))
+                .unwrap_or_default()
+        ),
+        Some(m) => println!(
+            "max |v| rose through the fit window at {:.5} c/Δx, but the engine predicts no exponential growth (box {:.2e}, infinite lattice {:.2e}): secular growth of a zero-energy mode or a nonlinear effect, not a linear instability",
+            m, r.predicted_growth_rate_box, r.predicted_growth_rate_infinite
         ),
         None => println!(
             "no exponential growth measured (grew: {}); box prediction {:.5}, infinite lattice {:.5}",
