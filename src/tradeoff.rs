@@ -194,6 +194,20 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
             range: "must be an integer in [1, 64]".into(),
         });
     }
+    if let Some(o) = &cfg.output
+        && (o.is_empty()
+            || o.contains('/')
+            || o.contains('\\')
+            || o.contains("..")
+            || !o.ends_with(".svg"))
+    {
+        return Err(Error::Config {
+            file: "tradeoff config".into(),
+            msg: format!(
+                "`output` = {o:?} must be a plain file name ending in .svg (it goes into figures/)"
+            ),
+        });
+    }
     if cfg.repeats == 0 || cfg.repeats > 100 {
         return Err(Error::OutOfRange {
             name: "--repeats",

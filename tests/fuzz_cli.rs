@@ -56,8 +56,23 @@ fn run_limited(args: &[String]) -> (Option<i32>, String, String, Duration) {
     (code, ho.join().unwrap(), he.join().unwrap(), t.elapsed())
 }
 
+/// Tally of exit statuses over a campaign: [0, 2, 3, other].
+static TALLY: [std::sync::atomic::AtomicUsize; 4] = [
+    std::sync::atomic::AtomicUsize::new(0),
+    std::sync::atomic::AtomicUsize::new(0),
+    std::sync::atomic::AtomicUsize::new(0),
+    std::sync::atomic::AtomicUsize::new(0),
+];
+
 fn check(args: &[String]) -> Result<(), TestCaseError> {
     let (code, out, err, dt) = run_limited(args);
+    let slot = match code {
+        Some(0) => 0,
+        Some(2) => 1,
+        Some(3) => 2,
+        _ => 3,
+    };
+    TALLY[slot].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let code = code.ok_or_else(|| {
         TestCaseError::fail(format!("{args:?}: still running after {dt:?} (killed)"))
     })?;
@@ -290,8 +305,16 @@ fn campaign() {
             scene_check(&s, tag)
         })
         .unwrap();
+    let c: Vec<usize> = TALLY
+        .iter()
+        .map(|a| a.load(std::sync::atomic::Ordering::Relaxed))
+        .collect();
     eprintln!(
-        "fuzz campaign: 2 × {n} cases in {:.0} s, no finding",
-        t.elapsed().as_secs_f64()
+        "fuzz campaign: 2 × {n} cases in {:.0} s, no finding; runs: {} results, {} clean one-line errors (exit 2), {} diverged (exit 3), {} other",
+        t.elapsed().as_secs_f64(),
+        c[0],
+        c[1],
+        c[2],
+        c[3]
     );
 }

@@ -351,9 +351,20 @@ fn messages_name_the_flag_compactly() {
     ]);
     let (_, _, err) = sphstab(&["query", "--stress", "1e308"]);
     assert!(err.contains("1e308") && err.len() < 200, "{err}");
-    // output paths are checked before the run
+    // missing arguments are named; every scene is listed
+    refused(&[
+        (&["simulate"], "<SCENE>"),
+        (&["merge"], "<FILES>"),
+        (&["simulate", "nope"], "thesis-wave, swegle"),
+    ]);
+    // output paths are checked before the run (the atlas would take a minute first)
     let t = Instant::now();
-    refused(&[(&["map", "--plot", "/nonexistent-dir/x.svg"], "--plot")]);
+    refused(&[
+        (&["map", "--plot", "/nonexistent-dir/x.svg"], "--plot"),
+        (&["atlas", "--out", "/nonexistent-dir/a.json"], "--out"),
+        (&["swegle", "--plot", "/nonexistent-dir/g.svg"], "--plot"),
+        (&["tradeoff", "--plot", "/nonexistent-dir/t.svg"], "--plot"),
+    ]);
     assert!(t.elapsed() < Duration::from_secs(2));
 }
 

@@ -22,11 +22,13 @@ fn copy_dir(from: &Path, to: &Path) {
     }
 }
 
-/// The shell lines of the README's ```sh blocks (comments kept: bash ignores them).
-fn readme_commands() -> Vec<String> {
+/// The shell lines of the README's ```sh blocks (comments kept: bash ignores them), each with
+/// the error line the README shows right below it (`# error: …`), if any: such a command must
+/// fail with exactly that message.
+fn readme_commands() -> Vec<(String, Option<String>)> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let mut out = Vec::new();
+    let mut out: Vec<(String, Option<String>)> = Vec::new();
     let mut in_sh = false;
     for line in text.lines() {
         if line.starts_with("```") {
@@ -34,8 +36,15 @@ fn readme_commands() -> Vec<String> {
             continue;
         }
         let l = line.trim();
-        if in_sh && !l.is_empty() && !l.starts_with('#') {
-            out.push(l.to_string());
+        if !in_sh || l.is_empty() {
+            continue;
+        }
+        if let Some(e) = l.strip_prefix("# error:") {
+            if let Some(last) = out.last_mut() {
+                last.1 = Some(format!("error:{e}"));
+            }
+        } else if !l.starts_with('#') {
+            out.push((l.to_string(), None));
         }
     }
     out
@@ -44,7 +53,7 @@ fn readme_commands() -> Vec<String> {
 #[test]
 fn readme_lists_commands() {
     let cmds = readme_commands();
-    assert!(cmds.iter().filter(|c| c.contains("cargo run")).count() > 40);
+    assert!(cmds.iter().filter(|c| c.0.contains("cargo run")).count() > 40);
 }
 
 #[test]
@@ -57,7 +66,7 @@ fn readme_commands_run_verbatim_in_order() {
     copy_dir(&root.join("figures"), &dir.join("figures"));
     let bin = env!("CARGO_BIN_EXE_sphstab");
     let mut made: Vec<(String, u64)> = Vec::new();
-    for cmd in readme_commands() {
+    for (cmd, expected_error) in readme_commands() {
         if cmd.starts_with("cargo test") || cmd.starts_with("cargo bench") {
             continue;
         }
@@ -70,11 +79,17 @@ fn readme_commands_run_verbatim_in_order() {
             .output()
             .unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
-        assert!(
-            out.status.success(),
-            "README command failed ({:?}): {cmd}\n{err}",
-            out.status.code()
-        );
+        match &expected_error {
+            None => assert!(
+                out.status.success(),
+                "README command failed ({:?}): {cmd}\n{err}",
+                out.status.code()
+            ),
+            Some(e) => {
+                assert_eq!(out.status.code(), Some(2), "{cmd}: {err}");
+                assert_eq!(err.trim_end(), e, "{cmd}: the README shows another message");
+            }
+        }
         eprintln!("{:7.1} s  {cmd}", t.elapsed().as_secs_f64());
         // nothing an earlier command wrote has been emptied
         for (f, len) in &made {

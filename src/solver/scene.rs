@@ -131,7 +131,7 @@ pub fn builtin(name: &str) -> Result<Scene1D> {
             return Err(Error::UnknownName {
                 what: "scene",
                 given: name.into(),
-                valid: "uniform-bar, compressive-wave, tensile-wave, rod (or a JSON file)".into(),
+                valid: "uniform-bar, compressive-wave, tensile-wave, rod, thesis-wave, swegle (or a JSON file)".into(),
             });
         }
     };

@@ -43,6 +43,9 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if let Some(p) = &a.out {
+        crate::common::check_writable("--out", p)?;
+    }
     let d = AtlasConfig::default();
     let cfg = AtlasConfig {
         forms: if a.forms.is_empty() { d.forms } else { a.forms },

@@ -8,7 +8,8 @@ use anyhow::{Context, Result};
 pub struct Args {
     #[command(flatten)]
     cfg: Config,
-    /// Number of κ points in (0, π] (≥ 2).
+    /// 1D: κ points in (0, π], in [2, 10000000]; 2D: points per segment of the symmetry path,
+    /// in [2, 100000].
     #[arg(long, default_value_t = 256)]
     points: usize,
     /// Print one JSON document instead of a table.

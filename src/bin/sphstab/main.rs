@@ -91,12 +91,24 @@ fn main() {
             ) {
                 e.exit();
             }
-            // One line: clap's first line names the flag and the problem.
+            // One line: clap's first line names the flag and the problem; for a missing
+            // argument the names are on the following lines, joined into that one line.
             let text = e.render().to_string();
-            eprintln!(
-                "{}",
-                text.lines().next().unwrap_or("error: invalid arguments")
-            );
+            let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+            let first = lines
+                .next()
+                .unwrap_or("error: invalid arguments")
+                .to_string();
+            let line = if e.kind() == ErrorKind::MissingRequiredArgument {
+                let names: Vec<&str> = lines
+                    .take_while(|l| l.starts_with(' '))
+                    .map(str::trim)
+                    .collect();
+                format!("{first} {}", names.join(", "))
+            } else {
+                first
+            };
+            eprintln!("{line}");
             std::process::exit(2);
         }
     };

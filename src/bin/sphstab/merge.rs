@@ -19,6 +19,9 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if let Some(p) = &a.out {
+        crate::common::check_writable("--out", p)?;
+    }
     let mut parts = Vec::with_capacity(a.files.len());
     for f in &a.files {
         let name = f.display().to_string();

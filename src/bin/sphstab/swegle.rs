@@ -66,6 +66,14 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if let Some(p) = &a.plot {
+        crate::common::check_writable("--plot", p)?;
+    }
+    if let Some(d) = &a.out {
+        std::fs::create_dir_all(d)
+            .with_context(|| format!("--out: cannot create {}", d.display()))?;
+        crate::common::check_writable("--out", &d.join("history.csv"))?;
+    }
     let form = FormKind::by_name(&a.form)?;
     let k = sphstab::kernel::by_name(&a.kernel)?;
     let mut cfg = SwegleConfig::new(form, k, a.h, a.density_ratio);

@@ -8,9 +8,9 @@ use anyhow::Result;
 pub struct Args {
     #[command(flatten)]
     cfg: Config,
-    /// Number of κ points in (0, π].
-    #[arg(long, default_value_t = 512)]
-    points: usize,
+    /// 1D: κ points in (0, π], in [2, 10000000] (2D uses --grid).
+    #[arg(long)]
+    points: Option<usize>,
     /// Print one JSON document instead of text.
     #[arg(long)]
     json: bool,
@@ -24,6 +24,12 @@ pub fn run(a: Args) -> Result<()> {
         ));
     }
     if a.cfg.is_2d()? {
+        if a.points.is_some() {
+            return Err(crate::query::not_in(
+                "--points",
+                "--dim 2 (use --grid for the zone sampling)",
+            ));
+        }
         let q = a.cfg.query2d()?;
         let lin = q.linearise_at(q.stress)?;
         let ks = q.kgrid();
@@ -59,7 +65,7 @@ pub fn run(a: Args) -> Result<()> {
         return Ok(());
     }
     a.cfg.reject_2d_flags()?;
-    let q = a.cfg.query(a.points)?;
+    let q = a.cfg.query(a.points.unwrap_or(512))?;
     let r = sphstab::analysis::timestep(&q)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);

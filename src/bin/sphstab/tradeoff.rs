@@ -49,6 +49,9 @@ pub fn title(rep: &TradeoffReport) -> String {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if let Some(p) = &a.plot {
+        crate::common::check_writable("--plot", p)?;
+    }
     if let Some(from) = &a.from {
         let text = std::fs::read_to_string(from)
             .with_context(|| format!("--from: cannot read {}", from.display()))?;
