@@ -300,6 +300,11 @@ fn campaign() {
     });
     let t = Instant::now();
     runner.run(&argv(), |a| check(&a)).unwrap();
+    // a fresh runner: one that has passed its cases runs no more
+    let mut runner = proptest::test_runner::TestRunner::new(ProptestConfig {
+        cases: n,
+        ..ProptestConfig::default()
+    });
     runner
         .run(&(scene_json(), any::<u64>()), |(s, tag)| {
             scene_check(&s, tag)

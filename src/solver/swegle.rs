@@ -212,6 +212,9 @@ impl SwegleConfig {
 /// Result of a Swegle run (rates in c/Δx unless named `_physical`).
 #[derive(Clone, Debug, Serialize)]
 pub struct SwegleReport {
+    /// The run stopped early because it diverged (first non-finite value or a runaway); the
+    /// measurements cover the steps before it. The binary exits with status 3 then.
+    pub diverged: Option<Diverged>,
     /// Form.
     pub form: &'static str,
     /// Kernel.
@@ -373,9 +376,28 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         vec![vx, vy]
     };
     let start = std::time::Instant::now();
+    // stop at the first non-finite value or a runaway (max |v| above
+    // crate::solver::scene::RUNAWAY_FACTOR × c); the growth fit uses what was recorded
+    let runaway = crate::solver::scene::RUNAWAY_FACTOR * c;
+    let mut diverged = None;
     for s in 0..steps {
-        run.step(dt)?;
+        if run.step(dt).is_err() {
+            diverged = Some(Diverged {
+                step: s + 1,
+                t: run.t + dt,
+                what: "a non-finite velocity",
+            });
+            break;
+        }
         let v = run.max_free_speed();
+        if v > runaway {
+            diverged = Some(Diverged {
+                step: s + 1,
+                t: run.t,
+                what: "max |v| above 1000 × c",
+            });
+            break;
+        }
         vmax_ever = vmax_ever.max(v);
         t.push(run.t);
         y.push(v);
@@ -406,6 +428,7 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
     let measured = fit.map(|f| f.rate / unit);
     let stride = (t.len() / 400).max(1);
     Ok(SwegleReport {
+        diverged,
         form: cfg.form.name(),
         kernel: cfg.kernel.name(),
         h_over_dx: cfg.h_over_dx,
@@ -440,4 +463,15 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
             .collect(),
         final_state: Some(run.z),
     })
+}
+
+/// Where and why a run diverged.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Diverged {
+    /// Time step index.
+    pub step: usize,
+    /// Time reached.
+    pub t: f64,
+    /// The criterion that fired.
+    pub what: &'static str,
 }

@@ -202,7 +202,7 @@ pub fn run(a: Args) -> Result<()> {
             o.remove("history");
         }
         println!("{}", serde_json::to_string_pretty(&v)?);
-        return Ok(());
+        return diverged(&r);
     }
     println!(
         "Swegle test {}×{}: {} / {} h = {}Δx, f = {}",
@@ -233,5 +233,19 @@ pub fn run(a: Args) -> Result<()> {
         "max |v| at the end {:.3e}; {} steps of Δt = {:.4e} in {:.2} s",
         r.max_velocity_end, r.steps, r.dt, r.runtime_s
     );
-    Ok(())
+    diverged(&r)
+}
+
+/// Exit status 3 (via the error) after the report when the run diverged.
+fn diverged(r: &sphstab::solver::swegle::SwegleReport) -> Result<()> {
+    match r.diverged {
+        Some(d) => Err(sphstab::error::Error::Diverged {
+            step: d.step,
+            t: d.t,
+            what: d.what,
+            max_amplitude: r.max_velocity_end,
+        }
+        .into()),
+        None => Ok(()),
+    }
 }
