@@ -37,14 +37,14 @@ pub trait Scalar:
     /// right only when the argument's own tangent vanishes too (as for r² = |d|² at d = 0,
     /// where |d| itself has no derivative). Rate and shape code never differentiates through
     /// `sqrt(0)`: the kernel composites W(|d|), ∇W(|d|) are lifted directly from d
-    /// ([`crate::shape2d::kernel_and_gradient_2d`]), and the derivative audit test checks it.
+    /// ([`crate::kernel::w_and_grad`]), and the derivative audit test checks it.
     fn sqrt(self) -> Self {
         let s = self.re().sqrt();
         self.lift(s, if s > 0.0 { 0.5 / s } else { 0.0 })
     }
     /// Absolute value (derivative sign(x); at the kink x = 0 the subgradient 0). Not used to
     /// differentiate a kernel of |d|: W(|d|) is smooth at d = 0 although |d| is not, and is
-    /// lifted directly ([`crate::shape::kernel_and_gradient_1d`]) so that its second
+    /// lifted directly ([`crate::kernel::w_and_grad`]) so that its second
     /// derivative W''(0) survives.
     fn abs(self) -> Self {
         let v = self.re();

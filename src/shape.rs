@@ -75,40 +75,12 @@ impl KernelParams {
         self.kernel.zeta() * self.h
     }
     /// W(|d|) and ∂W(|x − x_J|)/∂x = −W'(|d|) sign(d) for relative position d = x_J − x,
-    /// differentiable through d = 0 (see [`kernel_and_gradient_1d`]).
+    /// differentiable through d = 0 ([`kernel::w_and_grad`]).
     #[inline]
     fn w_and_dx<S: Scalar>(&self, d: S) -> (S, S) {
-        kernel_and_gradient_1d(self.kernel, self.h, d)
+        let (w, g) = kernel::w_and_grad::<S, 1>(self.kernel, self.h, [d]);
+        (w, g[0])
     }
-}
-
-/// `W(|d|)` and `∂W(|x − x_J|)/∂x = −sign(d) W'(|d|)` as functions of the relative position
-/// `d = x_J − x`, with exact tangents everywhere, **including d = 0**.
-///
-/// `|d|` has a kink at 0, but the composite is smooth there: every kernel has `f'(0) = 0`, so
-/// `W(|d|)` is even and C² with `dW/dd = sign(d) W'(|d|)`, and the gradient `−sign(d) W'(|d|)`
-/// is odd with derivative `−W''(|d|)` on both sides and at 0 (`−W''(0)`, not 0). Both are
-/// therefore lifted directly from `d`, never through `d.abs()` (whose tangent is 0 at the
-/// kink). At `|d| ≥ R` the kernel's own convention applies (`f = f' = f'' = 0` for `q ≥ ζ`).
-#[inline]
-pub fn kernel_and_gradient_1d<S: Scalar>(kernel: &dyn Kernel, h: f64, d: S) -> (S, S) {
-    let dv = d.re();
-    let r = dv.abs();
-    let sgn = if dv > 0.0 {
-        1.0
-    } else if dv < 0.0 {
-        -1.0
-    } else {
-        0.0
-    };
-    let w0 = kernel::w(kernel, 1, r, h);
-    let w1 = kernel::dw(kernel, 1, r, h);
-    let w2 = if S::TANGENT {
-        kernel::d2w(kernel, 1, r, h)
-    } else {
-        0.0
-    };
-    (d.lift(w0, sgn * w1), d.lift(-sgn * w1, -w2))
 }
 
 /// Evaluates `φ_J(x)` and `∂φ_J/∂x` for all nodes `(d_J, V_J)` (relative positions

@@ -38,35 +38,11 @@ impl KernelParams2 {
     }
 
     /// W(|d|) and ∇_x W(|x − x_J|) = −W'(r) d/r for d = x_J − x, differentiable through
-    /// d = 0 (see [`kernel_and_gradient_2d`]).
+    /// d = 0 ([`kernel::w_and_grad`]).
     #[inline]
     pub fn w_and_grad<S: Scalar>(&self, d: V2<S>) -> (S, V2<S>) {
-        kernel_and_gradient_2d(self.kernel, self.h, d)
+        kernel::w_and_grad(self.kernel, self.h, d)
     }
-}
-
-/// `W(|d|)` and `∇_x W(|x − x_J|) = −W'(r) d/r` (`r = |d|`) as functions of the relative
-/// position `d = x_J − x`, with exact tangents everywhere, **including d = 0**.
-///
-/// `r = |d|` is not differentiable at 0, but the composites are: every kernel has `f'(0) = 0`,
-/// so `W(|d|)` is stationary there (tangent 0) and `W'(r)/r → W''(0)`, hence the gradient
-/// `−W'(r) d/r` has Jacobian `−W''(0) I` at d = 0. It is returned as `−W''(0) d`, whose value
-/// is 0 and whose tangent is exactly that Jacobian applied to the tangent of `d` (the
-/// previous code returned a constant 0 and lost it). For r > 0 the usual chain rule through
-/// `sqrt` applies; at r ≥ R the kernel's convention (`f = f' = f'' = 0` for `q ≥ ζ`) holds.
-#[inline]
-pub fn kernel_and_gradient_2d<S: Scalar>(kernel: &dyn Kernel, h: f64, d: V2<S>) -> (S, V2<S>) {
-    let r2 = d[0] * d[0] + d[1] * d[1];
-    if r2.re() == 0.0 {
-        let w0 = kernel::w(kernel, 2, 0.0f64, h);
-        let c = -kernel::d2w(kernel, 2, 0.0, h);
-        return (S::cst(w0), [d[0] * c, d[1] * c]);
-    }
-    let r = r2.sqrt();
-    let w = kernel::w(kernel, 2, r, h);
-    let dw = kernel::dw(kernel, 2, r, h);
-    let f = -dw / r;
-    (w, [f * d[0], f * d[1]])
 }
 
 /// Determinant and inverse of a 3×3 matrix (cofactors).

@@ -727,3 +727,102 @@ fn audit_2d_every_kernel_family_and_support() {
     );
     assert!(t.checks > 10_000);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The kernel itself, W(|d|) and ∇W, in 1D, 2D and 3D (kernel::w_and_grad, one definition)
+// ---------------------------------------------------------------------------------------------
+
+/// `kernel::w_and_grad` in dimension D at x: the value W and gradient ∇_x W of the kernel
+/// centred at `xj`, as a flat vector [W, ∂1W, …, ∂DW].
+fn kernel_values<const D: usize>(
+    k: &'static dyn Kernel,
+    h: f64,
+    xj: [f64; D],
+    x: [f64; D],
+) -> Vec<f64> {
+    let mut d = [0.0; D];
+    for a in 0..D {
+        d[a] = xj[a] - x[a];
+    }
+    let (w, g) = kernel::w_and_grad(k, h, d);
+    std::iter::once(w).chain(g).collect()
+}
+
+fn audit_kernel<const D: usize>(k: &'static dyn Kernel, h: f64, rng: &mut Lcg, t: &mut Tally) {
+    let r = k.zeta() * h;
+    let mut pts: Vec<([f64; D], Side)> = vec![([0.0; D], Side::Central)];
+    for _ in 0..6 {
+        let mut p = [0.0; D];
+        for v in p.iter_mut() {
+            *v = (2.0 * rng.next() - 1.0) * r / (D as f64).sqrt();
+        }
+        pts.push((p, Side::Central));
+    }
+    // exactly on the support edge along the first axis (x − x_J = R e1): from outside for
+    // the discontinuous Gaussian
+    let mut edge = [0.0; D];
+    edge[0] = r;
+    let side = if continuous_at_edge(k) {
+        Side::Central
+    } else {
+        Side::Forward
+    };
+    pts.push((edge, side));
+    let xj = [0.0; D];
+    for (x, side0) in pts {
+        let gap = knot_gap(
+            k,
+            h,
+            std::iter::once(x.iter().map(|v| v * v).sum::<f64>().sqrt()),
+        );
+        for a in 0..D {
+            // the dual route: tangent −e_a on d (x moves along e_a)
+            let mut d = [Dual::default(); D];
+            for b in 0..D {
+                d[b] = Dual::new(xj[b] - x[b], if a == b { -1.0 } else { 0.0 });
+            }
+            let (w, g) = kernel::w_and_grad(k, h, d);
+            let dual: Vec<f64> = std::iter::once(w.d).chain(g.iter().map(|v| v.d)).collect();
+            let value_grad = g[a].v;
+            let side = if a == 0 { side0 } else { Side::Central };
+            let Some(e) = fit_step(STEP1, gap) else {
+                t.skipped += 1;
+                continue;
+            };
+            let f = |s: f64| {
+                let mut y = x;
+                y[a] += s;
+                kernel_values(k, h, xj, y)
+            };
+            let fd = d1(&f, 0.0, e, side);
+            let gmax = max_abs(&f(0.0));
+            let what = format!("{D}D kernel {} h={h} x={x:?} dir {a}", k.name());
+            t.check(&what, &dual, &fd, 512.0 * U * gmax / e);
+            // the gradient's value is the derivative of W itself
+            t.check(
+                &format!("{what}: ∂W/∂x_a"),
+                &[value_grad],
+                &(vec![fd.0[0]], vec![fd.1[0]]),
+                512.0 * U * gmax / e,
+            );
+        }
+    }
+}
+
+#[test]
+fn kernel_value_and_gradient_in_1d_2d_3d() {
+    let mut t = Tally::default();
+    let mut rng = Lcg(0xabcdef);
+    for &k in kernel::all() {
+        for h in h_grid(k) {
+            audit_kernel::<1>(k, h, &mut rng, &mut t);
+            audit_kernel::<2>(k, h, &mut rng, &mut t);
+            audit_kernel::<3>(k, h, &mut rng, &mut t);
+        }
+    }
+    eprintln!(
+        "kernel audit (1D–3D): {} comparisons ({} skipped), worst |dual − FD|/tol = {:.3}",
+        t.checks, t.skipped, t.worst_ratio
+    );
+    assert!(t.checks > 5_000);
+}

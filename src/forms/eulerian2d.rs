@@ -26,7 +26,6 @@ use super::workspace::{Nb2, RateWorkspace};
 use crate::error::Result;
 use crate::kernel;
 use crate::scalar::Scalar;
-use crate::shape2d::kernel_and_gradient_2d;
 use rayon::prelude::*;
 
 fn vel_grad<S: Scalar>(v: &[[S; 2]], i: usize, st: &[Nb2<S>]) -> [[S; 2]; 2] {
@@ -152,7 +151,7 @@ fn av_accel<S: Scalar>(m: &Model2D, z: StateView2D<'_, S>, i: usize, st: &[Nb2<S
         let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
         let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
         // ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
-        let (_, grad) = kernel_and_gradient_2d(m.p.kp.kernel, h, nb.d);
+        let (_, grad) = kernel::w_and_grad(m.p.kp.kernel, h, nb.d);
         for c in 0..2 {
             a[c] -= pi * grad[c] * m.mass[nb.j];
         }
@@ -208,7 +207,7 @@ fn art_accel<S: Scalar>(m: &Model2D, r: &[[S; 3]], i: usize, st: &[Nb2<S>]) -> [
             continue;
         }
         // W(r) and ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
-        let (w, g) = kernel_and_gradient_2d(m.p.kp.kernel, h, nb.d);
+        let (w, g) = kernel::w_and_grad(m.p.kp.kernel, h, nb.d);
         let f = w / w_dp;
         let mut fnn = S::cst(1.0);
         for _ in 0..a.n {

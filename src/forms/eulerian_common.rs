@@ -164,7 +164,7 @@ pub(crate) fn av_accel<S: Scalar>(m: &Model1D, z: &State1D<S>, i: usize, st: &[N
         let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
         let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
         // ∇_I W(x_I − x_J) = W'(|d|) sign(x_I − x_J), differentiable through d = 0
-        let (_, grad) = shape::kernel_and_gradient_1d(m.p.kp.kernel, h, nb.d);
+        let (_, [grad]) = crate::kernel::w_and_grad(m.p.kp.kernel, h, [nb.d]);
         a -= pi * grad * m.mass[nb.j];
     }
     a

@@ -97,6 +97,55 @@ pub fn dw<S: Scalar>(k: &dyn Kernel, dim: usize, r: S, h: f64) -> S {
     r.lift(s * k.df(dim, q), g1)
 }
 
+/// `W(|d|)` and `∇_x W(|x − x_J|)` in dimension `D` ∈ {1, 2, 3} as functions of the relative
+/// position `d = x_J − x` (the gradient is `−W'(r) d/r`, `r = |d|`), with exact tangents
+/// everywhere, **including d = 0** — one definition for every dimension.
+///
+/// `|d|` is not differentiable at 0, but the composites are: every kernel has `f'(0) = 0`, so
+/// `W(|d|)` is stationary there and `W'(r)/r → W''(0)`; the gradient has Jacobian `−W''(0) I`
+/// at d = 0 and is returned as `−W''(0) d` (value 0, that Jacobian applied to the tangent of
+/// `d`). In 1D the kernel is lifted directly from `d` (W(|d|) with tangent sign(d)W'(|d|), the
+/// gradient −sign(d)W'(|d|) with tangent −W''(|d|)), never through `|d|` or `sqrt(d²)`. For
+/// r > 0 in 2D/3D the chain rule through `sqrt` applies. At r ≥ R the kernel's convention holds
+/// (`f = f' = f'' = 0` for `q ≥ ζ`, the support test `|r| ≥ ζh` of every neighbour search).
+#[inline]
+pub fn w_and_grad<S: Scalar, const D: usize>(k: &dyn Kernel, h: f64, d: [S; D]) -> (S, [S; D]) {
+    let mut g = [S::zero(); D];
+    if D == 1 {
+        let dv = d[0].re();
+        let r = dv.abs();
+        let sgn = if dv > 0.0 {
+            1.0
+        } else if dv < 0.0 {
+            -1.0
+        } else {
+            0.0
+        };
+        let w0 = w(k, 1, r, h);
+        let w1 = dw(k, 1, r, h);
+        let w2 = if S::TANGENT { d2w(k, 1, r, h) } else { 0.0 };
+        g[0] = d[0].lift(-sgn * w1, -w2);
+        return (d[0].lift(w0, sgn * w1), g);
+    }
+    let mut r2 = S::zero();
+    for a in d {
+        r2 += a * a;
+    }
+    if r2.re() == 0.0 {
+        let c = -d2w(k, D, 0.0, h);
+        for (ga, &da) in g.iter_mut().zip(&d) {
+            *ga = da * c;
+        }
+        return (S::cst(w(k, D, 0.0f64, h)), g);
+    }
+    let r = r2.sqrt();
+    let f = -dw(k, D, r, h) / r;
+    for (ga, &da) in g.iter_mut().zip(&d) {
+        *ga = f * da;
+    }
+    (w(k, D, r, h), g)
+}
+
 /// d²W/dr²(r, h) in dimension `dim` (value only; its derivative is not available).
 #[inline]
 pub fn d2w(k: &dyn Kernel, dim: usize, r: f64, h: f64) -> f64 {
