@@ -88,7 +88,10 @@ fn endless_scene_file_is_cut_off() {
     if !std::path::Path::new("/dev/zero").exists() {
         return;
     }
-    refused(&[(&["simulate", "/dev/zero"], "/dev/zero")]);
+    refused(&[
+        (&["simulate", "/dev/zero"], "/dev/zero"),
+        (&["merge", "/dev/zero"], "/dev/zero"),
+    ]);
 }
 
 /// "Never finishes": refused by the step budget or a size bound.

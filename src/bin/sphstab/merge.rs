@@ -22,10 +22,35 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(p) = &a.out {
         crate::common::check_writable("--out", p)?;
     }
+    // every shard is held in memory as text and parsed (~3× its size), before the merge
+    let total: u64 = a
+        .files
+        .iter()
+        .map(|f| std::fs::metadata(f).map(|m| m.len()).unwrap_or(0))
+        .sum();
+    sphstab::budget::check_memory(
+        "<FILES>",
+        &format!("merging {} shard files", a.files.len()),
+        4.0 * total as f64,
+    )?;
     let mut parts = Vec::with_capacity(a.files.len());
     for f in &a.files {
         let name = f.display().to_string();
-        let text = std::fs::read_to_string(f).with_context(|| format!("cannot read {name}"))?;
+        // bounded read: a device or a growing file cannot exhaust the memory budget
+        let cap = (sphstab::budget::current().max_memory / 4.0) as u64;
+        let mut buf = Vec::new();
+        std::io::Read::read_to_end(
+            &mut std::io::Read::take(
+                std::fs::File::open(f).with_context(|| format!("cannot read {name}"))?,
+                cap + 1,
+            ),
+            &mut buf,
+        )
+        .with_context(|| format!("cannot read {name}"))?;
+        if buf.len() as u64 > cap {
+            anyhow::bail!("{name}: larger than a quarter of --max-memory, not an atlas shard");
+        }
+        let text = String::from_utf8(buf).map_err(|_| anyhow::anyhow!("{name}: not UTF-8 text"))?;
         let r: AtlasReport =
             serde_json::from_str(&text).map_err(|e| sphstab::error::Error::Config {
                 file: name.clone(),
