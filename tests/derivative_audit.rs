@@ -28,7 +28,7 @@ mod common;
 use common::exact::{Q, mls_quartic_lattice};
 use sphstab::kernel::{self, Kernel};
 use sphstab::scalar::Dual;
-use sphstab::shape::{KernelParams, ShapeFamily, eval, eval_with_second, lattice_shape};
+use sphstab::shape::{KernelParams, ShapeFamily, eval, eval_d, eval_with_second, lattice_shape};
 use sphstab::shape2d::{KernelParams2, V2, eval2};
 
 const FAMILIES: [ShapeFamily; 4] = [
@@ -825,4 +825,119 @@ fn kernel_value_and_gradient_in_1d_2d_3d() {
         t.checks, t.skipped, t.worst_ratio
     );
     assert!(t.checks > 5_000);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3D: every family through the one generic definition (shape::eval_d with D = 3)
+// ---------------------------------------------------------------------------------------------
+
+/// Simple-cubic lattice of unit spacing and volume, node at the origin.
+fn cubic() -> Vec<[f64; 3]> {
+    let mut x = Vec::new();
+    for i in -6..=6 {
+        for j in -6..=6 {
+            for k in -6..=6 {
+                x.push([i as f64, j as f64, k as f64]);
+            }
+        }
+    }
+    x
+}
+
+fn shape3(family: ShapeFamily, kp: KernelParams, nodes: &[[f64; 3]], x: [f64; 3]) -> Vec<f64> {
+    let n: Vec<([f64; 3], f64)> = nodes
+        .iter()
+        .map(|p| ([p[0] - x[0], p[1] - x[1], p[2] - x[2]], 1.0))
+        .collect();
+    let mut out = Vec::new();
+    eval_d(family, kp, &n, x[0], &mut out).unwrap();
+    out.iter()
+        .map(|o| o.0)
+        .chain((0..3).flat_map(|a| out.iter().map(move |o| o.1[a])))
+        .collect()
+}
+
+fn audit3_at(family: ShapeFamily, kp: KernelParams, lat: &[[f64; 3]], x: [f64; 3], t: &mut Tally) {
+    let r = kp.support();
+    let dist = |p: &[f64; 3]| {
+        ((p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) + (p[2] - x[2]).powi(2)).sqrt()
+    };
+    let nodes: Vec<[f64; 3]> = lat.iter().copied().filter(|p| dist(p) < r + 0.5).collect();
+    let n = nodes.len();
+    let gap = knot_gap(kp.kernel, kp.h, nodes.iter().map(dist));
+    let Some(e) = fit_step(STEP1, gap) else {
+        t.skipped += 1;
+        return;
+    };
+    for a in 0..3 {
+        let dn: Vec<([Dual; 3], Dual)> = nodes
+            .iter()
+            .map(|p| {
+                let tg = |b: usize| if a == b { -1.0 } else { 0.0 };
+                (
+                    [0, 1, 2].map(|b| Dual::new(p[b] - x[b], tg(b))),
+                    Dual::new(1.0, 0.0),
+                )
+            })
+            .collect();
+        let mut dual = Vec::new();
+        eval_d(family, kp, &dn, x[0], &mut dual).unwrap();
+        let tangents: Vec<f64> = dual
+            .iter()
+            .map(|o| o.0.d)
+            .chain((0..3).flat_map(|b| dual.iter().map(move |o| o.1[b].d)))
+            .collect();
+        let g = |s: f64| {
+            let mut y = x;
+            y[a] += s;
+            shape3(family, kp, &nodes, y)
+        };
+        let gmax = max_abs(&g(0.0));
+        let fd = d1(&g, 0.0, e, Side::Central);
+        let what = format!(
+            "3D {family:?} {} h={} x={x:?} dir {a}",
+            kp.kernel.name(),
+            kp.h
+        );
+        t.check(&what, &tangents, &fd, 512.0 * U * gmax / e);
+        if family != ShapeFamily::Corrected {
+            let ga: Vec<f64> = dual.iter().map(|o| o.1[a].v).collect();
+            t.check(
+                &format!("{what}: ∇φ_a vs FD of φ"),
+                &ga,
+                &(fd.0[..n].to_vec(), fd.1[..n].to_vec()),
+                512.0 * U * gmax / e,
+            );
+        }
+    }
+}
+
+#[test]
+fn audit_3d_every_kernel_and_family() {
+    let lat = cubic();
+    let mut t = Tally::default();
+    let mut rng = Lcg(0x3d);
+    for &kern in kernel::all() {
+        // the smallest and largest customary h (3D stencils are large)
+        let hs = h_grid(kern);
+        for h in [hs[0], hs[3]] {
+            let kp = KernelParams { kernel: kern, h };
+            let r = kp.support();
+            let mut pts = vec![[0.0; 3], [0.5, 0.0, 0.0], [0.5, 0.5, 0.5]];
+            pts.push([rng.next(), rng.next(), rng.next()]);
+            if continuous_at_edge(kern) {
+                pts.push([r, 0.0, 0.0]);
+            }
+            for family in FAMILIES {
+                for &x in &pts {
+                    audit3_at(family, kp, &lat, x, &mut t);
+                }
+            }
+        }
+    }
+    eprintln!(
+        "3D derivative audit: {} comparisons ({} skipped), worst |dual − FD|/tol = {:.3}",
+        t.checks, t.skipped, t.worst_ratio
+    );
+    assert!(t.checks > 50_000);
 }

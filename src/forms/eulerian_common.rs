@@ -37,14 +37,14 @@ pub(crate) fn stencils<S: Scalar>(
         search.candidates(xp.re(), r, &mut idx);
         idx.retain(|&j| m.rel(xp, z.x[j]).re().abs() < r);
         for &j in idx.iter() {
-            nodes.push((m.rel(xp, z.x[j]), vol[j]));
+            nodes.push(([m.rel(xp, z.x[j])], vol[j]));
         }
-        shape::eval(family, m.p.kp, &nodes, xp.re(), &mut vals)?;
+        shape::eval_d(family, m.p.kp, &nodes, xp.re(), &mut vals)?;
         out.push(
             idx.iter()
                 .zip(&nodes)
                 .zip(&vals)
-                .map(|((&j, &(d, _)), &(phi, dphi))| Nb { j, d, phi, dphi })
+                .map(|((&j, &([d], _)), &(phi, [dphi]))| Nb { j, d, phi, dphi })
                 .collect(),
         );
     }
