@@ -105,21 +105,7 @@ impl Config {
         q.av = q1.av;
         q.dt = q1.dt;
         q.grid = self.grid.unwrap_or(64);
-        match (self.art_eps, self.art_n) {
-            (Some(eps), n) => {
-                let n = n.unwrap_or(4);
-                sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
-                sphstab::error::check_range("--art-n", n as f64, 1.0, 12.0, true, true)?;
-                q.art_stress = Some((eps, n));
-            }
-            (None, Some(_)) => {
-                return Err(crate::query::not_in(
-                    "--art-n",
-                    "no --art-eps (it is the exponent of the artificial stress)",
-                ));
-            }
-            (None, None) => {}
-        }
+        q.art_stress = art_stress(self.art_eps, self.art_n)?;
         let lattice = self.lattice.as_deref().unwrap_or("square");
         if lattice != "square" && self.gamma.is_some() {
             return Err(crate::query::not_in(
@@ -264,4 +250,22 @@ pub fn check_writable(flag: &str, path: &std::path::Path) -> Result<()> {
         let _ = std::fs::remove_file(path);
     }
     Ok(())
+}
+
+/// `--art-eps` / `--art-n` (Monaghan–Gray artificial stress): ε ∈ [0, 10], n ∈ [1, 12]
+/// (default 4); `--art-n` alone is an error.
+pub fn art_stress(eps: Option<f64>, n: Option<i32>) -> Result<Option<(f64, i32)>> {
+    match (eps, n) {
+        (Some(eps), n) => {
+            let n = n.unwrap_or(4);
+            sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
+            sphstab::error::check_range("--art-n", n as f64, 1.0, 12.0, true, true)?;
+            Ok(Some((eps, n)))
+        }
+        (None, Some(_)) => Err(crate::query::not_in(
+            "--art-n",
+            "no --art-eps (it is the exponent of the artificial stress)",
+        )),
+        (None, None) => Ok(None),
+    }
 }

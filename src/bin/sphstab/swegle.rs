@@ -85,29 +85,17 @@ pub fn run(a: Args) -> Result<()> {
     cfg.cfl = a.cfl;
     cfg.c_partition = a.c;
     cfg.until_window = a.until_window;
-    match (a.art_eps, a.art_n) {
-        (Some(eps), n) => {
-            let n = n.unwrap_or(4);
-            sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
-            sphstab::error::check_range("--art-n", n as f64, 1.0, 12.0, true, true)?;
-            if !matches!(form, FormKind::Classical | FormKind::Cll) {
-                return Err(crate::query::not_in(
-                    "--art-eps",
-                    &format!(
-                        "--form {} (artificial stress is defined for classical and cll)",
-                        form.name()
-                    ),
-                ));
-            }
-            cfg.art_stress = Some((eps, n));
-        }
-        (None, Some(_)) => {
+    if let Some((eps, n)) = crate::common::art_stress(a.art_eps, a.art_n)? {
+        if !matches!(form, FormKind::Classical | FormKind::Cll) {
             return Err(crate::query::not_in(
-                "--art-n",
-                "no --art-eps (it is the exponent of the artificial stress)",
+                "--art-eps",
+                &format!(
+                    "--form {} (artificial stress is defined for classical and cll)",
+                    form.name()
+                ),
             ));
         }
-        (None, None) => {}
+        cfg.art_stress = Some((eps, n));
     }
     cfg.boundary = match a.boundary_density.as_str() {
         "evolve" => BoundaryDensity::Evolve,
