@@ -1,18 +1,22 @@
-//! Cell-list neighbour search in 2D: O(N) construction and queries for particles within a
-//! radius, for open domains and rectangular periodic boxes. (Parallelogram periodic patches,
-//! used only by the von Neumann engine on hexagonal lattices, fall back to a direct scan.)
+//! Cell-list neighbour search in D ∈ {1, 2, 3} dimensions: O(N) construction and queries for
+//! particles within a radius, for open domains and rectangular (box) periodic domains.
+//! (Parallelogram periodic patches, used only by the von Neumann engine on hexagonal, bcc and
+//! fcc lattices, fall back to a direct scan.)
+
+// Small-vector algebra (D ≤ 3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
 
 /// A uniform grid of cells of side ≥ the search radius.
 ///
 /// [`CellList::rebuild`] refills an existing list in place: once its buffers have grown to the
 /// particle and cell counts, a rebuild does not allocate (the solver's time loop relies on it).
-#[derive(Clone, Debug, Default)]
-pub struct CellList {
-    origin: [f64; 2],
+#[derive(Clone, Debug)]
+pub struct CellList<const D: usize = 2> {
+    origin: [f64; D],
     size: f64,
-    dims: [usize; 2],
+    dims: [usize; D],
     /// Periodic extents (rectangular box) or None.
-    period: Option<[f64; 2]>,
+    period: Option<[f64; D]>,
     start: Vec<usize>,
     items: Vec<usize>,
     /// Cell of each particle (construction buffer, kept for reuse).
@@ -21,67 +25,97 @@ pub struct CellList {
     fill: Vec<usize>,
 }
 
-impl CellList {
+impl<const D: usize> Default for CellList<D> {
+    fn default() -> Self {
+        Self {
+            origin: [0.0; D],
+            size: 0.0,
+            dims: [1; D],
+            period: None,
+            start: Vec::new(),
+            items: Vec::new(),
+            cell: Vec::new(),
+            fill: Vec::new(),
+        }
+    }
+}
+
+impl<const D: usize> CellList<D> {
     /// Builds the list for `pts` with cell side ≥ `radius`. `period`: rectangular periodic box
-    /// [Lx, Ly] with the particles' coordinates anywhere (they are wrapped into the box).
-    pub fn new(pts: &[[f64; 2]], radius: f64, period: Option<[f64; 2]>) -> Self {
+    /// [L_1, …, L_D] with the particles' coordinates anywhere (they are wrapped into the box).
+    pub fn new(pts: &[[f64; D]], radius: f64, period: Option<[f64; D]>) -> Self {
         let mut c = Self::default();
         c.rebuild(pts, radius, period);
         c
     }
 
+    /// Linear index of the cell with integer coordinates `c` (row-major, last axis fastest).
+    #[inline]
+    fn linear(&self, c: [usize; D]) -> usize {
+        let mut k = 0;
+        for a in 0..D {
+            k = k * self.dims[a] + c[a];
+        }
+        k
+    }
+
     /// Rebuilds the list for `pts` in place, reusing its buffers (same result as
     /// [`CellList::new`]). O(N + number of cells).
-    pub fn rebuild(&mut self, pts: &[[f64; 2]], radius: f64, period: Option<[f64; 2]>) {
+    pub fn rebuild(&mut self, pts: &[[f64; D]], radius: f64, period: Option<[f64; D]>) {
         let (origin, ext) = match period {
-            Some(l) => ([0.0, 0.0], l),
+            Some(l) => ([0.0; D], l),
             None => {
-                let mut lo = [f64::INFINITY; 2];
-                let mut hi = [f64::NEG_INFINITY; 2];
+                let mut lo = [f64::INFINITY; D];
+                let mut hi = [f64::NEG_INFINITY; D];
                 for p in pts {
-                    for a in 0..2 {
+                    for a in 0..D {
                         lo[a] = lo[a].min(p[a]);
                         hi[a] = hi[a].max(p[a]);
                     }
                 }
                 if pts.is_empty() {
-                    lo = [0.0; 2];
-                    hi = [0.0; 2];
+                    lo = [0.0; D];
+                    hi = [0.0; D];
                 }
-                (lo, [hi[0] - lo[0], hi[1] - lo[1]])
+                let mut ext = [0.0; D];
+                for a in 0..D {
+                    ext[a] = hi[a] - lo[a];
+                }
+                (lo, ext)
             }
         };
         let size = radius.max(1e-300);
-        let dims = [
-            ((ext[0] / size).floor() as usize).max(1),
-            ((ext[1] / size).floor() as usize).max(1),
-        ];
-        // periodic: cells must be at least `radius` wide, so use floor; open: one more cell
-        let dims = if period.is_some() {
-            dims
-        } else {
-            [dims[0] + 1, dims[1] + 1]
-        };
-        let cell_of = |p: &[f64; 2]| -> usize {
-            let mut c = [0usize; 2];
-            for a in 0..2 {
-                let mut x = p[a] - origin[a];
-                if let Some(l) = period {
-                    x = x.rem_euclid(l[a]);
-                    c[a] = ((x / l[a] * dims[a] as f64) as usize).min(dims[a] - 1);
-                } else {
-                    c[a] = ((x / size) as usize).min(dims[a] - 1);
-                }
-            }
-            c[0] * dims[1] + c[1]
-        };
-        let ncell = dims[0] * dims[1];
+        let mut dims = [1usize; D];
+        for a in 0..D {
+            // periodic: cells must be at least `radius` wide, so use floor; open: one more cell
+            dims[a] = ((ext[a] / size).floor() as usize).max(1) + usize::from(period.is_none());
+        }
+        self.origin = origin;
+        self.size = size;
+        self.dims = dims;
+        self.period = period;
+        let ncell: usize = dims.iter().product();
         let count = &mut self.start;
         count.clear();
         count.resize(ncell + 1, 0);
-        self.cell.clear();
-        self.cell.extend(pts.iter().map(cell_of));
-        for &c in &self.cell {
+        let mut cell = std::mem::take(&mut self.cell);
+        cell.clear();
+        cell.extend(pts.iter().map(|p| {
+            let mut c = [0usize; D];
+            for a in 0..D {
+                let x = p[a] - origin[a];
+                c[a] = match period {
+                    Some(l) => {
+                        let x = x.rem_euclid(l[a]);
+                        ((x / l[a] * dims[a] as f64) as usize).min(dims[a] - 1)
+                    }
+                    None => ((x / size) as usize).min(dims[a] - 1),
+                };
+            }
+            self.linear(c)
+        }));
+        let count = &mut self.start;
+        for &c in &cell {
             count[c + 1] += 1;
         }
         for i in 0..ncell {
@@ -91,52 +125,66 @@ impl CellList {
         self.fill.extend_from_slice(count);
         self.items.clear();
         self.items.resize(pts.len(), 0);
-        for (i, &c) in self.cell.iter().enumerate() {
+        for (i, &c) in cell.iter().enumerate() {
             self.items[self.fill[c]] = i;
             self.fill[c] += 1;
         }
-        self.origin = origin;
-        self.size = size;
-        self.dims = dims;
-        self.period = period;
+        self.cell = cell;
     }
 
-    /// Calls `f(j)` for every particle j in the 3×3 block of cells around `p` (a superset of
-    /// those within the radius; callers test the distance).
-    pub fn for_candidates(&self, p: [f64; 2], mut f: impl FnMut(usize)) {
-        let mut c = [0i64; 2];
-        for a in 0..2 {
+    /// Calls `f(j)` for every particle j in the 3^D block of cells around `p` (a superset of
+    /// those within the radius; callers test the distance). Cells are visited first axis
+    /// slowest, offsets −1, 0, 1 per axis; a cell is visited once even when a small periodic box
+    /// (fewer than 3 cells on an axis) wraps onto it again.
+    pub fn for_candidates(&self, p: [f64; D], mut f: impl FnMut(usize)) {
+        // per axis: the distinct cell coordinates of offsets −1, 0, 1, in that order
+        let mut ax = [[0usize; 3]; D];
+        let mut cnt = [0usize; D];
+        for a in 0..D {
             let x = p[a] - self.origin[a];
-            c[a] = match self.period {
+            let n = self.dims[a] as i64;
+            let c = match self.period {
                 Some(l) => {
                     let xw = x.rem_euclid(l[a]);
-                    ((xw / l[a] * self.dims[a] as f64) as i64).min(self.dims[a] as i64 - 1)
+                    ((xw / l[a] * self.dims[a] as f64) as i64).min(n - 1)
                 }
-                None => ((x / self.size).floor() as i64).clamp(0, self.dims[a] as i64 - 1),
+                None => ((x / self.size).floor() as i64).clamp(0, n - 1),
             };
-        }
-        let mut seen = [usize::MAX; 9];
-        let mut ns = 0;
-        for di in -1..=1 {
-            for dj in -1..=1 {
-                let (mut ci, mut cj) = (c[0] + di, c[1] + dj);
+            for o in -1..=1 {
+                let mut ci = c + o;
                 if self.period.is_some() {
-                    ci = ci.rem_euclid(self.dims[0] as i64);
-                    cj = cj.rem_euclid(self.dims[1] as i64);
-                } else if ci < 0 || cj < 0 || ci >= self.dims[0] as i64 || cj >= self.dims[1] as i64
-                {
+                    ci = ci.rem_euclid(n);
+                } else if ci < 0 || ci >= n {
                     continue;
                 }
-                let cell = ci as usize * self.dims[1] + cj as usize;
-                // small periodic boxes (fewer than 3 cells per side) revisit cells: skip repeats
-                if seen[..ns].contains(&cell) {
-                    continue;
+                let ci = ci as usize;
+                if !ax[a][..cnt[a]].contains(&ci) {
+                    ax[a][cnt[a]] = ci;
+                    cnt[a] += 1;
                 }
-                seen[ns] = cell;
-                ns += 1;
-                for &j in &self.items[self.start[cell]..self.start[cell + 1]] {
-                    f(j);
+            }
+        }
+        // odometer over the per-axis lists, last axis fastest
+        let mut k = [0usize; D];
+        loop {
+            let mut cell = 0;
+            for a in 0..D {
+                cell = cell * self.dims[a] + ax[a][k[a]];
+            }
+            for &j in &self.items[self.start[cell]..self.start[cell + 1]] {
+                f(j);
+            }
+            let mut a = D;
+            loop {
+                if a == 0 {
+                    return;
                 }
+                a -= 1;
+                k[a] += 1;
+                if k[a] < cnt[a] {
+                    break;
+                }
+                k[a] = 0;
             }
         }
     }

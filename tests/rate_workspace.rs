@@ -1,13 +1,12 @@
-//! The allocation-free 2D rate (`Model2D::rate_with` / `rate_into` with a reusable
-//! `RateWorkspace`) against the rate function as it was before the workspace
-//! (`tests/reference/`), on disordered states, for every 2D form, the materials, shape
+//! The 2D rate (`Model::rate`, and `rate_with` / `rate_into` with a reusable `RateWorkspace`)
+//! against golden data, on disordered states, for every 2D form, the materials, shape
 //! families, artificial viscosity and artificial stress, open and periodic domains; in f64 and
 //! in dual numbers (the linearisation's scalar).
-
-#[path = "reference/eulerian2d_pre_workspace.rs"]
-mod reference;
-
-use reference::reference_rate;
+//!
+//! The golden file `tests/data/rates2d.json` holds the rates that the 2D rate function computed
+//! before the forms became dimension-generic (commit 9751941, whose own test had checked them
+//! against the pre-workspace rate to 1e-14), for exactly the configurations and states built
+//! here; stresses there are stored as [xx, yy, xy].
 use sphstab::forms::{
     ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model2D, ModelParams2D,
     ObjectiveRate, RateOut2D, RateWorkspace, State2D,
@@ -73,19 +72,21 @@ fn case(p: ModelParams2D, periodic: Option<&Lattice2D>) -> (Model2D, State2D<f64
     for (k, r) in z.rho.iter_mut().enumerate() {
         *r = 1.0 + 0.03 * noise(k, 5.0);
     }
+    // [[xx, xy], [xy, yy]]
+    let sym = |xx: f64, yy: f64, xy: f64| [[xx, xy], [xy, yy]];
     for (k, s) in z.sigma.iter_mut().enumerate() {
-        *s = [
+        *s = sym(
             0.02 + 0.05 * noise(k, 6.0),
             0.05 * noise(k, 7.0),
             0.03 * noise(k, 8.0),
-        ];
+        );
     }
     for (k, s) in z.tau.iter_mut().enumerate() {
-        *s = [
+        *s = sym(
             0.05 * noise(k, 9.0),
             0.02 + 0.05 * noise(k, 10.0),
             0.03 * noise(k, 11.0),
-        ];
+        );
     }
     (model, z)
 }
@@ -108,7 +109,13 @@ fn state_err<S: Scalar>(
     re: impl Fn(S) -> f64,
 ) -> (f64, &'static str) {
     let flat2 = |v: &[[S; 2]]| v.iter().flatten().map(|&s| re(s)).collect::<Vec<_>>();
-    let flat3 = |v: &[[S; 3]]| v.iter().flatten().map(|&s| re(s)).collect::<Vec<_>>();
+    let flat3 = |v: &[[[S; 2]; 2]]| {
+        v.iter()
+            .flatten()
+            .flatten()
+            .map(|&s| re(s))
+            .collect::<Vec<_>>()
+    };
     let flat1 = |v: &[S]| v.iter().map(|&s| re(s)).collect::<Vec<_>>();
     [
         (field_err(&flat2(&a.x), &flat2(&b.x)), "x"),
@@ -204,25 +211,77 @@ fn configs() -> Vec<(String, ModelParams2D, Option<Lattice2D>)> {
     out
 }
 
+/// The golden data file.
+fn golden() -> serde_json::Value {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/rates2d.json"
+    ))
+    .unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// The fields of a rate as the golden file stores them: v, ρ, σ and τ as [xx, yy, xy].
+fn fields<S: Scalar>(z: &State2D<S>, re: impl Fn(S) -> f64) -> [(&'static str, Vec<f64>); 4] {
+    let voigt = |t: &[[[S; 2]; 2]]| {
+        t.iter()
+            .flat_map(|s| [re(s[0][0]), re(s[1][1]), re(s[0][1])])
+            .collect::<Vec<_>>()
+    };
+    [
+        ("v", z.v.iter().flatten().map(|&s| re(s)).collect()),
+        ("rho", z.rho.iter().map(|&s| re(s)).collect()),
+        ("sigma", voigt(&z.sigma)),
+        ("tau", voigt(&z.tau)),
+    ]
+}
+
+/// Largest relative difference from a golden record over the fields, and the worst field.
+fn golden_err<S: Scalar>(
+    z: &State2D<S>,
+    want: &serde_json::Value,
+    re: impl Fn(S) -> f64,
+) -> (f64, &'static str) {
+    fields(z, re)
+        .into_iter()
+        .map(|(name, got)| (field_err(&got, &numbers(&want[name])), name))
+        .fold((0.0, "-"), |m, e| if e.0 > m.0 { e } else { m })
+}
+
 #[test]
-fn workspace_rate_matches_the_pre_workspace_rate() {
+fn rate_matches_the_golden_data() {
+    let g = golden();
+    let cases = g["cases"].as_array().unwrap();
     // one workspace for every configuration: leftovers of another model must not matter
     let mut ws = RateWorkspace::<f64>::new();
     let mut out_ws = State2D::default();
     let mut checked = 0;
-    for (label, p, lat) in configs() {
+    let cfgs = configs();
+    assert_eq!(
+        cfgs.len(),
+        cases.len(),
+        "configurations differ from the golden file"
+    );
+    for ((label, p, lat), want) in cfgs.into_iter().zip(cases) {
+        assert_eq!(want["label"].as_str().unwrap(), label);
         let (model, z) = case(p, lat.as_ref());
-        let mut want = State2D::default();
-        reference_rate(&model, &z, &mut want).unwrap();
         let mut fresh = State2D::default();
         model.rate(&z, &mut fresh).unwrap();
-        let (e, f) = state_err(&fresh, &want, |s| s);
+        let (e, f) = golden_err(&fresh, want, |s| s);
         assert!(
             e <= TOL,
-            "{label}: rate differs from the reference in {f} by {e:e}"
+            "{label}: rate differs from the golden data in {f} by {e:e}"
         );
         model.rate_with(&z, &mut out_ws, &mut ws).unwrap();
-        let (e, f) = state_err(&out_ws, &want, |s| s);
+        let (e, f) = golden_err(&out_ws, want, |s| s);
         assert!(e <= TOL, "{label}: rate_with differs in {f} by {e:e}");
         // the parts separately, as the solver asks for them
         let mut acc = vec![[f64::NAN; 2]; z.x.len()];
@@ -232,7 +291,7 @@ fn workspace_rate_matches_the_pre_workspace_rate() {
         };
         model.rate_into(z.view(), out, &mut ws).unwrap();
         let flat = |v: &[[f64; 2]]| v.iter().flatten().copied().collect::<Vec<_>>();
-        let e = field_err(&flat(&acc), &flat(&want.v));
+        let e = field_err(&flat(&acc), &numbers(&want["v"]));
         assert!(e <= TOL, "{label}: accelerations alone differ by {e:e}");
         let mut aux = State2D::zeros_like(&z);
         aux.rho.fill(f64::NAN);
@@ -241,24 +300,16 @@ fn workspace_rate_matches_the_pre_workspace_rate() {
             ..Default::default()
         };
         model.rate_into(z.view(), out, &mut ws).unwrap();
-        for (name, a, b) in [
-            ("rho", aux.rho.clone(), want.rho.clone()),
-            (
-                "sigma",
-                aux.sigma.iter().flatten().copied().collect(),
-                want.sigma.iter().flatten().copied().collect(),
-            ),
-            (
-                "tau",
-                aux.tau.iter().flatten().copied().collect(),
-                want.tau.iter().flatten().copied().collect(),
-            ),
-        ] {
-            let e = field_err(&a, &b);
+        for (name, got) in fields(&aux, |s| s).into_iter().skip(1) {
+            let e = field_err(&got, &numbers(&want[name]));
             assert!(e <= TOL, "{label}: {name} rate alone differs by {e:e}");
         }
         // the comparison is not vacuous: the accelerations are nonzero
-        assert!(want.v.iter().flatten().any(|a| a.abs() > 1e-8), "{label}");
+        assert!(fresh.v.iter().flatten().any(|a| a.abs() > 1e-8), "{label}");
+        // an integrated stress stays symmetric: the rate is exactly symmetric
+        for t in fresh.sigma.iter().chain(&fresh.tau) {
+            assert_eq!(t[0][1].to_bits(), t[1][0].to_bits(), "{label}");
+        }
         checked += 1;
     }
     assert!(checked >= 70, "{checked} configurations");
@@ -266,10 +317,14 @@ fn workspace_rate_matches_the_pre_workspace_rate() {
 
 /// Dual numbers (the linearisation): value and derivative parts agree.
 #[test]
-fn workspace_rate_matches_the_pre_workspace_rate_in_dual_numbers() {
+fn rate_matches_the_golden_data_in_dual_numbers() {
+    let g = golden();
+    let duals = g["duals"].as_array().unwrap();
     let mut ws = RateWorkspace::<Dual>::new();
     let mut out = State2D::default();
-    for (label, p, lat) in configs().into_iter().step_by(5) {
+    let mut checked = 0;
+    for ((label, p, lat), want) in configs().into_iter().step_by(5).zip(duals) {
+        assert_eq!(want["label"].as_str().unwrap(), label);
         let (model, z) = case(p, lat.as_ref());
         let mut zd: State2D<Dual> = z.map(Dual::cst);
         zd.x[17][0].d = 1.0;
@@ -277,19 +332,19 @@ fn workspace_rate_matches_the_pre_workspace_rate_in_dual_numbers() {
         if !zd.rho.is_empty() {
             zd.rho[30].d = -0.7;
         }
-        let mut want = State2D::default();
-        reference_rate(&model, &zd, &mut want).unwrap();
         model.rate_with(&zd, &mut out, &mut ws).unwrap();
-        let (e, f) = state_err(&out, &want, |s: Dual| s.v);
+        let (e, f) = golden_err(&out, &want["value"], |s: Dual| s.v);
         assert!(e <= TOL, "{label}: value part differs in {f} by {e:e}");
-        let (e, f) = state_err(&out, &want, |s: Dual| s.d);
+        let (e, f) = golden_err(&out, &want["tangent"], |s: Dual| s.d);
         assert!(e <= TOL, "{label}: derivative part differs in {f} by {e:e}");
-        assert!(want.v.iter().flatten().any(|a| a.d.abs() > 1e-8), "{label}");
+        assert!(out.v.iter().flatten().any(|a| a.d.abs() > 1e-8), "{label}");
+        checked += 1;
     }
+    assert_eq!(checked, duals.len());
 }
 
-/// The old solver step (state split into flat copies, joined back, the reference rate with a
-/// fresh output per call) as a second-order system for the shared integrator.
+/// The old solver step (state split into flat copies, joined back, the rate with a fresh output
+/// per call) as a second-order system for the shared integrator.
 struct ReferenceSys<'a> {
     model: &'a Model2D,
     template: &'a State2D<f64>,
@@ -308,7 +363,7 @@ impl ReferenceSys<'_> {
         }
         for (k, &c) in self.aux.iter().enumerate() {
             for i in 0..n {
-                *z.get_mut(c, i) = q[k * n + i];
+                z.set(c, i, q[k * n + i]);
             }
         }
         z
@@ -316,7 +371,7 @@ impl ReferenceSys<'_> {
     fn rate(&self, x: &[f64], v: &[f64], q: &[f64]) -> State2D<f64> {
         let z = self.join(x, v, q);
         let mut out = State2D::default();
-        reference_rate(self.model, &z, &mut out).unwrap();
+        self.model.rate(&z, &mut out).unwrap();
         out
     }
 }

@@ -1,5 +1,6 @@
-//! The Eulerian-kernel forms in 2D (classical, nonlocal, local, lnl, cll): one routine whose
-//! momentum and continuity terms are chosen by the form, with the same definitions as in 1D:
+//! The Eulerian-kernel forms (classical, nonlocal, local, lnl, cll) and the total-Lagrangian
+//! form in D ∈ {1, 2, 3} dimensions: one routine whose momentum and continuity terms are chosen
+//! by the form, with the same definitions as in 1D:
 //!
 //! ```text
 //! L_I = Σ_J (v_J − v_I) ⊗ ∇φ_J(x_I),   ρ̇_I = −ρ_I tr L_I   (mixed forms: (1−c) tr L^nl + c tr L^loc)
@@ -8,32 +9,30 @@
 //! lnl: (1 − c) a^diff(σ) + c a^loc(τ);  cll: (1 − c) a^classical(σ) + c a^loc(τ)
 //! ```
 //! plus −Σ_J m_J Π_IJ ∇_I W_IJ (Monaghan viscosity). Stress: hydro σ = −K(ρ/ρ0 − 1) I from the
-//! density; elastic σ (and τ) are state with the hypo-elastic rate of [`Material2D`].
+//! density; elastic σ (and τ) are state with the hypo-elastic rate of [`Material`].
 //!
 //! Evaluation: neighbour stencils from a cell list, then per-particle sums, in parallel over
 //! particles (rayon), with every buffer in a reusable [`RateWorkspace`]: a time loop that keeps
 //! its workspace does not allocate. Accelerations and auxiliary rates can be asked for
 //! separately ([`RateOut2D`]); each is the same function of the state either way.
 
-// Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
+// Small-tensor algebra (D × D, D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
 use super::FormKind;
-use super::model2d::{
-    AuxRates2D, Material2D, Model2D, ObjectiveRate, RateOut2D, State2D, StateView2D,
-};
-use super::workspace::{Nb2, RateWorkspace};
+use super::model2d::{AuxRates, Material, Model, ObjectiveRate, RateOut, State, StateView, Tensor};
+use super::workspace::{NbD, RateWorkspace};
 use crate::error::Result;
 use crate::kernel;
 use crate::scalar::Scalar;
 use rayon::prelude::*;
 
-fn vel_grad<S: Scalar>(v: &[[S; 2]], i: usize, st: &[Nb2<S>]) -> [[S; 2]; 2] {
-    let mut l = [[S::zero(); 2]; 2];
+fn vel_grad<S: Scalar, const D: usize>(v: &[[S; D]], i: usize, st: &[NbD<S, D>]) -> Tensor<S, D> {
+    let mut l = [[S::zero(); D]; D];
     for nb in st {
-        for a in 0..2 {
+        for a in 0..D {
             let dv = v[nb.j][a] - v[i][a];
-            for b in 0..2 {
+            for b in 0..D {
                 l[a][b] += dv * nb.g[b];
             }
         }
@@ -41,167 +40,231 @@ fn vel_grad<S: Scalar>(v: &[[S; 2]], i: usize, st: &[Nb2<S>]) -> [[S; 2]; 2] {
     l
 }
 
-/// σ·g for σ stored as [xx, yy, xy].
+/// σ·g.
 #[inline]
-fn dot<S: Scalar>(s: [S; 3], g: [S; 2]) -> [S; 2] {
-    [s[0] * g[0] + s[2] * g[1], s[2] * g[0] + s[1] * g[1]]
+fn dot<S: Scalar, const D: usize>(s: &Tensor<S, D>, g: [S; D]) -> [S; D] {
+    let mut f = [S::zero(); D];
+    for a in 0..D {
+        let mut fa = s[a][0] * g[0];
+        for b in 1..D {
+            fa += s[a][b] * g[b];
+        }
+        f[a] = fa;
+    }
+    f
 }
 
-fn div_sum<S: Scalar>(s: &[[S; 3]], rho: &[S], i: usize, st: &[Nb2<S>]) -> [S; 2] {
+fn div_sum<S: Scalar, const D: usize>(
+    s: &[Tensor<S, D>],
+    rho: &[S],
+    i: usize,
+    st: &[NbD<S, D>],
+) -> [S; D] {
     let ri2 = rho[i] * rho[i];
-    let mut a = [S::zero(); 2];
+    let mut a = [S::zero(); D];
     for nb in st {
         let rj = rho[nb.j];
-        let t = [
-            s[i][0] / ri2 + s[nb.j][0] / (rj * rj),
-            s[i][1] / ri2 + s[nb.j][1] / (rj * rj),
-            s[i][2] / ri2 + s[nb.j][2] / (rj * rj),
-        ];
-        let f = dot(t, nb.g);
-        a[0] += f[0] * rj;
-        a[1] += f[1] * rj;
+        let mut t = [[S::zero(); D]; D];
+        // symmetric: the upper triangle, mirrored
+        for p in 0..D {
+            for q in p..D {
+                t[p][q] = s[i][p][q] / ri2 + s[nb.j][p][q] / (rj * rj);
+                t[q][p] = t[p][q];
+            }
+        }
+        let f = dot(&t, nb.g);
+        for c in 0..D {
+            a[c] += f[c] * rj;
+        }
     }
     a
 }
 
-fn div_difference<S: Scalar>(s: &[[S; 3]], rho_i: S, i: usize, st: &[Nb2<S>]) -> [S; 2] {
-    let mut a = [S::zero(); 2];
+fn div_difference<S: Scalar, const D: usize>(
+    s: &[Tensor<S, D>],
+    rho_i: S,
+    i: usize,
+    st: &[NbD<S, D>],
+) -> [S; D] {
+    let mut a = [S::zero(); D];
     for nb in st {
-        let t = [
-            s[nb.j][0] - s[i][0],
-            s[nb.j][1] - s[i][1],
-            s[nb.j][2] - s[i][2],
-        ];
-        let f = dot(t, nb.g);
-        a[0] += f[0];
-        a[1] += f[1];
+        let mut t = [[S::zero(); D]; D];
+        // symmetric: the upper triangle, mirrored
+        for p in 0..D {
+            for q in p..D {
+                t[p][q] = s[nb.j][p][q] - s[i][p][q];
+                t[q][p] = t[p][q];
+            }
+        }
+        let f = dot(&t, nb.g);
+        for c in 0..D {
+            a[c] += f[c];
+        }
     }
-    [a[0] / rho_i, a[1] / rho_i]
+    a.map(|x| x / rho_i)
 }
 
-/// Hypo-elastic stress rate for velocity gradient L.
-pub(crate) fn stress_rate<S: Scalar>(mat: &Material2D, s: [S; 3], l: [[S; 2]; 2]) -> [S; 3] {
-    let Material2D::Elastic {
+/// Hypo-elastic stress rate for velocity gradient L: λ tr(d) I + 2G d plus the objective
+/// terms; computed on the upper triangle and mirrored, so the rate is exactly symmetric.
+pub(crate) fn stress_rate<S: Scalar, const D: usize>(
+    mat: &Material,
+    s: &Tensor<S, D>,
+    l: &Tensor<S, D>,
+) -> Tensor<S, D> {
+    let mut r = [[S::zero(); D]; D];
+    let Material::Elastic {
         lambda,
         shear,
         rate,
     } = *mat
     else {
-        return [S::zero(); 3];
+        return r;
     };
-    let tr = l[0][0] + l[1][1];
-    let dxy = (l[0][1] + l[1][0]) * 0.5;
-    let mut r = [
-        tr * lambda + l[0][0] * (2.0 * shear),
-        tr * lambda + l[1][1] * (2.0 * shear),
-        dxy * (2.0 * shear),
-    ];
-    let sm = [[s[0], s[2]], [s[2], s[1]]];
-    // extra[a][b] for the objective terms
-    let mut extra = [[S::zero(); 2]; 2];
-    match rate {
-        ObjectiveRate::Jaumann => {
-            let w = [
-                [S::zero(), (l[0][1] - l[1][0]) * 0.5],
-                [(l[1][0] - l[0][1]) * 0.5, S::zero()],
-            ];
-            for a in 0..2 {
-                for b in 0..2 {
-                    for c in 0..2 {
-                        extra[a][b] += w[a][c] * sm[c][b] - sm[a][c] * w[c][b];
-                    }
-                }
-            }
-        }
-        ObjectiveRate::Truesdell => {
-            for a in 0..2 {
-                for b in 0..2 {
-                    for c in 0..2 {
-                        extra[a][b] += l[a][c] * sm[c][b] + sm[a][c] * l[b][c];
-                    }
-                    extra[a][b] -= tr * sm[a][b];
-                }
-            }
+    let mut tr = l[0][0];
+    for a in 1..D {
+        tr += l[a][a];
+    }
+    for a in 0..D {
+        r[a][a] = tr * lambda + l[a][a] * (2.0 * shear);
+        for b in a + 1..D {
+            r[a][b] = (l[a][b] + l[b][a]) * 0.5 * (2.0 * shear);
         }
     }
-    r[0] += extra[0][0];
-    r[1] += extra[1][1];
-    r[2] += extra[0][1];
+    let sm = s;
+    for a in 0..D {
+        for b in a..D {
+            let mut extra = S::zero();
+            match rate {
+                ObjectiveRate::Jaumann => {
+                    let w = |p: usize, q: usize| {
+                        if p == q {
+                            S::zero()
+                        } else {
+                            (l[p][q] - l[q][p]) * 0.5
+                        }
+                    };
+                    for c in 0..D {
+                        extra += w(a, c) * sm[c][b] - sm[a][c] * w(c, b);
+                    }
+                }
+                ObjectiveRate::Truesdell => {
+                    for c in 0..D {
+                        extra += l[a][c] * sm[c][b] + sm[a][c] * l[b][c];
+                    }
+                    extra -= tr * sm[a][b];
+                }
+            }
+            r[a][b] += extra;
+            r[b][a] = r[a][b];
+        }
+    }
     r
 }
 
-fn av_accel<S: Scalar>(m: &Model2D, z: StateView2D<'_, S>, i: usize, st: &[Nb2<S>]) -> [S; 2] {
+fn av_accel<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    i: usize,
+    st: &[NbD<S, D>],
+) -> [S; D] {
     let Some(av) = m.p.av else {
-        return [S::zero(); 2];
+        return [S::zero(); D];
     };
     let h = m.p.kp.h;
-    let mut a = [S::zero(); 2];
+    let mut a = [S::zero(); D];
     for nb in st {
         if nb.j == i {
             continue;
         }
-        let xij = [-nb.d[0], -nb.d[1]];
-        let vij = [z.v[i][0] - z.v[nb.j][0], z.v[i][1] - z.v[nb.j][1]];
-        let vx = vij[0] * xij[0] + vij[1] * xij[1];
+        let xij = nb.d.map(|c| -c);
+        let mut vx = (z.v[i][0] - z.v[nb.j][0]) * xij[0];
+        let mut r2 = xij[0] * xij[0];
+        for c in 1..D {
+            vx += (z.v[i][c] - z.v[nb.j][c]) * xij[c];
+            r2 += xij[c] * xij[c];
+        }
         if av.approaching_only && vx.re() >= 0.0 {
             continue;
         }
-        let r2 = xij[0] * xij[0] + xij[1] * xij[1];
         let mu = vx * h / (r2 + 0.01 * h * h);
         let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
         let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
         // ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
         let (_, grad) = kernel::w_and_grad(m.p.kp.kernel, h, nb.d);
-        for c in 0..2 {
+        for c in 0..D {
             a[c] -= pi * grad[c] * m.mass[nb.j];
         }
     }
     a
 }
 
-/// Artificial-stress tensor R = −ε Σ_{λ>0} λ P_λ / ρ² of a stress [xx, yy, xy] (principal
-/// decomposition; an isotropic tensile stress gives R = −ε σ/ρ², smooth for linearisation).
-fn art_tensor<S: Scalar>(s: [S; 3], rho: S, eps: f64) -> [S; 3] {
+/// Artificial-stress tensor R = −ε Σ_{λ>0} λ P_λ / ρ² of a stress (principal decomposition;
+/// an isotropic tensile stress gives R = −ε σ/ρ², smooth for linearisation). D ≤ 2 (the model
+/// refuses artificial stress in 3D).
+fn art_tensor<S: Scalar, const D: usize>(s: &Tensor<S, D>, rho: S, eps: f64) -> Tensor<S, D> {
     let scale = S::cst(-eps) / (rho * rho);
-    let mean = (s[0] + s[1]) * 0.5;
-    let dh = (s[0] - s[1]) * 0.5;
-    let rad2 = dh * dh + s[2] * s[2];
+    let mut r = [[S::zero(); D]; D];
+    if D == 1 {
+        if s[0][0].re() > 0.0 {
+            r[0][0] = s[0][0] * scale;
+        }
+        return r;
+    }
+    if D != 2 {
+        return r;
+    }
+    let (s0, s1, s2) = (s[0][0], s[1][1], s[0][1]);
+    let mean = (s0 + s1) * 0.5;
+    let dh = (s0 - s1) * 0.5;
+    let rad2 = dh * dh + s2 * s2;
     if rad2.re() <= 1e-28 * mean.re().abs().max(f64::MIN_POSITIVE).powi(2) {
         // (numerically) isotropic
-        return if mean.re() > 0.0 {
-            [s[0] * scale, s[1] * scale, s[2] * scale]
-        } else {
-            [S::zero(); 3]
-        };
+        if mean.re() > 0.0 {
+            for a in 0..D {
+                for b in 0..D {
+                    r[a][b] = s[a][b] * scale;
+                }
+            }
+        }
+        return r;
     }
     let rad = rad2.sqrt();
     let (l1, l2) = (mean + rad, mean - rad);
     // P1 = (σ − λ2 I)/(λ1 − λ2), P2 = I − P1
     let p1 = [
-        (s[0] - l2) / (rad * 2.0),
-        (s[1] - l2) / (rad * 2.0),
-        s[2] / (rad * 2.0),
+        (s0 - l2) / (rad * 2.0),
+        (s1 - l2) / (rad * 2.0),
+        s2 / (rad * 2.0),
     ];
     let p2 = [S::cst(1.0) - p1[0], S::cst(1.0) - p1[1], -p1[2]];
-    let mut r = [S::zero(); 3];
+    let mut v = [S::zero(); 3];
     for (l, p) in [(l1, p1), (l2, p2)] {
         if l.re() > 0.0 {
             for k in 0..3 {
-                r[k] += l * p[k] * scale;
+                v[k] += l * p[k] * scale;
             }
         }
     }
+    r[0][0] = v[0];
+    r[1][1] = v[1];
+    r[0][1] = v[2];
+    r[1][0] = v[2];
     r
 }
 
 /// Σ_J m_J (R_I + R_J) f_IJⁿ ∇_I W_IJ.
-fn art_accel<S: Scalar>(m: &Model2D, r: &[[S; 3]], i: usize, st: &[Nb2<S>]) -> [S; 2] {
+fn art_accel<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    r: &[Tensor<S, D>],
+    i: usize,
+    st: &[NbD<S, D>],
+) -> [S; D] {
     let Some(a) = m.p.art_stress else {
-        return [S::zero(); 2];
+        return [S::zero(); D];
     };
     let h = m.p.kp.h;
-    let w_dp = kernel::w(m.p.kp.kernel, 2, a.spacing, h);
-    let mut acc = [S::zero(); 2];
+    let w_dp = kernel::w(m.p.kp.kernel, D, a.spacing, h);
+    let mut acc = [S::zero(); D];
     for nb in st {
         if nb.j == i {
             continue;
@@ -213,24 +276,28 @@ fn art_accel<S: Scalar>(m: &Model2D, r: &[[S; 3]], i: usize, st: &[Nb2<S>]) -> [
         for _ in 0..a.n {
             fnn *= f;
         }
-        let t = [
-            r[i][0] + r[nb.j][0],
-            r[i][1] + r[nb.j][1],
-            r[i][2] + r[nb.j][2],
-        ];
-        let f2 = dot(t, g);
-        acc[0] += f2[0] * fnn * m.mass[nb.j];
-        acc[1] += f2[1] * fnn * m.mass[nb.j];
+        let mut t = [[S::zero(); D]; D];
+        // symmetric: the upper triangle, mirrored
+        for p in 0..D {
+            for q in p..D {
+                t[p][q] = r[i][p][q] + r[nb.j][p][q];
+                t[q][p] = t[p][q];
+            }
+        }
+        let f2 = dot(&t, g);
+        for c in 0..D {
+            acc[c] += f2[c] * fnn * m.mass[nb.j];
+        }
     }
     acc
 }
 
-/// The 2D rate of an Eulerian form, into the requested parts of `out`.
-pub(crate) fn rate<S: Scalar>(
-    m: &Model2D,
-    z: StateView2D<'_, S>,
-    out: RateOut2D<'_, S>,
-    ws: &mut RateWorkspace<S>,
+/// The rate of an Eulerian form, into the requested parts of `out`.
+pub(crate) fn rate<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    out: RateOut<'_, S, D>,
+    ws: &mut RateWorkspace<S, D>,
 ) -> Result<()> {
     let form = m.p.form;
     let mixed = matches!(form, FormKind::Lnl | FormKind::Cll);
@@ -241,29 +308,30 @@ pub(crate) fn rate<S: Scalar>(
     }
     if let Some(acc) = out.v {
         ws.hydro.clear();
-        if let Material2D::Hydro { bulk } = m.p.material {
+        if let Material::Hydro { bulk } = m.p.material {
             ws.hydro.extend(z.rho.iter().map(|&r| {
                 let sg = (r / m.p.rho0 - 1.0) * (-bulk);
-                [sg, sg, S::zero()]
+                let mut t = [[S::zero(); D]; D];
+                for (a, row) in t.iter_mut().enumerate() {
+                    row[a] = sg;
+                }
+                t
             }));
         }
-        let (sig, tau): (&[[S; 3]], &[[S; 3]]) = match m.p.material {
-            Material2D::Hydro { .. } => (&ws.hydro, &ws.hydro),
+        let (sig, tau): (&[Tensor<S, D>], &[Tensor<S, D>]) = match m.p.material {
+            Material::Hydro { .. } => (&ws.hydro, &ws.hydro),
             _ => (z.sigma, if mixed { z.tau } else { z.sigma }),
         };
         ws.art.clear();
         if let (Some(a), FormKind::Classical | FormKind::Cll) = (m.p.art_stress, form) {
-            ws.art.extend(
-                sig.iter()
-                    .zip(z.rho)
-                    .map(|(&s, &r)| art_tensor(s, r, a.eps)),
-            );
+            ws.art
+                .extend(sig.iter().zip(z.rho).map(|(s, &r)| art_tensor(s, r, a.eps)));
         }
         let (st, art) = (&ws.stencils, &ws.art);
         // per-particle accelerations in parallel (rayon)
         acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
             let (st_a, st_b) = (&st[i].a, &st[i].b);
-            let a = match form {
+            let mut a = match form {
                 FormKind::Classical => div_sum(sig, z.rho, i, st_a),
                 FormKind::Nonlocal | FormKind::Local => div_difference(sig, z.rho[i], i, st_a),
                 FormKind::Lnl | FormKind::Cll => {
@@ -273,23 +341,31 @@ pub(crate) fn rate<S: Scalar>(
                         div_sum(sig, z.rho, i, st_a)
                     };
                     let q = div_difference(tau, z.rho[i], i, st_b);
-                    [p[0] * (1.0 - c) + q[0] * c, p[1] * (1.0 - c) + q[1] * c]
+                    let mut r = [S::zero(); D];
+                    for k in 0..D {
+                        r[k] = p[k] * (1.0 - c) + q[k] * c;
+                    }
+                    r
                 }
-                _ => [S::zero(); 2],
+                _ => [S::zero(); D],
             };
             let av = av_accel(m, z, i, st_a);
-            let mut a = [a[0] + av[0], a[1] + av[1]];
+            for k in 0..D {
+                a[k] += av[k];
+            }
             if !art.is_empty() {
                 let ar = art_accel(m, art, i, st_a);
                 let w = if form == FormKind::Cll { 1.0 - c } else { 1.0 };
-                a = [a[0] + ar[0] * w, a[1] + ar[1] * w];
+                for k in 0..D {
+                    a[k] += ar[k] * w;
+                }
             }
             *out_a = a;
         });
     }
-    if let Some(AuxRates2D { rho, sigma, tau }) = out.aux {
-        let zero3 = [S::zero(); 3];
-        ws.aux.resize(z.x.len(), (S::zero(), zero3, zero3));
+    if let Some(AuxRates { rho, sigma, tau }) = out.aux {
+        let zero = [[S::zero(); D]; D];
+        ws.aux.resize(z.x.len(), (S::zero(), zero, zero));
         let st = &ws.stencils;
         // per-particle auxiliary rates in parallel (rayon), then copied into `out`
         ws.aux.par_iter_mut().enumerate().for_each(|(i, r)| {
@@ -299,8 +375,11 @@ pub(crate) fn rate<S: Scalar>(
             } else {
                 la
             };
-            let tra = la[0][0] + la[1][1];
-            let trb = lb[0][0] + lb[1][1];
+            let (mut tra, mut trb) = (la[0][0], lb[0][0]);
+            for k in 1..D {
+                tra += la[k][k];
+                trb += lb[k][k];
+            }
             let rho_rate = -z.rho[i]
                 * if mixed {
                     tra * (1.0 - c) + trb * c
@@ -308,14 +387,14 @@ pub(crate) fn rate<S: Scalar>(
                     tra
                 };
             let sig_rate = if z.sigma.is_empty() {
-                zero3
+                zero
             } else {
-                stress_rate(&m.p.material, z.sigma[i], la)
+                stress_rate(&m.p.material, &z.sigma[i], &la)
             };
             let tau_rate = if z.tau.is_empty() {
-                zero3
+                zero
             } else {
-                stress_rate(&m.p.material, z.tau[i], lb)
+                stress_rate(&m.p.material, &z.tau[i], &lb)
             };
             *r = (rho_rate, sig_rate, tau_rate);
         });
@@ -327,18 +406,56 @@ pub(crate) fn rate<S: Scalar>(
     Ok(())
 }
 
-/// The 2D total-Lagrangian rate: F = I + Σ_K (u_K − ū) ⊗ ∇φ_K(X_J) at every master J
-/// (nodal integration, \[B00\] eq 79 in 2D), m_K a_K = −Σ_J V0_J P_J ∇φ_K(X_J), with
+/// det F of a D × D matrix of scalars, D ≤ 3.
+fn det_s<S: Scalar, const D: usize>(f: &Tensor<S, D>) -> S {
+    match D {
+        1 => f[0][0],
+        2 => f[0][0] * f[1][1] - f[0][1] * f[1][0],
+        _ => {
+            f[0][0] * (f[1][1] * f[2][2] - f[1][2] * f[2][1])
+                - f[0][1] * (f[1][0] * f[2][2] - f[1][2] * f[2][0])
+                + f[0][2] * (f[1][0] * f[2][1] - f[1][1] * f[2][0])
+        }
+    }
+}
+
+/// The cofactor matrix cof F = J F⁻ᵀ, D ≤ 3.
+fn cof_s<S: Scalar, const D: usize>(f: &Tensor<S, D>) -> Tensor<S, D> {
+    let mut c = [[S::zero(); D]; D];
+    match D {
+        1 => c[0][0] = S::cst(1.0),
+        2 => {
+            c[0][0] = f[1][1];
+            c[0][1] = -f[1][0];
+            c[1][0] = -f[0][1];
+            c[1][1] = f[0][0];
+        }
+        _ => {
+            for a in 0..3 {
+                for b in 0..3 {
+                    let (r0, r1) = ((a + 1) % 3, (a + 2) % 3);
+                    let (c0, c1) = ((b + 1) % 3, (b + 2) % 3);
+                    c[a][b] = f[r0][c0] * f[r1][c1] - f[r0][c1] * f[r1][c0];
+                }
+            }
+        }
+    }
+    c
+}
+
+/// The total-Lagrangian rate: F = I + Σ_K (u_K − ū) ⊗ ∇φ_K(X_J) at every master J
+/// (nodal integration, \[B00\] eq 79 in D dimensions), m_K a_K = −Σ_J V0_J P_J ∇φ_K(X_J), with
 /// - hydro: the fluid itself, P = −p(J) cof F, p = K(ρ/ρ0 − 1), ρ = ρ_ref/J (transverse modes
 ///   neutral, longitudinal speed² K/ρ0, as for the Eulerian forms);
 /// - elastic: St Venant–Kirchhoff about the pre-stress, S = σ0 I + λ_T tr E I + 2G_T E, P = F S,
 ///   with (λ_T, G_T) = (λ, G) for the Truesdell rate and (λ + σ0, G − σ0) for the Jaumann rate,
-///   so that the tangent C_T + σ0 δ (\[B00\] eq 15) is that of the Eulerian law.
-pub(crate) fn rate_tl<S: Scalar>(
-    m: &Model2D,
-    z: StateView2D<'_, S>,
-    out: RateOut2D<'_, S>,
-    ws: &mut RateWorkspace<S>,
+///   so that the tangent C_T + σ0 δ (\[B00\] eq 15) is that of the Eulerian law;
+/// - neo-Hookean: P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ.
+pub(crate) fn rate_tl<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    out: RateOut<'_, S, D>,
+    ws: &mut RateWorkspace<S, D>,
 ) -> Result<()> {
     let s0 = m.sigma0;
     if let Some(xo) = out.x {
@@ -347,60 +464,66 @@ pub(crate) fn rate_tl<S: Scalar>(
     if let Some(aux) = out.aux {
         // the total-Lagrangian forms carry no auxiliary state
         aux.rho.fill(S::zero());
-        aux.sigma.fill([S::zero(); 3]);
-        aux.tau.fill([S::zero(); 3]);
+        aux.sigma.fill([[S::zero(); D]; D]);
+        aux.tau.fill([[S::zero(); D]; D]);
     }
     let Some(acc) = out.v else {
         return Ok(());
     };
-    acc.fill([S::zero(); 2]);
+    acc.fill([S::zero(); D]);
     ws.disp.clear();
-    ws.disp.extend(
-        z.x.iter()
-            .zip(&m.x_ref)
-            .map(|(x, xr)| [x[0] - xr[0], x[1] - xr[1]]),
-    );
+    ws.disp.extend(z.x.iter().zip(&m.x_ref).map(|(x, xr)| {
+        let mut u = [S::zero(); D];
+        for a in 0..D {
+            u[a] = x[a] - xr[a];
+        }
+        u
+    }));
     let u = &ws.disp;
     for (j, st) in m.ref_master.iter().enumerate() {
         let sphi: f64 = st.iter().map(|e| e.1).sum();
-        let mut ubar = [S::zero(); 2];
+        let mut ubar = [S::zero(); D];
         for &(k, phi, _) in st {
-            ubar[0] += u[k][0] * phi;
-            ubar[1] += u[k][1] * phi;
+            for a in 0..D {
+                ubar[a] += u[k][a] * phi;
+            }
         }
-        ubar = [ubar[0] / sphi, ubar[1] / sphi];
-        let mut f = [[S::cst(1.0), S::zero()], [S::zero(), S::cst(1.0)]];
+        let ubar = ubar.map(|x| x / sphi);
+        let mut f = [[S::zero(); D]; D];
+        for (a, row) in f.iter_mut().enumerate() {
+            row[a] = S::cst(1.0);
+        }
         for &(k, _, gr) in st {
-            for a in 0..2 {
+            for a in 0..D {
                 let du = u[k][a] - ubar[a];
-                for b in 0..2 {
+                for b in 0..D {
                     f[a][b] += du * gr[b];
                 }
             }
         }
         let p = match m.p.material {
-            Material2D::Hydro { bulk } => {
-                let jac = f[0][0] * f[1][1] - f[0][1] * f[1][0];
+            Material::Hydro { bulk } => {
+                let jac = det_s(&f);
                 let rho_ref = m.mass[j] / m.vol_ref[j];
                 let pr = ((S::cst(rho_ref) / jac) / m.p.rho0 - 1.0) * bulk;
-                // P = −p cof F, cof F = J F⁻ᵀ = [[F11, −F10], [−F01, F00]]
-                [[-pr * f[1][1], pr * f[1][0]], [pr * f[0][1], -pr * f[0][0]]]
+                // P = −p cof F
+                cof_s(&f).map(|row| row.map(|c| -pr * c))
             }
-            Material2D::NeoHookean { lambda, shear } => {
+            Material::NeoHookean { lambda, shear } => {
                 // P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ, F⁻ᵀ = cof F / J
-                let jac = f[0][0] * f[1][1] - f[0][1] * f[1][0];
-                let cof = [[f[1][1], -f[1][0]], [-f[0][1], f[0][0]]];
+                let jac = det_s(&f);
+                let cof = cof_s(&f);
                 let lnj = jac.ln();
-                let mut p = [[S::zero(); 2]; 2];
-                for a in 0..2 {
-                    for b in 0..2 {
+                let mut p = [[S::zero(); D]; D];
+                for a in 0..D {
+                    for b in 0..D {
                         let fit = cof[a][b] / jac;
                         p[a][b] = (f[a][b] - fit) * shear + lnj * fit * lambda;
                     }
                 }
                 p
             }
-            Material2D::Elastic {
+            Material::Elastic {
                 lambda,
                 shear,
                 rate,
@@ -409,28 +532,31 @@ pub(crate) fn rate_tl<S: Scalar>(
                     ObjectiveRate::Truesdell => (lambda, shear),
                     ObjectiveRate::Jaumann => (lambda + s0, shear - s0),
                 };
-                let mut e = [[S::zero(); 2]; 2];
-                for a in 0..2 {
-                    for b in 0..2 {
+                let mut e = [[S::zero(); D]; D];
+                for a in 0..D {
+                    for b in 0..D {
                         let mut s = S::zero();
-                        for c in 0..2 {
+                        for c in 0..D {
                             s += f[c][a] * f[c][b];
                         }
                         e[a][b] = (s - if a == b { 1.0 } else { 0.0 }) * 0.5;
                     }
                 }
-                let tr = e[0][0] + e[1][1];
-                let mut sm = [[S::zero(); 2]; 2];
-                for a in 0..2 {
-                    for b in 0..2 {
+                let mut tr = e[0][0];
+                for a in 1..D {
+                    tr += e[a][a];
+                }
+                let mut sm = [[S::zero(); D]; D];
+                for a in 0..D {
+                    for b in 0..D {
                         sm[a][b] =
                             e[a][b] * (2.0 * g) + if a == b { tr * lam + s0 } else { S::zero() };
                     }
                 }
-                let mut p = [[S::zero(); 2]; 2];
-                for a in 0..2 {
-                    for b in 0..2 {
-                        for c in 0..2 {
+                let mut p = [[S::zero(); D]; D];
+                for a in 0..D {
+                    for b in 0..D {
+                        for c in 0..D {
                             p[a][b] += f[a][c] * sm[c][b];
                         }
                     }
@@ -440,32 +566,36 @@ pub(crate) fn rate_tl<S: Scalar>(
         };
         let w = m.vol_ref[j];
         for &(k, _, gr) in st {
-            for a in 0..2 {
-                acc[k][a] -= (p[a][0] * gr[0] + p[a][1] * gr[1]) * w;
+            for a in 0..D {
+                let mut pg = p[a][0] * gr[0];
+                for b in 1..D {
+                    pg += p[a][b] * gr[b];
+                }
+                acc[k][a] -= pg * w;
             }
         }
     }
     for (a, &ms) in acc.iter_mut().zip(&m.mass) {
-        *a = [a[0] / ms, a[1] / ms];
+        *a = a.map(|x| x / ms);
     }
     Ok(())
 }
 
-impl Model2D {
-    /// The rate function of the 2D system (same definitions as the 1D forms). `out` is resized
+impl<const D: usize> Model<D> {
+    /// The rate function of the system (same definitions as the 1D forms). `out` is resized
     /// to the shape of `z`. Allocates a fresh [`RateWorkspace`]: the analysis' entry point; a
-    /// time loop uses [`Model2D::rate_with`] or [`Model2D::rate_into`].
-    pub fn rate<S: Scalar>(&self, z: &State2D<S>, out: &mut State2D<S>) -> Result<()> {
+    /// time loop uses [`Model::rate_with`] or [`Model::rate_into`].
+    pub fn rate<S: Scalar>(&self, z: &State<S, D>, out: &mut State<S, D>) -> Result<()> {
         self.rate_with(z, out, &mut RateWorkspace::new())
     }
 
-    /// [`Model2D::rate`] with reusable buffers: `out` is resized to the shape of `z` (no
+    /// [`Model::rate`] with reusable buffers: `out` is resized to the shape of `z` (no
     /// allocation when it already has it) and the workspace's buffers are reused.
     pub fn rate_with<S: Scalar>(
         &self,
-        z: &State2D<S>,
-        out: &mut State2D<S>,
-        ws: &mut RateWorkspace<S>,
+        z: &State<S, D>,
+        out: &mut State<S, D>,
+        ws: &mut RateWorkspace<S, D>,
     ) -> Result<()> {
         out.resize_like(z);
         self.rate_into(z.view(), out.as_rate_out(), ws)
@@ -473,12 +603,12 @@ impl Model2D {
 
     /// The rate function on borrowed buffers, computing only the requested parts of `out`
     /// (accelerations, auxiliary rates, or both; each part is the same as in
-    /// [`Model2D::rate`]). Every output slice must have the length of the state's field.
+    /// [`Model::rate`]). Every output slice must have the length of the state's field.
     pub fn rate_into<S: Scalar>(
         &self,
-        z: StateView2D<'_, S>,
-        out: RateOut2D<'_, S>,
-        ws: &mut RateWorkspace<S>,
+        z: StateView<'_, S, D>,
+        out: RateOut<'_, S, D>,
+        ws: &mut RateWorkspace<S, D>,
     ) -> Result<()> {
         match self.p.form {
             FormKind::TotalLagrangian => rate_tl(self, z, out, ws),

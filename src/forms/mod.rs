@@ -24,8 +24,9 @@ pub use model::{
     ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,
 };
 pub use model2d::{
-    ArtificialStress, AuxRates2D, Comp2, Material2D, Model2D, ModelParams2D, ObjectiveRate,
-    RateOut2D, State2D, StateView2D,
+    ArtificialStress, AuxRates, AuxRates2D, Comp, Comp2, Material, Material2D, Model, Model2D,
+    Model3D, ModelParams2D, ObjectiveRate, RateOut, RateOut2D, State, State2D, State3D, StateView,
+    StateView2D, Tensor, n_sym, voigt,
 };
 pub use workspace::RateWorkspace;
 

@@ -1,22 +1,28 @@
-//! The 2D particle model (in-plane): parameters, materials and state.
+//! The particle model in D ∈ {1, 2, 3} dimensions ([`Model`]): parameters, materials and state.
 //!
-//! Stress is stored as [σ_xx, σ_yy, σ_xy]. Materials:
+//! Vectors are `[S; D]`; the stress is a symmetric `[[S; D]; D]` (the rates are computed
+//! symmetric, so an integrated stress stays exactly symmetric); its independent components are
+//! numbered in the nested Voigt order of [`voigt`] (xx, yy, xy, zz, xz, yz: the first one in 1D,
+//! the first three in 2D). Materials:
 //! - `Hydro`: p = K(ρ/ρ0 − 1), σ = −p I, density by continuity (the Swegle test); tangent
 //!   modulus C = K.
 //! - `Elastic`: hypo-elastic σ̇ = λ tr(d) I + 2G d + (objective terms), with the Jaumann rate
 //!   (Wσ − σW) or the Truesdell rate (Lσ + σLᵀ − tr(L)σ, which in 1D is the law of the 1D
-//!   forms); tangent modulus C = λ + 2G (P-wave), λ = K − G (2D).
+//!   forms); tangent modulus C = λ + 2G (P-wave modulus; plane strain in 2D).
 //! - total-Lagrangian forms: hydro is the fluid P = −p(J) cof F; elastic is St Venant–Kirchhoff
 //!   about the pre-stress with the moduli that give the Eulerian law's tangent (see
 //!   `eulerian2d::rate_tl`).
 
+// Small-tensor algebra (D × D, D ≤ 3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use super::FormKind;
 use super::model::ArtificialViscosity;
 use crate::error::{Error, Result};
-use crate::lattice::Lattice2D;
+use crate::lattice::Lattice;
 use crate::scalar::Scalar;
 use crate::shape::ShapeFamily;
-use crate::shape2d::{KernelParams2, eval2};
+use crate::shape2d::KernelParams2;
 
 /// Objective stress rate of the hypo-elastic law.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -28,16 +34,16 @@ pub enum ObjectiveRate {
     Truesdell,
 }
 
-/// 2D material.
+/// Material of the particle model (any dimension).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Material2D {
+pub enum Material {
     /// p = K(ρ/ρ0 − 1), G = 0.
     Hydro {
         /// Bulk modulus K.
         bulk: f64,
     },
     /// Compressible neo-Hookean \[T eq 3.62–3.64\], total-Lagrangian forms only:
-    /// P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ (plane strain), linearised about the unstressed state.
+    /// P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ (plane strain in 2D), linearised about the unstressed state.
     NeoHookean {
         /// Lamé λ.
         lambda: f64,
@@ -46,7 +52,7 @@ pub enum Material2D {
     },
     /// Linear hypo-elastic.
     Elastic {
-        /// Lamé λ (2D: K − G).
+        /// Lamé λ.
         lambda: f64,
         /// Shear modulus G.
         shear: f64,
@@ -55,12 +61,16 @@ pub enum Material2D {
     },
 }
 
-impl Material2D {
-    /// Elastic material with P-wave modulus `c` and Poisson ratio ν (plane strain):
+/// The 2D name of [`Material`].
+pub type Material2D = Material;
+
+impl Material {
+    /// Elastic material with P-wave modulus `c` and Poisson ratio ν (3D Lamé constants; plane
+    /// strain in 2D):
     /// G = c(1 − 2ν)/(2(1 − ν)), λ = cν/(1 − ν).
     pub fn elastic(c: f64, nu: f64, rate: ObjectiveRate) -> Result<Self> {
         crate::error::check_range("--poisson", nu, -0.99, 0.5, true, false)?;
-        Ok(Material2D::Elastic {
+        Ok(Material::Elastic {
             lambda: c * nu / (1.0 - nu),
             shear: c * (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu)),
             rate,
@@ -69,9 +79,10 @@ impl Material2D {
     /// Tangent modulus C of the normalisation (K for hydro, λ + 2G for elastic).
     pub fn modulus(&self) -> f64 {
         match *self {
-            Material2D::Hydro { bulk } => bulk,
-            Material2D::Elastic { lambda, shear, .. }
-            | Material2D::NeoHookean { lambda, shear } => lambda + 2.0 * shear,
+            Material::Hydro { bulk } => bulk,
+            Material::Elastic { lambda, shear, .. } | Material::NeoHookean { lambda, shear } => {
+                lambda + 2.0 * shear
+            }
         }
     }
 }
@@ -89,7 +100,7 @@ pub struct ArtificialStress {
     pub spacing: f64,
 }
 
-/// Parameters of a 2D model.
+/// Parameters of a particle model (any dimension).
 #[derive(Clone, Copy, Debug)]
 pub struct ModelParams2D {
     /// The form (classical, nonlocal, local, lnl, cll, total-lagrangian).
@@ -99,7 +110,7 @@ pub struct ModelParams2D {
     /// Kernel and h.
     pub kp: KernelParams2,
     /// Material.
-    pub material: Material2D,
+    pub material: Material,
     /// Reference density ρ0.
     pub rho0: f64,
     /// Partition coefficient c of lnl / cll.
@@ -110,136 +121,219 @@ pub struct ModelParams2D {
     pub art_stress: Option<ArtificialStress>,
 }
 
-/// A 2D particle model.
+/// A particle model in D dimensions: parameters plus the constant per-particle data.
 #[derive(Clone, Debug)]
-pub struct Model2D {
+pub struct Model<const D: usize> {
     /// Parameters.
     pub p: ModelParams2D,
-    /// Periodic cell vectors (None: open).
-    pub period: Option<[[f64; 2]; 2]>,
+    /// Periodic cell vectors (rows; None: open).
+    pub period: Option<[[f64; D]; D]>,
+    /// Inverse of the periodic cell matrix (fractional coordinates s = d · period_inv).
+    period_inv: [[f64; D]; D],
     /// Masses.
     pub mass: Vec<f64>,
     /// Reference positions.
-    pub x_ref: Vec<[f64; 2]>,
+    pub x_ref: Vec<[f64; D]>,
     /// Reference volumes.
     pub vol_ref: Vec<f64>,
     /// Isotropic pre-stress σ0 of the total-Lagrangian law.
     pub sigma0: f64,
     /// Reference stencils (total-Lagrangian): (master, φ, ∇φ) at each master.
-    pub(crate) ref_master: Vec<Vec<(usize, f64, [f64; 2])>>,
+    pub(crate) ref_master: Vec<Vec<(usize, f64, [f64; D])>>,
 }
 
-/// State of a 2D system; fields a form does not carry are empty.
-#[derive(Clone, Debug, Default)]
-pub struct State2D<S> {
+/// A 2D model.
+pub type Model2D = Model<2>;
+/// A 3D model.
+pub type Model3D = Model<3>;
+
+/// A symmetric D × D tensor (stress).
+pub type Tensor<S, const D: usize> = [[S; D]; D];
+
+/// State of a particle system; fields a form does not carry are empty.
+#[derive(Clone, Debug)]
+pub struct State<S, const D: usize> {
     /// Positions.
-    pub x: Vec<[S; 2]>,
+    pub x: Vec<[S; D]>,
     /// Velocities.
-    pub v: Vec<[S; 2]>,
+    pub v: Vec<[S; D]>,
     /// Densities.
     pub rho: Vec<S>,
-    /// Stress σ (elastic), [xx, yy, xy].
-    pub sigma: Vec<[S; 3]>,
+    /// Stress σ (elastic).
+    pub sigma: Vec<Tensor<S, D>>,
     /// Local stress τ (mixed forms, elastic).
-    pub tau: Vec<[S; 3]>,
+    pub tau: Vec<Tensor<S, D>>,
 }
 
-/// A borrowed [`State2D`]: the same fields as slices, so that a rate can be evaluated on the
-/// solver's own buffers without assembling a `State2D`.
+impl<S, const D: usize> Default for State<S, D> {
+    fn default() -> Self {
+        Self {
+            x: Vec::new(),
+            v: Vec::new(),
+            rho: Vec::new(),
+            sigma: Vec::new(),
+            tau: Vec::new(),
+        }
+    }
+}
+
+/// A 2D state.
+pub type State2D<S> = State<S, 2>;
+/// A 3D state.
+pub type State3D<S> = State<S, 3>;
+
+/// A borrowed [`State`]: the same fields as slices, so that a rate can be evaluated on the
+/// solver's own buffers without assembling a `State`.
 #[derive(Debug)]
-pub struct StateView2D<'a, S> {
+pub struct StateView<'a, S, const D: usize> {
     /// Positions.
-    pub x: &'a [[S; 2]],
+    pub x: &'a [[S; D]],
     /// Velocities.
-    pub v: &'a [[S; 2]],
+    pub v: &'a [[S; D]],
     /// Densities (empty if the form carries none).
     pub rho: &'a [S],
-    /// Stress σ, [xx, yy, xy] (empty if not carried).
-    pub sigma: &'a [[S; 3]],
+    /// Stress σ (empty if not carried).
+    pub sigma: &'a [Tensor<S, D>],
     /// Local stress τ (empty if not carried).
-    pub tau: &'a [[S; 3]],
+    pub tau: &'a [Tensor<S, D>],
 }
 
-impl<S> Clone for StateView2D<'_, S> {
+/// A 2D state view.
+pub type StateView2D<'a, S> = StateView<'a, S, 2>;
+
+impl<S, const D: usize> Clone for StateView<'_, S, D> {
     fn clone(&self) -> Self {
         *self
     }
 }
-impl<S> Copy for StateView2D<'_, S> {}
+impl<S, const D: usize> Copy for StateView<'_, S, D> {}
 
 /// Where a rate evaluation writes. A `None` part is neither computed nor written: the solver
 /// asks for the accelerations and the auxiliary rates in separate calls.
-#[derive(Debug, Default)]
-pub struct RateOut2D<'a, S> {
+#[derive(Debug)]
+pub struct RateOut<'a, S, const D: usize> {
     /// ẋ = v.
-    pub x: Option<&'a mut [[S; 2]]>,
+    pub x: Option<&'a mut [[S; D]]>,
     /// Accelerations v̇.
-    pub v: Option<&'a mut [[S; 2]]>,
+    pub v: Option<&'a mut [[S; D]]>,
     /// Auxiliary rates (ρ̇, σ̇, τ̇), each as long as the state's field (possibly empty).
-    pub aux: Option<AuxRates2D<'a, S>>,
+    pub aux: Option<AuxRates<'a, S, D>>,
 }
 
-/// The auxiliary part of a [`RateOut2D`].
+impl<S, const D: usize> Default for RateOut<'_, S, D> {
+    fn default() -> Self {
+        Self {
+            x: None,
+            v: None,
+            aux: None,
+        }
+    }
+}
+
+/// A 2D rate output.
+pub type RateOut2D<'a, S> = RateOut<'a, S, 2>;
+
+/// The auxiliary part of a [`RateOut`].
 #[derive(Debug)]
-pub struct AuxRates2D<'a, S> {
+pub struct AuxRates<'a, S, const D: usize> {
     /// ρ̇.
     pub rho: &'a mut [S],
     /// σ̇.
-    pub sigma: &'a mut [[S; 3]],
+    pub sigma: &'a mut [Tensor<S, D>],
     /// τ̇.
-    pub tau: &'a mut [[S; 3]],
+    pub tau: &'a mut [Tensor<S, D>],
 }
 
-/// A scalar component of the 2D state.
+/// A 2D auxiliary-rate output.
+pub type AuxRates2D<'a, S> = AuxRates<'a, S, 2>;
+
+/// The (row, column) of the k-th independent component of a symmetric tensor, in the nested
+/// Voigt order xx, yy, xy, zz, xz, yz (the first D(D+1)/2 are those of dimension D).
+#[inline]
+pub const fn voigt(k: usize) -> (usize, usize) {
+    match k {
+        0 => (0, 0),
+        1 => (1, 1),
+        2 => (0, 1),
+        3 => (2, 2),
+        4 => (0, 2),
+        _ => (1, 2),
+    }
+}
+
+/// Number of independent components of a symmetric D × D tensor.
+#[inline]
+pub const fn n_sym(d: usize) -> usize {
+    d * (d + 1) / 2
+}
+
+/// A scalar component of the state.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Comp2 {
+pub enum Comp {
     /// Position component.
     X(usize),
     /// Velocity component.
     V(usize),
     /// Density.
     Rho,
-    /// σ component (0 xx, 1 yy, 2 xy).
+    /// σ component, nested Voigt index ([`voigt`]: 0 xx, 1 yy, 2 xy, 3 zz, 4 xz, 5 yz).
     Sigma(usize),
-    /// τ component.
+    /// τ component (same numbering).
     Tau(usize),
 }
 
-impl Comp2 {
+/// The 2D name of [`Comp`].
+pub type Comp2 = Comp;
+
+impl Comp {
     /// Position / velocity / auxiliary.
     pub fn kind(self) -> super::FieldKind {
         match self {
-            Comp2::X(_) => super::FieldKind::Position,
-            Comp2::V(_) => super::FieldKind::Velocity,
+            Comp::X(_) => super::FieldKind::Position,
+            Comp::V(_) => super::FieldKind::Velocity,
             _ => super::FieldKind::Auxiliary,
         }
     }
 }
 
-impl<S: Scalar> State2D<S> {
+impl<S: Scalar, const D: usize> State<S, D> {
     /// Component `c` of particle `i`.
-    pub fn get(&self, c: Comp2, i: usize) -> S {
+    pub fn get(&self, c: Comp, i: usize) -> S {
         match c {
-            Comp2::X(a) => self.x[i][a],
-            Comp2::V(a) => self.v[i][a],
-            Comp2::Rho => self.rho[i],
-            Comp2::Sigma(a) => self.sigma[i][a],
-            Comp2::Tau(a) => self.tau[i][a],
+            Comp::X(a) => self.x[i][a],
+            Comp::V(a) => self.v[i][a],
+            Comp::Rho => self.rho[i],
+            Comp::Sigma(k) => {
+                let (a, b) = voigt(k);
+                self.sigma[i][a][b]
+            }
+            Comp::Tau(k) => {
+                let (a, b) = voigt(k);
+                self.tau[i][a][b]
+            }
         }
     }
-    /// Mutable component.
-    pub fn get_mut(&mut self, c: Comp2, i: usize) -> &mut S {
+    /// Sets component `c` of particle `i` (both entries of an off-diagonal tensor component).
+    pub fn set(&mut self, c: Comp, i: usize, val: S) {
         match c {
-            Comp2::X(a) => &mut self.x[i][a],
-            Comp2::V(a) => &mut self.v[i][a],
-            Comp2::Rho => &mut self.rho[i],
-            Comp2::Sigma(a) => &mut self.sigma[i][a],
-            Comp2::Tau(a) => &mut self.tau[i][a],
+            Comp::X(a) => self.x[i][a] = val,
+            Comp::V(a) => self.v[i][a] = val,
+            Comp::Rho => self.rho[i] = val,
+            Comp::Sigma(k) => {
+                let (a, b) = voigt(k);
+                self.sigma[i][a][b] = val;
+                self.sigma[i][b][a] = val;
+            }
+            Comp::Tau(k) => {
+                let (a, b) = voigt(k);
+                self.tau[i][a][b] = val;
+                self.tau[i][b][a] = val;
+            }
         }
     }
-    /// The state as a [`StateView2D`].
-    pub fn view(&self) -> StateView2D<'_, S> {
-        StateView2D {
+    /// The state as a [`StateView`].
+    pub fn view(&self) -> StateView<'_, S, D> {
+        StateView {
             x: &self.x,
             v: &self.v,
             rho: &self.rho,
@@ -247,12 +341,12 @@ impl<S: Scalar> State2D<S> {
             tau: &self.tau,
         }
     }
-    /// Every field of the state as an output ([`RateOut2D`] with all parts).
-    pub fn as_rate_out(&mut self) -> RateOut2D<'_, S> {
-        RateOut2D {
+    /// Every field of the state as an output ([`RateOut`] with all parts).
+    pub fn as_rate_out(&mut self) -> RateOut<'_, S, D> {
+        RateOut {
             x: Some(&mut self.x),
             v: Some(&mut self.v),
-            aux: Some(AuxRates2D {
+            aux: Some(AuxRates {
                 rho: &mut self.rho,
                 sigma: &mut self.sigma,
                 tau: &mut self.tau,
@@ -261,45 +355,36 @@ impl<S: Scalar> State2D<S> {
     }
     /// Gives every field the length of `o`'s (new entries zero); allocates only when a field
     /// grows beyond its capacity.
-    pub fn resize_like<T>(&mut self, o: &State2D<T>) {
-        self.x.resize(o.x.len(), [S::zero(); 2]);
-        self.v.resize(o.v.len(), [S::zero(); 2]);
+    pub fn resize_like<T>(&mut self, o: &State<T, D>) {
+        self.x.resize(o.x.len(), [S::zero(); D]);
+        self.v.resize(o.v.len(), [S::zero(); D]);
         self.rho.resize(o.rho.len(), S::zero());
-        self.sigma.resize(o.sigma.len(), [S::zero(); 3]);
-        self.tau.resize(o.tau.len(), [S::zero(); 3]);
+        self.sigma.resize(o.sigma.len(), [[S::zero(); D]; D]);
+        self.tau.resize(o.tau.len(), [[S::zero(); D]; D]);
     }
     /// Zeroed state shaped like `o`.
-    pub fn zeros_like<T>(o: &State2D<T>) -> Self {
-        State2D {
-            x: vec![[S::zero(); 2]; o.x.len()],
-            v: vec![[S::zero(); 2]; o.v.len()],
-            rho: vec![S::zero(); o.rho.len()],
-            sigma: vec![[S::zero(); 3]; o.sigma.len()],
-            tau: vec![[S::zero(); 3]; o.tau.len()],
-        }
+    pub fn zeros_like<T>(o: &State<T, D>) -> Self {
+        let mut z = Self::default();
+        z.resize_like(o);
+        z
     }
     /// Converts every entry.
-    pub fn map<T: Scalar>(&self, f: impl Fn(S) -> T + Copy) -> State2D<T> {
-        State2D {
-            x: self.x.iter().map(|p| [f(p[0]), f(p[1])]).collect(),
-            v: self.v.iter().map(|p| [f(p[0]), f(p[1])]).collect(),
+    pub fn map<T: Scalar>(&self, f: impl Fn(S) -> T + Copy) -> State<T, D> {
+        let vec = |p: &[S; D]| p.map(f);
+        let ten = |p: &Tensor<S, D>| p.map(|r| r.map(f));
+        State {
+            x: self.x.iter().map(vec).collect(),
+            v: self.v.iter().map(vec).collect(),
             rho: self.rho.iter().map(|&p| f(p)).collect(),
-            sigma: self
-                .sigma
-                .iter()
-                .map(|p| [f(p[0]), f(p[1]), f(p[2])])
-                .collect(),
-            tau: self
-                .tau
-                .iter()
-                .map(|p| [f(p[0]), f(p[1]), f(p[2])])
-                .collect(),
+            sigma: self.sigma.iter().map(ten).collect(),
+            tau: self.tau.iter().map(ten).collect(),
         }
     }
 }
 
 impl FormKind {
-    /// Whether the form is available in 2D.
+    /// Whether the form is available in 2D and 3D (the B00 stress-point, least-squares and
+    /// eulerian-nodal forms are 1D only).
     pub fn in_2d(self) -> bool {
         matches!(
             self,
@@ -312,10 +397,11 @@ impl FormKind {
         )
     }
 
-    /// Default shape family in 2D: as in 1D, except total-Lagrangian, whose closest 2D paper is
-    /// the thesis [T] (TL SPH, `sph` shapes). (With `mls`, nodal integration of a pre-stressed
-    /// rest state is not in equilibrium within two supports of a boundary: the residual force
-    /// ∝ σ0 drifts a fixed-boundary box; see the closing notes of issue 4.)
+    /// Default shape family in 2D and 3D: as in 1D, except total-Lagrangian, whose closest
+    /// multi-dimensional paper is the thesis [T] (TL SPH, `sph` shapes). (With `mls`, nodal
+    /// integration of a pre-stressed rest state is not in equilibrium within two supports of a
+    /// boundary: the residual force ∝ σ0 drifts a fixed-boundary box; see the closing notes of
+    /// issue 4.)
     pub fn default_shape_2d(self) -> ShapeFamily {
         match self {
             FormKind::TotalLagrangian => ShapeFamily::Sph,
@@ -324,44 +410,51 @@ impl FormKind {
     }
 
     /// The scalar components per particle in 2D for `material`.
-    pub fn comps_2d(self, material: &Material2D) -> Vec<Comp2> {
-        let mut c = vec![Comp2::X(0), Comp2::X(1), Comp2::V(0), Comp2::V(1)];
+    pub fn comps_2d(self, material: &Material) -> Vec<Comp> {
+        self.comps(2, material)
+    }
+
+    /// The scalar components per particle in dimension `dim` for `material`: positions,
+    /// velocities, then (Eulerian forms) density, and for elastic materials the D(D+1)/2
+    /// independent stress components (and as many of τ for the mixed forms).
+    pub fn comps(self, dim: usize, material: &Material) -> Vec<Comp> {
+        let mut c: Vec<Comp> = (0..dim).map(Comp::X).chain((0..dim).map(Comp::V)).collect();
         if self == FormKind::TotalLagrangian {
             return c;
         }
-        c.push(Comp2::Rho);
+        c.push(Comp::Rho);
         if matches!(
             material,
-            Material2D::Elastic { .. } | Material2D::NeoHookean { .. }
+            Material::Elastic { .. } | Material::NeoHookean { .. }
         ) {
-            c.extend([Comp2::Sigma(0), Comp2::Sigma(1), Comp2::Sigma(2)]);
+            c.extend((0..n_sym(dim)).map(Comp::Sigma));
             if matches!(self, FormKind::Lnl | FormKind::Cll) {
-                c.extend([Comp2::Tau(0), Comp2::Tau(1), Comp2::Tau(2)]);
+                c.extend((0..n_sym(dim)).map(Comp::Tau));
             }
         }
         c
     }
 }
 
-impl Model2D {
+impl<const D: usize> Model<D> {
     /// A model of particles at `x_ref` with volumes `vol_ref` and current density `rho`
     /// (masses ρ V); `sigma0` is the isotropic pre-stress of the total-Lagrangian law.
     pub fn new(
         p: ModelParams2D,
-        x_ref: Vec<[f64; 2]>,
+        x_ref: Vec<[f64; D]>,
         vol_ref: Vec<f64>,
         rho: f64,
         sigma0: f64,
-        period: Option<[[f64; 2]; 2]>,
+        period: Option<[[f64; D]; D]>,
     ) -> Result<Self> {
         if !p.form.in_2d() {
             return Err(Error::Incompatible(format!(
-                "--form {} is not available in 2D (classical, nonlocal, local, lnl, cll, total-lagrangian)",
+                "--form {} is not available with --dim {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)",
                 p.form.name()
             )));
         }
         p.form.check_shape(p.shape)?;
-        if let Material2D::NeoHookean { .. } = p.material {
+        if let Material::NeoHookean { .. } = p.material {
             if p.form != FormKind::TotalLagrangian {
                 return Err(Error::Incompatible(
                     "--material neo-hookean needs --form total-lagrangian".into(),
@@ -375,10 +468,28 @@ impl Model2D {
                 });
             }
         }
+        if D == 3 && p.art_stress.is_some() {
+            return Err(Error::Incompatible(
+                "--art-eps (artificial stress) is available with --dim 2 only".into(),
+            ));
+        }
+        let period_inv = match period {
+            Some(l) => {
+                let inv = invert(&l);
+                if inv.iter().flatten().any(|v| !v.is_finite()) {
+                    return Err(Error::Incompatible(
+                        "periodic cell: the cell vectors are linearly dependent".into(),
+                    ));
+                }
+                inv
+            }
+            None => [[0.0; D]; D],
+        };
         let mass = vol_ref.iter().map(|v| rho * v).collect();
-        let mut m = Model2D {
+        let mut m = Model {
             p,
             period,
+            period_inv,
             mass,
             x_ref,
             vol_ref,
@@ -388,9 +499,13 @@ impl Model2D {
         if p.form == FormKind::TotalLagrangian {
             let mut out = Vec::new();
             let mut st = Vec::with_capacity(m.x_ref.len());
+            let kp = crate::shape::KernelParams {
+                kernel: p.kp.kernel,
+                h: p.kp.h,
+            };
             for i in 0..m.x_ref.len() {
                 let (nodes, idx) = m.neighbours_ref(m.x_ref[i]);
-                eval2(p.shape, p.kp, &nodes, m.x_ref[i], &mut out)?;
+                crate::shape::eval_d(p.shape, kp, &nodes, m.x_ref[i][0], &mut out)?;
                 st.push(
                     idx.into_iter()
                         .zip(&out)
@@ -403,64 +518,87 @@ impl Model2D {
         Ok(m)
     }
 
-    /// A periodic patch of n1 × n2 cells of `lat` (spacing `dx`), at rest.
+    /// A periodic patch of n_1 × … × n_D primitive cells of `lat` (spacing `dx`), at rest.
     pub fn periodic_patch(
         p: ModelParams2D,
-        lat: &Lattice2D,
+        lat: &Lattice<D>,
         dx: f64,
-        n: [usize; 2],
+        n: [usize; D],
         rho: f64,
         sigma0: f64,
     ) -> Result<Self> {
         let a = lat.a;
-        let mut x = Vec::with_capacity(n[0] * n[1]);
-        for i in 0..n[0] {
-            for j in 0..n[1] {
-                let (fi, fj) = (i as f64, j as f64);
-                x.push([
-                    dx * (fi * a[0][0] + fj * a[1][0]),
-                    dx * (fi * a[0][1] + fj * a[1][1]),
-                ]);
+        let count: usize = n.iter().product();
+        let mut x = Vec::with_capacity(count);
+        for idx in 0..count {
+            // first index slowest
+            let mut m = [0usize; D];
+            let mut rest = idx;
+            for c in (0..D).rev() {
+                m[c] = rest % n[c];
+                rest /= n[c];
+            }
+            let mut q = [0.0; D];
+            for c in 0..D {
+                let mut s = 0.0;
+                for i in 0..D {
+                    s += m[i] as f64 * a[i][c];
+                }
+                q[c] = dx * s;
+            }
+            x.push(q);
+        }
+        let vol = vec![lat.area() * dx.powi(D as i32); x.len()];
+        let mut period = [[0.0; D]; D];
+        for i in 0..D {
+            for c in 0..D {
+                period[i][c] = n[i] as f64 * dx * a[i][c];
             }
         }
-        let vol = vec![lat.area() * dx * dx; x.len()];
-        let period = [
-            [n[0] as f64 * dx * a[0][0], n[0] as f64 * dx * a[0][1]],
-            [n[1] as f64 * dx * a[1][0], n[1] as f64 * dx * a[1][1]],
-        ];
         Self::new(p, x, vol, rho, sigma0, Some(period))
     }
 
-    /// Minimum-image relative position b − a.
+    /// Minimum-image relative position b − a (exact for displacements within half a period of
+    /// the cell; the rounding to the nearest image is the only non-smooth step, at half a
+    /// period, never inside a support).
     #[inline]
-    pub fn rel<S: Scalar>(&self, a: [S; 2], b: [S; 2]) -> [S; 2] {
-        let d = [b[0] - a[0], b[1] - a[1]];
-        match self.period {
-            None => d,
-            Some(l) => {
-                let det = l[0][0] * l[1][1] - l[0][1] * l[1][0];
-                let (dx, dy) = (d[0].re(), d[1].re());
-                let s = ((dx * l[1][1] - dy * l[1][0]) / det).round();
-                let t = ((dy * l[0][0] - dx * l[0][1]) / det).round();
-                if s == 0.0 && t == 0.0 {
-                    d
-                } else {
-                    [
-                        d[0] - (s * l[0][0] + t * l[1][0]),
-                        d[1] - (s * l[0][1] + t * l[1][1]),
-                    ]
-                }
-            }
+    pub fn rel<S: Scalar>(&self, a: [S; D], b: [S; D]) -> [S; D] {
+        let mut d = [S::zero(); D];
+        for c in 0..D {
+            d[c] = b[c] - a[c];
         }
+        let Some(l) = self.period else { return d };
+        let mut s = [0.0; D];
+        let mut any = false;
+        for i in 0..D {
+            let mut f = 0.0;
+            for c in 0..D {
+                f += d[c].re() * self.period_inv[c][i];
+            }
+            s[i] = f.round();
+            any |= s[i] != 0.0;
+        }
+        if !any {
+            return d;
+        }
+        for c in 0..D {
+            let mut shift = 0.0;
+            for i in 0..D {
+                shift += s[i] * l[i][c];
+            }
+            d[c] = d[c] - shift;
+        }
+        d
     }
 
-    fn neighbours_ref(&self, x: [f64; 2]) -> (Vec<([f64; 2], f64)>, Vec<usize>) {
+    fn neighbours_ref(&self, x: [f64; D]) -> (Vec<([f64; D], f64)>, Vec<usize>) {
         let r = self.p.kp.support();
         let mut nodes = Vec::new();
         let mut idx = Vec::new();
         for (j, &xj) in self.x_ref.iter().enumerate() {
             let d = self.rel(x, xj);
-            if d[0].hypot(d[1]) < r {
+            let r2: f64 = d.iter().map(|c| c * c).sum();
+            if r2 < r * r {
                 nodes.push((d, self.vol_ref[j]));
                 idx.push(j);
             }
@@ -470,23 +608,53 @@ impl Model2D {
 
     /// The state at rest at the reference positions with density `rho` and isotropic stress
     /// `sigma0` in every stress field the form carries.
-    pub fn rest_state(&self, rho: f64) -> State2D<f64> {
+    pub fn rest_state(&self, rho: f64) -> State<f64, D> {
         let n = self.x_ref.len();
-        let comps = self.p.form.comps_2d(&self.p.material);
-        let mut z = State2D {
+        let comps = self.p.form.comps(D, &self.p.material);
+        let mut z = State {
             x: self.x_ref.clone(),
-            v: vec![[0.0; 2]; n],
+            v: vec![[0.0; D]; n],
             ..Default::default()
         };
-        if comps.contains(&Comp2::Rho) {
+        if comps.contains(&Comp::Rho) {
             z.rho = vec![rho; n];
         }
-        if comps.contains(&Comp2::Sigma(0)) {
-            z.sigma = vec![[self.sigma0, self.sigma0, 0.0]; n];
+        let mut iso = [[0.0; D]; D];
+        for (a, row) in iso.iter_mut().enumerate() {
+            row[a] = self.sigma0;
         }
-        if comps.contains(&Comp2::Tau(0)) {
-            z.tau = vec![[self.sigma0, self.sigma0, 0.0]; n];
+        if comps.contains(&Comp::Sigma(0)) {
+            z.sigma = vec![iso; n];
+        }
+        if comps.contains(&Comp::Tau(0)) {
+            z.tau = vec![iso; n];
         }
         z
     }
+}
+
+/// Inverse of a D × D matrix, D ≤ 3 (non-finite entries when singular).
+pub(crate) fn invert<const D: usize>(m: &[[f64; D]; D]) -> [[f64; D]; D] {
+    let det = crate::lattice::det(m);
+    let mut inv = [[0.0; D]; D];
+    match D {
+        1 => inv[0][0] = 1.0 / m[0][0],
+        2 => {
+            inv[0][0] = m[1][1] / det;
+            inv[0][1] = -m[0][1] / det;
+            inv[1][0] = -m[1][0] / det;
+            inv[1][1] = m[0][0] / det;
+        }
+        _ => {
+            for i in 0..3 {
+                for j in 0..3 {
+                    // cofactor of m[j][i]
+                    let (r0, r1) = ((j + 1) % 3, (j + 2) % 3);
+                    let (c0, c1) = ((i + 1) % 3, (i + 2) % 3);
+                    inv[i][j] = (m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]) / det;
+                }
+            }
+        }
+    }
+    inv
 }

@@ -1,7 +1,8 @@
-//! Reusable buffers of the 2D rate evaluation, so that a time loop does not allocate.
+//! Reusable buffers of the rate evaluation in D dimensions, so that a time loop does not
+//! allocate.
 //!
-//! A [`RateWorkspace`] holds everything [`Model2D::rate_with`](super::Model2D::rate_with) and
-//! [`Model2D::rate_into`](super::Model2D::rate_into) need besides the state and the output: the
+//! A [`RateWorkspace`] holds everything [`Model::rate_with`](super::Model::rate_with) and
+//! [`Model::rate_into`](super::Model::rate_into) need besides the state and the output: the
 //! cell list, the volumes V_J = m_J/ρ_J, the hydrodynamic and artificial stresses, the
 //! neighbour stencils (one `Vec` per particle, cleared and refilled), per-chunk scratch for the
 //! shape-function evaluation, and the per-particle auxiliary rates. Every buffer is cleared and
@@ -16,31 +17,33 @@
 //! first kick's acceleration is evaluated where the previous step's last one was (same x and ρ,
 //! other v), so one stencil build of three is saved.
 
-use super::model2d::{Model2D, StateView2D};
+// Small-vector algebra (D ≤ 3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
+use super::model2d::{Model, StateView, Tensor};
 use crate::error::Result;
 use crate::neighbours::CellList;
 use crate::scalar::Scalar;
-use crate::shape::ShapeFamily;
-use crate::shape2d::eval2;
+use crate::shape::{ShapeFamily, eval_d};
 use rayon::prelude::*;
 
 /// Neighbour J of an evaluation point: index, d = x_J − x, ∇φ_J.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Nb2<S> {
+pub(crate) struct NbD<S, const D: usize> {
     pub j: usize,
-    pub d: [S; 2],
-    pub g: [S; 2],
+    pub d: [S; D],
+    pub g: [S; D],
 }
 
 /// The stencils of one particle: `a` with the form's shape family, `b` with corrected shape
 /// functions (mixed forms only; empty otherwise).
 #[derive(Clone, Debug)]
-pub(crate) struct Stencil<S> {
-    pub a: Vec<Nb2<S>>,
-    pub b: Vec<Nb2<S>>,
+pub(crate) struct Stencil<S, const D: usize> {
+    pub a: Vec<NbD<S, D>>,
+    pub b: Vec<NbD<S, D>>,
 }
 
-impl<S> Default for Stencil<S> {
+impl<S, const D: usize> Default for Stencil<S, D> {
     fn default() -> Self {
         Self {
             a: Vec::new(),
@@ -52,13 +55,13 @@ impl<S> Default for Stencil<S> {
 /// Scratch of the shape-function evaluation of one chunk of particles: (relative position,
 /// volume), neighbour indices, (φ, ∇φ).
 #[derive(Clone, Debug)]
-struct ShapeScratch<S> {
-    nodes: Vec<([S; 2], S)>,
+struct ShapeScratch<S, const D: usize> {
+    nodes: Vec<([S; D], S)>,
     idx: Vec<usize>,
-    vals: Vec<(S, [S; 2])>,
+    vals: Vec<(S, [S; D])>,
 }
 
-impl<S> Default for ShapeScratch<S> {
+impl<S, const D: usize> Default for ShapeScratch<S, D> {
     fn default() -> Self {
         Self {
             nodes: Vec::new(),
@@ -69,47 +72,48 @@ impl<S> Default for ShapeScratch<S> {
 }
 
 /// Per-particle auxiliary rates (ρ̇, σ̇, τ̇).
-pub(crate) type AuxRate<S> = (S, [S; 3], [S; 3]);
+pub(crate) type AuxRate<S, const D: usize> = (S, Tensor<S, D>, Tensor<S, D>);
 
 /// Particles per parallel work item of the stencil build (each item owns one scratch).
 const CHUNK: usize = 128;
 
-/// Reusable buffers of the 2D rate evaluation (see the module docs). `S` is the scalar of the
-/// state (`f64` for the solver, [`Dual`](crate::scalar::Dual) for the linearisation).
+/// Reusable buffers of the rate evaluation (see the module docs). `S` is the scalar of the
+/// state (`f64` for the solver, [`Dual`](crate::scalar::Dual) for the linearisation), `D` the
+/// dimension (2 by default).
 #[derive(Clone, Debug)]
-pub struct RateWorkspace<S> {
+pub struct RateWorkspace<S, const D: usize = 2> {
     /// Positions' values (for the cell list).
-    pos: Vec<[f64; 2]>,
-    cells: CellList,
+    pos: Vec<[f64; D]>,
+    cells: CellList<D>,
     /// V_J = m_J / ρ_J.
     vol: Vec<S>,
-    pub(crate) stencils: Vec<Stencil<S>>,
-    scratch: Vec<ShapeScratch<S>>,
+    pub(crate) stencils: Vec<Stencil<S, D>>,
+    scratch: Vec<ShapeScratch<S, D>>,
     /// Hydrodynamic stress −p I from the density.
-    pub(crate) hydro: Vec<[S; 3]>,
+    pub(crate) hydro: Vec<Tensor<S, D>>,
     /// Artificial-stress tensors R_I.
-    pub(crate) art: Vec<[S; 3]>,
-    pub(crate) aux: Vec<AuxRate<S>>,
+    pub(crate) art: Vec<Tensor<S, D>>,
+    pub(crate) aux: Vec<AuxRate<S, D>>,
     /// Displacements (total-Lagrangian forms).
-    pub(crate) disp: Vec<[S; 2]>,
+    pub(crate) disp: Vec<[S; D]>,
     /// What the current stencils were built for (`None`: nothing valid).
-    key: Option<StencilKey>,
-    key_x: Vec<[S; 2]>,
+    key: Option<StencilKey<D>>,
+    key_x: Vec<[S; D]>,
     key_rho: Vec<S>,
     key_mass: Vec<f64>,
 }
 
 /// The parameters the stencils depend on besides x, ρ and m.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct StencilKey {
+struct StencilKey<const D: usize> {
     family: ShapeFamily,
     with_corrected: bool,
     kernel: &'static str,
     h: f64,
-    period: Option<[[f64; 2]; 2]>,
+    period: Option<[[f64; D]; D]>,
 }
 
-impl<S> Default for RateWorkspace<S> {
+impl<S, const D: usize> Default for RateWorkspace<S, D> {
     fn default() -> Self {
         Self {
             pos: Vec::new(),
@@ -129,7 +133,7 @@ impl<S> Default for RateWorkspace<S> {
     }
 }
 
-impl<S: Scalar> RateWorkspace<S> {
+impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     /// An empty workspace (allocates nothing until first used).
     pub fn new() -> Self {
         Self::default()
@@ -151,26 +155,26 @@ impl<S: Scalar> RateWorkspace<S> {
         let st: usize = self
             .stencils
             .iter()
-            .map(|s| (s.a.capacity() + s.b.capacity()) * size_of::<Nb2<S>>())
+            .map(|s| (s.a.capacity() + s.b.capacity()) * size_of::<NbD<S, D>>())
             .sum();
         let sc: usize = self
             .scratch
             .iter()
             .map(|s| {
-                s.nodes.capacity() * size_of::<([S; 2], S)>()
+                s.nodes.capacity() * size_of::<([S; D], S)>()
                     + s.idx.capacity() * size_of::<usize>()
-                    + s.vals.capacity() * size_of::<(S, [S; 2])>()
+                    + s.vals.capacity() * size_of::<(S, [S; D])>()
             })
             .sum();
         st + sc
-            + self.stencils.capacity() * size_of::<Stencil<S>>()
-            + self.scratch.capacity() * size_of::<ShapeScratch<S>>()
-            + self.pos.capacity() * size_of::<[f64; 2]>()
+            + self.stencils.capacity() * size_of::<Stencil<S, D>>()
+            + self.scratch.capacity() * size_of::<ShapeScratch<S, D>>()
+            + self.pos.capacity() * size_of::<[f64; D]>()
             + self.vol.capacity() * size_of::<S>()
-            + (self.hydro.capacity() + self.art.capacity()) * size_of::<[S; 3]>()
-            + self.aux.capacity() * size_of::<AuxRate<S>>()
-            + self.disp.capacity() * size_of::<[S; 2]>()
-            + self.key_x.capacity() * size_of::<[S; 2]>()
+            + (self.hydro.capacity() + self.art.capacity()) * size_of::<Tensor<S, D>>()
+            + self.aux.capacity() * size_of::<AuxRate<S, D>>()
+            + self.disp.capacity() * size_of::<[S; D]>()
+            + self.key_x.capacity() * size_of::<[S; D]>()
             + self.key_rho.capacity() * size_of::<S>()
             + self.key_mass.capacity() * size_of::<f64>()
     }
@@ -182,8 +186,8 @@ impl<S: Scalar> RateWorkspace<S> {
     /// built for exactly the same inputs (module docs).
     pub(crate) fn build_stencils(
         &mut self,
-        m: &Model2D,
-        z: StateView2D<'_, S>,
+        m: &Model<D>,
+        z: StateView<'_, S, D>,
         with_corrected: bool,
     ) -> Result<()> {
         let key = StencilKey {
@@ -214,8 +218,8 @@ impl<S: Scalar> RateWorkspace<S> {
 
     fn rebuild_stencils(
         &mut self,
-        m: &Model2D,
-        z: StateView2D<'_, S>,
+        m: &Model<D>,
+        z: StateView<'_, S, D>,
         with_corrected: bool,
     ) -> Result<()> {
         let n = z.x.len();
@@ -232,14 +236,18 @@ impl<S: Scalar> RateWorkspace<S> {
                 .map(|(&rho, &ms)| S::cst(ms) / rho),
         );
         self.pos.clear();
-        self.pos.extend(z.x.iter().map(|p| [p[0].re(), p[1].re()]));
+        self.pos.extend(z.x.iter().map(|p| p.map(|c| c.re())));
         let grid = match m.period {
             None => {
                 self.cells.rebuild(&self.pos, r, None);
                 true
             }
-            Some(l) if l[0][1] == 0.0 && l[1][0] == 0.0 => {
-                self.cells.rebuild(&self.pos, r, Some([l[0][0], l[1][1]]));
+            Some(l) if is_diagonal(&l) => {
+                let mut ext = [0.0; D];
+                for (a, e) in ext.iter_mut().enumerate() {
+                    *e = l[a][a];
+                }
+                self.cells.rebuild(&self.pos, r, Some(ext));
                 true
             }
             Some(_) => false,
@@ -253,7 +261,11 @@ impl<S: Scalar> RateWorkspace<S> {
             self.scratch.resize_with(chunks, ShapeScratch::default);
         }
         let (pos, vol, cells) = (&self.pos, &self.vol, &self.cells);
-        let (family, kp) = (m.p.shape, m.p.kp);
+        let family = m.p.shape;
+        let kp = crate::shape::KernelParams {
+            kernel: m.p.kp.kernel,
+            h: m.p.kp.h,
+        };
         self.stencils
             .par_chunks_mut(CHUNK)
             .zip(self.scratch[..chunks].par_iter_mut())
@@ -266,8 +278,11 @@ impl<S: Scalar> RateWorkspace<S> {
                     let xi = z.x[i];
                     let mut visit = |j: usize| {
                         let d = m.rel(xi, z.x[j]);
-                        let (dx, dy) = (d[0].re(), d[1].re());
-                        if dx * dx + dy * dy < r2 {
+                        let mut d2 = d[0].re() * d[0].re();
+                        for c in 1..D {
+                            d2 += d[c].re() * d[c].re();
+                        }
+                        if d2 < r2 {
                             sc.nodes.push((d, vol[j]));
                             sc.idx.push(j);
                         }
@@ -277,10 +292,16 @@ impl<S: Scalar> RateWorkspace<S> {
                     } else {
                         (0..n).for_each(&mut visit);
                     }
-                    eval2(family, kp, &sc.nodes, pos[i], &mut sc.vals)?;
+                    eval_d(family, kp, &sc.nodes, pos[i][0], &mut sc.vals)?;
                     fill(&mut st.a, sc);
                     if with_corrected {
-                        eval2(ShapeFamily::Corrected, kp, &sc.nodes, pos[i], &mut sc.vals)?;
+                        eval_d(
+                            ShapeFamily::Corrected,
+                            kp,
+                            &sc.nodes,
+                            pos[i][0],
+                            &mut sc.vals,
+                        )?;
                         fill(&mut st.b, sc);
                     }
                 }
@@ -291,7 +312,7 @@ impl<S: Scalar> RateWorkspace<S> {
 
 /// Refills a stencil from the scratch; on growth it reserves a quarter more than needed, so
 /// that small changes of the neighbour count in a time loop do not reallocate.
-fn fill<S: Scalar>(st: &mut Vec<Nb2<S>>, sc: &ShapeScratch<S>) {
+fn fill<S: Scalar, const D: usize>(st: &mut Vec<NbD<S, D>>, sc: &ShapeScratch<S, D>) {
     st.clear();
     let k = sc.idx.len();
     if st.capacity() < k {
@@ -302,6 +323,11 @@ fn fill<S: Scalar>(st: &mut Vec<Nb2<S>>, sc: &ShapeScratch<S>) {
             .iter()
             .zip(&sc.nodes)
             .zip(&sc.vals)
-            .map(|((&j, &(d, _)), &(_, g))| Nb2 { j, d, g }),
+            .map(|((&j, &(d, _)), &(_, g))| NbD { j, d, g }),
     );
+}
+
+/// Whether a periodic cell is a rectangular box (off-diagonal entries exactly zero).
+fn is_diagonal<const D: usize>(l: &[[f64; D]; D]) -> bool {
+    (0..D).all(|a| (0..D).all(|b| a == b || l[a][b] == 0.0))
 }

@@ -1,12 +1,12 @@
 //! The exact linear operator of a finite particle set: the run's rate function linearised with
 //! dual numbers about its current (rest) state, with the boundary mask applied, reduced to the
 //! mechanical degrees of freedom of the free particles,
-//! `D = −(J_vx + J_vq J_qv)` (2N_free × 2N_free), and its eigenvalues ω²; the growth rate is
+//! `D = −(J_vx + J_vq J_qv)` (D·N_free × D·N_free in D dimensions), and its eigenvalues ω²; the growth rate is
 //! max Re sqrt(−ω²). Dense: affordable up to a few thousand free degrees of freedom.
 
-use super::run2d::{BoundaryDensity, Run2D};
+use super::run2d::{BoundaryDensity, Run};
 use crate::error::{Error, Result};
-use crate::forms::{Comp2, FieldKind, State2D};
+use crate::forms::{Comp, FieldKind, State};
 use crate::scalar::{Dual, Scalar as _};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -16,10 +16,10 @@ pub const MAX_DENSE_DOFS: usize = 3000;
 
 /// Growth rate (1/time, physical) of the fastest mode of the finite set, and the number of
 /// free mechanical degrees of freedom.
-pub fn box_growth(run: &Run2D) -> Result<(f64, usize)> {
+pub fn box_growth<const D: usize>(run: &Run<D>) -> Result<(f64, usize)> {
     let n = run.z.x.len();
     let free: Vec<usize> = (0..n).filter(|&i| !run.fixed[i]).collect();
-    let nx = 2 * free.len();
+    let nx = D * free.len();
     if nx > MAX_DENSE_DOFS {
         return Err(Error::Incompatible(format!(
             "dense box operator of {nx} degrees of freedom exceeds {MAX_DENSE_DOFS}; use the standing-mode prediction"
@@ -30,30 +30,27 @@ pub fn box_growth(run: &Run2D) -> Result<(f64, usize)> {
             "the box operator is defined without artificial viscosity".into(),
         ));
     }
-    let aux: Vec<Comp2> = run
+    let aux: Vec<Comp> = run
         .model
         .p
         .form
-        .comps_2d(&run.model.p.material)
+        .comps(D, &run.model.p.material)
         .into_iter()
         .filter(|c| c.kind() == FieldKind::Auxiliary)
         .collect();
     let nq = aux.len() * n;
-    let base: State2D<Dual> = run.z.map(Dual::cst);
-    let mut out = State2D::<Dual>::default();
+    let base: State<Dual, D> = run.z.map(Dual::cst);
+    let mut out = State::<Dual, D>::default();
     let frozen = |i: usize| run.fixed[i] && run.boundary == BoundaryDensity::Frozen;
     // column helpers: accelerations of free particles (rows of J_v·) and aux rates (rows of J_q·)
     let mut jvx = DMatrix::<f64>::zeros(nx, nx);
     let mut jvq = DMatrix::<f64>::zeros(nx, nq);
     let mut jqv = DMatrix::<f64>::zeros(nq, nx);
-    let mut eval = |seed: &dyn Fn(&mut State2D<Dual>)| -> Result<(Vec<f64>, Vec<f64>)> {
+    let mut eval = |seed: &dyn Fn(&mut State<Dual, D>)| -> Result<(Vec<f64>, Vec<f64>)> {
         let mut z = base.clone();
         seed(&mut z);
         run.model.rate(&z, &mut out)?;
-        let acc: Vec<f64> = free
-            .iter()
-            .flat_map(|&i| [out.v[i][0].d, out.v[i][1].d])
-            .collect();
+        let acc: Vec<f64> = free.iter().flat_map(|&i| out.v[i].map(|a| a.d)).collect();
         let mut q = Vec::with_capacity(nq);
         for &c in &aux {
             q.extend((0..n).map(|i| if frozen(i) { 0.0 } else { out.get(c, i).d }));
@@ -61,20 +58,24 @@ pub fn box_growth(run: &Run2D) -> Result<(f64, usize)> {
         Ok((acc, q))
     };
     for (k, &i) in free.iter().enumerate() {
-        for a in 0..2 {
+        for a in 0..D {
             let (acc, _) = eval(&|z| z.x[i][a].d = 1.0)?;
             for (r, v) in acc.iter().enumerate() {
-                jvx[(r, 2 * k + a)] = *v;
+                jvx[(r, D * k + a)] = *v;
             }
             let (_, q) = eval(&|z| z.v[i][a].d = 1.0)?;
             for (r, v) in q.iter().enumerate() {
-                jqv[(r, 2 * k + a)] = *v;
+                jqv[(r, D * k + a)] = *v;
             }
         }
     }
     for (ci, &c) in aux.iter().enumerate() {
         for i in 0..n {
-            let (acc, _) = eval(&|z| z.get_mut(c, i).d = 1.0)?;
+            let (acc, _) = eval(&|z| {
+                let mut t = z.get(c, i);
+                t.d = 1.0;
+                z.set(c, i, t);
+            })?;
             for (r, v) in acc.iter().enumerate() {
                 jvq[(r, ci * n + i)] = *v;
             }

@@ -15,4 +15,4 @@ pub mod thesis_wave;
 pub mod throughput;
 
 pub use run1d::Run1D;
-pub use run2d::{BoundaryDensity, Run2D};
+pub use run2d::{BoundaryDensity, Run, Run2D, Run3D};

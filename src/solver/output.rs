@@ -1,7 +1,7 @@
 //! Output formats as pure functions returning strings: CSV time histories and legacy-VTK
 //! particle snapshots (POLYDATA with vertices, readable by ParaView).
 
-use crate::forms::{State1D, State2D};
+use crate::forms::{State, State1D, State2D};
 use std::fmt::Write;
 
 /// CSV with a header row.
@@ -16,12 +16,18 @@ pub fn csv(header: &[&str], rows: impl IntoIterator<Item = Vec<f64>>) -> String 
     s
 }
 
-fn vtk(
+fn vtk<const D: usize>(
     title: &str,
-    pts: &[[f64; 2]],
+    pts: &[[f64; D]],
     scalars: &[(&str, Vec<f64>)],
-    vectors: &[(&str, Vec<[f64; 2]>)],
+    vectors: &[(&str, Vec<[f64; D]>)],
 ) -> String {
+    // x y z with the missing coordinates 0
+    let xyz = |p: &[f64; D]| {
+        let mut c = [0.0; 3];
+        c[..D].copy_from_slice(p);
+        c
+    };
     let n = pts.len();
     let mut s = String::new();
     let _ = writeln!(
@@ -30,7 +36,8 @@ fn vtk(
         title.replace('\n', " ")
     );
     for p in pts {
-        let _ = writeln!(s, "{:e} {:e} 0", p[0], p[1]);
+        let [x, y, z] = xyz(p);
+        let _ = writeln!(s, "{x:e} {y:e} {z:e}");
     }
     let _ = writeln!(s, "VERTICES {n} {}", 2 * n);
     for i in 0..n {
@@ -45,8 +52,9 @@ fn vtk(
     }
     for (name, v) in vectors {
         let _ = writeln!(s, "VECTORS {name} double");
-        for x in v {
-            let _ = writeln!(s, "{:e} {:e} 0", x[0], x[1]);
+        for p in v {
+            let [x, y, z] = xyz(p);
+            let _ = writeln!(s, "{x:e} {y:e} {z:e}");
         }
     }
     s
@@ -65,18 +73,28 @@ pub fn vtk_1d(title: &str, z: &State1D<f64>) -> String {
     vtk(title, &pts, &sc, &[])
 }
 
-/// Legacy VTK of a 2D state (velocity vectors; density and σ components when carried).
-pub fn vtk_2d(title: &str, z: &State2D<f64>) -> String {
+/// Legacy VTK of a 2D or 3D state (velocity vectors; density and the independent σ
+/// components when carried). 2D points are written with z = 0.
+pub fn vtk_nd<const D: usize>(title: &str, z: &State<f64, D>) -> String {
+    const NAMES: [&str; 6] = [
+        "sigma_xx", "sigma_yy", "sigma_xy", "sigma_zz", "sigma_xz", "sigma_yz",
+    ];
     let mut sc = Vec::new();
     if !z.rho.is_empty() {
         sc.push(("density", z.rho.clone()));
     }
     if !z.sigma.is_empty() {
-        sc.push(("sigma_xx", z.sigma.iter().map(|s| s[0]).collect()));
-        sc.push(("sigma_yy", z.sigma.iter().map(|s| s[1]).collect()));
-        sc.push(("sigma_xy", z.sigma.iter().map(|s| s[2]).collect()));
+        for (k, name) in NAMES.iter().enumerate().take(crate::forms::n_sym(D)) {
+            let (a, b) = crate::forms::voigt(k);
+            sc.push((*name, z.sigma.iter().map(|s| s[a][b]).collect()));
+        }
     }
     vtk(title, &z.x, &sc, &[("velocity", z.v.clone())])
+}
+
+/// Legacy VTK of a 2D state ([`vtk_nd`] with D = 2).
+pub fn vtk_2d(title: &str, z: &State2D<f64>) -> String {
+    vtk_nd(title, z)
 }
 
 #[cfg(test)]

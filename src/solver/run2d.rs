@@ -1,4 +1,4 @@
-//! A 2D particle run: model, state, boundary mask, time.
+//! A particle run in D ∈ {1, 2, 3} dimensions: model, state, boundary mask, time.
 //!
 //! Boundary particles are fixed (x and v held) but take part in every sum; their density (and
 //! stress, for elastic materials) either evolves by continuity like everyone else's or is frozen
@@ -7,7 +7,7 @@
 use std::cell::RefCell;
 
 use crate::error::{Error, Result};
-use crate::forms::{AuxRates2D, Comp2, Model2D, RateOut2D, RateWorkspace, State2D, StateView2D};
+use crate::forms::{AuxRates, Comp, Model, RateOut, RateWorkspace, State, StateView, Tensor};
 use crate::integrator::{Scratch, SecondOrderSystem, kdk_step};
 
 /// Treatment of the boundary particles' auxiliary state.
@@ -20,18 +20,18 @@ pub enum BoundaryDensity {
     Frozen,
 }
 
-/// A 2D run.
+/// A run in D dimensions ([`Run2D`], [`Run3D`]).
 ///
 /// The time loop allocates nothing once its buffers have grown (first step): positions and
-/// velocities are advanced in place in [`Run2D::z`], the auxiliary state (ρ, σ, τ) in one
+/// velocities are advanced in place in [`Run::z`], the auxiliary state (ρ, σ, τ) in one
 /// persistent flat buffer, and the rate function works on borrowed slices with a reusable
 /// [`RateWorkspace`].
 #[derive(Clone, Debug)]
-pub struct Run2D {
+pub struct Run<const D: usize = 2> {
     /// The model (form, kernel, material, masses, reference positions).
-    pub model: Model2D,
+    pub model: Model<D>,
     /// Current state.
-    pub z: State2D<f64>,
+    pub z: State<f64, D>,
     /// Fixed (boundary) particles.
     pub fixed: Vec<bool>,
     /// Boundary auxiliary-state treatment.
@@ -41,9 +41,14 @@ pub struct Run2D {
     /// Steps taken.
     pub steps: usize,
     layout: AuxLayout,
-    bufs: StepBuffers,
+    bufs: StepBuffers<D>,
     scratch: Scratch<f64>,
 }
+
+/// A 2D run.
+pub type Run2D = Run<2>;
+/// A 3D run.
+pub type Run3D = Run<3>;
 
 /// Which auxiliary fields the form integrates (the others are left untouched).
 #[derive(Clone, Copy, Debug)]
@@ -55,54 +60,62 @@ struct AuxLayout {
 
 /// Buffers reused by every step.
 #[derive(Clone, Debug, Default)]
-struct StepBuffers {
-    /// The integrated auxiliary state, flat: [ρ (n) | σ (3n) | τ (3n)] (fields present only).
+struct StepBuffers<const D: usize> {
+    /// The integrated auxiliary state, flat: [ρ (n) | σ (D²n) | τ (D²n)] (fields present only).
     q: Vec<f64>,
     /// Rate-function workspace.
-    ws: RateWorkspace<f64>,
+    ws: RateWorkspace<f64, D>,
 }
 
 impl AuxLayout {
-    fn lens(&self, n: usize) -> [usize; 3] {
+    fn lens(&self, n: usize, d: usize) -> [usize; 3] {
         [
             if self.rho { n } else { 0 },
-            if self.sigma { 3 * n } else { 0 },
-            if self.tau { 3 * n } else { 0 },
+            if self.sigma { d * d * n } else { 0 },
+            if self.tau { d * d * n } else { 0 },
         ]
     }
 }
 
 /// Splits a flat auxiliary buffer into (ρ, σ, τ).
-fn split_aux(q: &[f64], lens: [usize; 3]) -> (&[f64], &[[f64; 3]], &[[f64; 3]]) {
+#[allow(clippy::type_complexity)]
+fn split_aux<const D: usize>(
+    q: &[f64],
+    lens: [usize; 3],
+) -> (&[f64], &[Tensor<f64, D>], &[Tensor<f64, D>]) {
     let (rho, rest) = q.split_at(lens[0]);
     let (sigma, tau) = rest.split_at(lens[1]);
-    (rho, sigma.as_chunks().0, tau.as_chunks().0)
+    (
+        rho,
+        sigma.as_chunks::<D>().0.as_chunks::<D>().0,
+        tau.as_chunks::<D>().0.as_chunks::<D>().0,
+    )
 }
 
 /// The same, mutable.
-fn split_aux_mut(q: &mut [f64], lens: [usize; 3]) -> AuxRates2D<'_, f64> {
+fn split_aux_mut<const D: usize>(q: &mut [f64], lens: [usize; 3]) -> AuxRates<'_, f64, D> {
     let (rho, rest) = q.split_at_mut(lens[0]);
     let (sigma, tau) = rest.split_at_mut(lens[1]);
-    AuxRates2D {
+    AuxRates {
         rho,
-        sigma: sigma.as_chunks_mut().0,
-        tau: tau.as_chunks_mut().0,
+        sigma: sigma.as_chunks_mut::<D>().0.as_chunks_mut::<D>().0,
+        tau: tau.as_chunks_mut::<D>().0.as_chunks_mut::<D>().0,
     }
 }
 
 /// The run as a second-order system for the integrator, on the integrator's flat slices.
-struct Sys<'a> {
-    model: &'a Model2D,
+struct Sys<'a, const D: usize> {
+    model: &'a Model<D>,
     fixed: &'a [bool],
     frozen_aux: bool,
     lens: [usize; 3],
-    ws: RefCell<&'a mut RateWorkspace<f64>>,
+    ws: RefCell<&'a mut RateWorkspace<f64, D>>,
 }
 
-impl Sys<'_> {
-    fn view<'b>(&self, x: &'b [f64], v: &'b [f64], q: &'b [f64]) -> StateView2D<'b, f64> {
+impl<const D: usize> Sys<'_, D> {
+    fn view<'b>(&self, x: &'b [f64], v: &'b [f64], q: &'b [f64]) -> StateView<'b, f64, D> {
         let (rho, sigma, tau) = split_aux(q, self.lens);
-        StateView2D {
+        StateView {
             x: x.as_chunks().0,
             v: v.as_chunks().0,
             rho,
@@ -112,9 +125,9 @@ impl Sys<'_> {
     }
 }
 
-impl SecondOrderSystem<f64> for Sys<'_> {
+impl<const D: usize> SecondOrderSystem<f64> for Sys<'_, D> {
     fn accel(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64]) {
-        let out = RateOut2D {
+        let out = RateOut {
             v: Some(a.as_chunks_mut().0),
             ..Default::default()
         };
@@ -127,9 +140,9 @@ impl SecondOrderSystem<f64> for Sys<'_> {
             // A singular moment matrix mid-run: NaN rates stop the run at the divergence check.
             a.fill(f64::NAN);
         }
-        for (ai, &f) in a.as_chunks_mut::<2>().0.iter_mut().zip(self.fixed) {
+        for (ai, &f) in a.as_chunks_mut::<D>().0.iter_mut().zip(self.fixed) {
             let keep = if f { 0.0 } else { 1.0 };
-            *ai = [ai[0] * keep, ai[1] * keep];
+            *ai = ai.map(|c| c * keep);
         }
     }
     fn accel_depends_on_velocity(&self) -> bool {
@@ -137,7 +150,7 @@ impl SecondOrderSystem<f64> for Sys<'_> {
     }
     fn qrate(&self, x: &[f64], v: &[f64], q: &[f64], r: &mut [f64]) {
         let lens = self.lens;
-        let out = RateOut2D {
+        let out = RateOut {
             aux: Some(split_aux_mut(r, lens)),
             ..Default::default()
         };
@@ -150,27 +163,27 @@ impl SecondOrderSystem<f64> for Sys<'_> {
             r.fill(0.0);
         }
         if self.frozen_aux {
-            let out = split_aux_mut(r, lens);
+            let out = split_aux_mut::<D>(r, lens);
             for (i, _) in self.fixed.iter().enumerate().filter(|(_, f)| **f) {
                 if let Some(p) = out.rho.get_mut(i) {
                     *p = 0.0;
                 }
                 if let Some(p) = out.sigma.get_mut(i) {
-                    *p = [0.0; 3];
+                    *p = [[0.0; D]; D];
                 }
                 if let Some(p) = out.tau.get_mut(i) {
-                    *p = [0.0; 3];
+                    *p = [[0.0; D]; D];
                 }
             }
         }
     }
 }
 
-impl Run2D {
+impl<const D: usize> Run<D> {
     /// A run of `model` from state `z` with boundary mask `fixed`.
     pub fn new(
-        model: Model2D,
-        z: State2D<f64>,
+        model: Model<D>,
+        z: State<f64, D>,
         fixed: Vec<bool>,
         boundary: BoundaryDensity,
     ) -> Result<Self> {
@@ -179,11 +192,11 @@ impl Run2D {
                 "boundary mask length differs from the particle count".into(),
             ));
         }
-        let comps = model.p.form.comps_2d(&model.p.material);
+        let comps = model.p.form.comps(D, &model.p.material);
         let layout = AuxLayout {
-            rho: comps.contains(&Comp2::Rho),
-            sigma: comps.contains(&Comp2::Sigma(0)),
-            tau: comps.contains(&Comp2::Tau(0)),
+            rho: comps.contains(&Comp::Rho),
+            sigma: comps.contains(&Comp::Sigma(0)),
+            tau: comps.contains(&Comp::Tau(0)),
         };
         let run = Self {
             model,
@@ -212,7 +225,7 @@ impl Run2D {
             || (l.tau && z.tau.len() != n)
         {
             return Err(Error::Incompatible(
-                "2D state: x, v, the boundary mask and every integrated field (ρ, σ, τ) need one \
+                "particle state: x, v, the boundary mask and every integrated field (ρ, σ, τ) need one \
                  entry per particle"
                     .into(),
             ));
@@ -226,18 +239,18 @@ impl Run2D {
     pub fn step(&mut self, dt: f64) -> Result<()> {
         self.check_state()?;
         let n = self.z.x.len();
-        let lens = self.layout.lens(n);
+        let lens = self.layout.lens(n, D);
         let z = &mut self.z;
         let q = &mut self.bufs.q;
         q.clear();
         q.extend_from_slice(if self.layout.rho { &z.rho } else { &[] });
         q.extend_from_slice(if self.layout.sigma {
-            z.sigma.as_flattened()
+            z.sigma.as_flattened().as_flattened()
         } else {
             &[]
         });
         q.extend_from_slice(if self.layout.tau {
-            z.tau.as_flattened()
+            z.tau.as_flattened().as_flattened()
         } else {
             &[]
         });
@@ -266,7 +279,7 @@ impl Run2D {
         if self.layout.tau {
             z.tau.copy_from_slice(tau);
         }
-        if z.v.iter().any(|p| !p[0].is_finite() || !p[1].is_finite()) {
+        if z.v.iter().any(|p| p.iter().any(|c| !c.is_finite())) {
             return Err(Error::NonFinite("solver state (the run diverged)"));
         }
         self.t += dt;
@@ -287,7 +300,16 @@ impl Run2D {
             .iter()
             .zip(&self.fixed)
             .filter(|(_, f)| !**f)
-            .map(|(v, _)| v[0].hypot(v[1]))
+            .map(|(v, _)| norm(v))
             .fold(0.0, f64::max)
+    }
+}
+
+/// |v| (hypot in 2D, as the 2D solver always computed it).
+fn norm<const D: usize>(v: &[f64; D]) -> f64 {
+    if D == 2 {
+        v[0].hypot(v[1])
+    } else {
+        v.iter().map(|c| c * c).sum::<f64>().sqrt()
     }
 }

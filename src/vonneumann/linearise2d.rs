@@ -1,43 +1,55 @@
-//! The 2D numeric route: the 2D rate function linearised exactly (dual numbers) about the
-//! uniformly, isotropically pre-stressed periodic lattice and projected onto Bloch waves
-//! exp(i k·X): per wave vector the Jacobian block J(k) of the full per-particle state, the 2×2
-//! dynamical matrix D(k) = −(J_vx + J_vq J_qv) of the mechanical branches, growth rates and
-//! polarisations.
+//! The numeric route in D ∈ {2, 3} dimensions: the rate function linearised exactly (dual
+//! numbers) about the uniformly, isotropically pre-stressed periodic lattice and projected onto
+//! Bloch waves exp(i k·X): per wave vector the Jacobian block J(k) of the full per-particle
+//! state, the D × D dynamical matrix D(k) = −(J_vx + J_vq J_qv) of the mechanical branches,
+//! growth rates and polarisations.
+//!
+//! The periodic patch: 2D, n × n primitive cells with n·(plane spacing) ≥ 4R + 5 spacings;
+//! 3D, m³ conventional cubes (orthogonal, so the cell list applies) with side m·a ≥ 2R_dep + 2a,
+//! where R_dep is how far the rate of a particle reaches: R for the Eulerian forms (stencils,
+//! volumes and stresses of the neighbours within the support) and 2R for total-Lagrangian
+//! (F at every neighbour within R). Each Jacobian column is stored with the relative position
+//! of the particle it belongs to, and J(k) = Σ_j J_j e^{−ik·r_j}.
 
 // Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
 use super::linearise::{check_rest, eigen, zero_sums};
 use crate::error::{Error, Result};
-use crate::forms::{Comp2, FieldKind, FormKind, Material2D, Model2D, ModelParams2D, State2D};
-use crate::lattice::Lattice2D;
+use crate::forms::{Comp, FieldKind, FormKind, Material, Model, ModelParams2D, State};
+use crate::lattice::Lattice;
 use crate::scalar::{Dual, Scalar};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-/// The Bloch-projected linearisation of a 2D form.
+/// The Bloch-projected linearisation of a form in D dimensions.
 #[derive(Clone, Debug)]
-pub struct Linearisation2D {
+pub struct Bloch<const D: usize> {
     /// Components per particle.
-    pub comps: Vec<Comp2>,
-    cols: Vec<Vec<([i64; 2], Vec<f64>)>>,
+    pub comps: Vec<Comp>,
+    cols: Vec<Vec<([f64; D], Vec<f64>)>>,
     zero_sum: Vec<Vec<bool>>,
-    ix: [usize; 2],
-    iv: [usize; 2],
+    ix: [usize; D],
+    iv: [usize; D],
     iq: Vec<usize>,
     /// Lattice (units of Δx).
-    pub lattice: Lattice2D,
+    pub lattice: Lattice<D>,
     omega2_scale: f64,
     time_scale: f64,
 }
 
+/// The 2D linearisation.
+pub type Linearisation2D = Bloch<2>;
+/// The 3D linearisation.
+pub type Linearisation3D = Bloch<3>;
+
 /// Base state of a pre-stressed lattice: (density, isotropic stress) for σ̄ = σ/C.
 /// Hydro: σ = −K(ρ/ρ0 − 1) = σ̄K ⇒ ρ = (1 − σ̄)ρ0 (the Swegle density ratio f = 1 − σ̄).
 /// Elastic: ρ = ρ0, σ = σ̄ C.
-pub fn base_state(material: &Material2D, rho0: f64, sigma_bar: f64) -> Result<(f64, f64)> {
+pub fn base_state(material: &Material, rho0: f64, sigma_bar: f64) -> Result<(f64, f64)> {
     let c = material.modulus();
     match material {
-        Material2D::Hydro { .. } => {
+        Material::Hydro { .. } => {
             if sigma_bar >= 1.0 {
                 return Err(Error::OutOfRange {
                     name: "--stress",
@@ -47,54 +59,165 @@ pub fn base_state(material: &Material2D, rho0: f64, sigma_bar: f64) -> Result<(f
             }
             Ok(((1.0 - sigma_bar) * rho0, sigma_bar * c))
         }
-        Material2D::Elastic { .. } | Material2D::NeoHookean { .. } => Ok((rho0, sigma_bar * c)),
+        Material::Elastic { .. } | Material::NeoHookean { .. } => Ok((rho0, sigma_bar * c)),
     }
 }
 
-impl Linearisation2D {
-    /// Linearises the 2D form `p` on lattice `lat` (spacing `dx`) at pre-stress σ̄.
-    pub fn new(p: ModelParams2D, lat: &Lattice2D, dx: f64, sigma_bar: f64) -> Result<Self> {
-        let (rho, s0) = base_state(&p.material, p.rho0, sigma_bar)?;
-        let hmin = lat.area() / lat.a.iter().map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
-        let range = (2.0 * p.kp.support() / (dx * hmin)).ceil() as usize + 2;
+/// The periodic patch of the linearisation (module docs) and the relative position of every
+/// particle from particle 0.
+fn patch<const D: usize>(
+    p: ModelParams2D,
+    lat: &Lattice<D>,
+    dx: f64,
+    rho: f64,
+    s0: f64,
+) -> Result<(Model<D>, Vec<[f64; D]>)> {
+    let r = p.kp.support();
+    if D == 2 {
+        let range = (2.0 * r / (dx * lat.plane_spacing())).ceil() as usize + 2;
         let n = 2 * range + 1;
-        check_patch_budget(&p, lat, dx, n)?;
-        let model = Model2D::periodic_patch(p, lat, dx, [n, n], rho, s0)?;
-        let base = model.rest_state(rho);
-        let comps = p.form.comps_2d(&p.material);
-        let nd = comps.len();
-        let cell = |idx: usize| -> [i64; 2] {
-            let (i, j) = ((idx / n) as i64, (idx % n) as i64);
-            let w = |a: i64| if a <= n as i64 / 2 { a } else { a - n as i64 };
-            [w(i), w(j)]
+        check_patch_budget(&p, lat, dx, n.pow(D as u32))?;
+        let mut nn = [0; D];
+        nn.fill(n);
+        let model = Model::periodic_patch(p, lat, dx, nn, rho, s0)?;
+        // relative positions from the cell indices, wrapped into (−n/2, n/2]
+        let w = |a: usize| {
+            let a = a as i64;
+            if a <= n as i64 / 2 { a } else { a - n as i64 }
         };
+        let a = lat.a;
+        let offs = (0..n * n)
+            .map(|idx| {
+                let (o0, o1) = (w(idx / n) as f64, w(idx % n) as f64);
+                let mut r = [0.0; D];
+                for c in 0..D {
+                    r[c] = o0 * a[0][c] + o1 * a[1][c];
+                }
+                r
+            })
+            .collect();
+        return Ok((model, offs));
+    }
+    let reach = if p.form == FormKind::TotalLagrangian {
+        2.0 * r
+    } else {
+        r
+    };
+    let side = cube_side(lat);
+    let m = (2.0 * reach / (dx * side)).ceil() as usize + 2;
+    let basis = cube_basis(lat);
+    check_patch_budget(&p, lat, dx, m.pow(D as u32) * basis.len())?;
+    let mut x = Vec::with_capacity(m.pow(D as u32) * basis.len());
+    for idx in 0..m.pow(D as u32) {
+        let mut c = [0usize; D];
+        let mut rest = idx;
+        for a in (0..D).rev() {
+            c[a] = rest % m;
+            rest /= m;
+        }
+        for b in &basis {
+            let mut q = [0.0; D];
+            for a in 0..D {
+                q[a] = dx * side * (c[a] as f64 + b[a]);
+            }
+            x.push(q);
+        }
+    }
+    let mut period = [[0.0; D]; D];
+    for a in 0..D {
+        period[a][a] = dx * side * m as f64;
+    }
+    let vol = vec![lat.area() * dx.powi(D as i32); x.len()];
+    let model = Model::new(p, x, vol, rho, s0, Some(period))?;
+    let x0 = model.x_ref[0];
+    let offs = model
+        .x_ref
+        .iter()
+        .map(|&xj| model.rel(x0, xj).map(|c| c / dx))
+        .collect();
+    Ok((model, offs))
+}
+
+/// Side of the conventional cube of a 3D lattice (1 for any other).
+fn cube_side<const D: usize>(lat: &Lattice<D>) -> f64 {
+    use crate::lattice::LatticeKind;
+    match lat.kind {
+        LatticeKind::Bcc => 2f64.cbrt(),
+        LatticeKind::Fcc => 4f64.cbrt(),
+        _ => 1.0,
+    }
+}
+
+/// Basis of the conventional cube in units of its side.
+fn cube_basis<const D: usize>(lat: &Lattice<D>) -> Vec<[f64; D]> {
+    let mut out = Vec::new();
+    let three: Vec<[f64; 3]> = match lat.kind {
+        crate::lattice::LatticeKind::Bcc => vec![[0.0; 3], [0.5; 3]],
+        crate::lattice::LatticeKind::Fcc => {
+            vec![[0.0; 3], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5], [0.5, 0.5, 0.0]]
+        }
+        _ => vec![[0.0; 3]],
+    };
+    for b in three {
+        let mut q = [0.0; D];
+        q.copy_from_slice(&b[..D]);
+        out.push(q);
+    }
+    out
+}
+
+impl<const D: usize> Bloch<D> {
+    /// Linearises the form `p` on lattice `lat` (spacing `dx`) at pre-stress σ̄.
+    pub fn new(p: ModelParams2D, lat: &Lattice<D>, dx: f64, sigma_bar: f64) -> Result<Self> {
+        if D == 3
+            && !matches!(
+                lat.kind,
+                crate::lattice::LatticeKind::Sc
+                    | crate::lattice::LatticeKind::Bcc
+                    | crate::lattice::LatticeKind::Fcc
+            )
+        {
+            return Err(Error::Incompatible("3D lattices: sc, bcc, fcc".into()));
+        }
+        let (rho, s0) = base_state(&p.material, p.rho0, sigma_bar)?;
+        let (model, offs) = patch(p, lat, dx, rho, s0)?;
+        let base = model.rest_state(rho);
+        let comps = p.form.comps(D, &p.material);
+        let nd = comps.len();
         let mut cols = Vec::with_capacity(nd);
-        let mut out = State2D::<Dual>::default();
+        let mut out = State::<Dual, D>::default();
+        let mut ws = crate::forms::RateWorkspace::<Dual, D>::new();
         for &b in &comps {
-            let mut z: State2D<Dual> = base.map(Dual::cst);
-            z.get_mut(b, 0).d = 1.0;
-            model.rate(&z, &mut out)?;
-            let mut col: Vec<([i64; 2], Vec<f64>)> = Vec::new();
+            let mut z: State<Dual, D> = base.map(Dual::cst);
+            let mut t = z.get(b, 0);
+            t.d = 1.0;
+            z.set(b, 0, t);
+            model.rate_with(&z, &mut out, &mut ws)?;
+            let mut col: Vec<([f64; D], Vec<f64>)> = Vec::new();
             for pidx in 0..base.x.len() {
                 let v: Vec<f64> = comps.iter().map(|&a| out.get(a, pidx).d).collect();
                 if v.iter().any(|x| !x.is_finite()) {
-                    return Err(Error::NonFinite("2D rate-function Jacobian"));
+                    return Err(Error::NonFinite("rate-function Jacobian"));
                 }
                 if v.iter().any(|&x| x != 0.0) {
-                    col.push((cell(pidx), v));
+                    col.push((offs[pidx], v));
                 }
             }
             cols.push(col);
         }
         let zero_sum = zero_sums(&cols, nd);
-        let find = |c: Comp2| {
+        let find = |c: Comp| {
             comps
                 .iter()
                 .position(|&x| x == c)
                 .ok_or(Error::NonFinite("layout"))
         };
-        let ix = [find(Comp2::X(0))?, find(Comp2::X(1))?];
-        let iv = [find(Comp2::V(0))?, find(Comp2::V(1))?];
+        let mut ix = [0; D];
+        let mut iv = [0; D];
+        for a in 0..D {
+            ix[a] = find(Comp::X(a))?;
+            iv[a] = find(Comp::V(a))?;
+        }
         let iq: Vec<usize> = (0..nd)
             .filter(|&k| comps[k].kind() == FieldKind::Auxiliary)
             .collect();
@@ -127,22 +250,20 @@ impl Linearisation2D {
         self.iv.iter().any(|&b| {
             self.cols[b]
                 .iter()
-                .any(|(_, c)| c[self.iv[0]] != 0.0 || c[self.iv[1]] != 0.0)
+                .any(|(_, c)| self.iv.iter().any(|&a| c[a] != 0.0))
         })
     }
 
     /// J(k) (physical units; k in units of 1/Δx).
-    pub fn jacobian(&self, k: [f64; 2]) -> DMatrix<Complex64> {
+    pub fn jacobian(&self, k: [f64; D]) -> DMatrix<Complex64> {
         let nd = self.comps.len();
-        let a = self.lattice.a;
         let mut j = DMatrix::<Complex64>::zeros(nd, nd);
         for (b, col) in self.cols.iter().enumerate() {
-            for (o, c) in col {
-                let r = [
-                    o[0] as f64 * a[0][0] + o[1] as f64 * a[1][0],
-                    o[0] as f64 * a[0][1] + o[1] as f64 * a[1][1],
-                ];
-                let t = k[0] * r[0] + k[1] * r[1];
+            for (r, c) in col {
+                let mut t = k[0] * r[0];
+                for a in 1..D {
+                    t += k[a] * r[a];
+                }
                 let (s, h) = (t.sin(), (0.5 * t).sin());
                 let e = Complex64::new(t.cos(), -s);
                 let em1 = Complex64::new(-2.0 * h * h, -s);
@@ -156,12 +277,12 @@ impl Linearisation2D {
         j
     }
 
-    /// Normalised dynamical matrix D(k)Δx²/c² (2×2) of the mechanical branches.
-    pub fn dynamical(&self, k: [f64; 2]) -> [[Complex64; 2]; 2] {
+    /// Normalised dynamical matrix D(k)Δx²/c² (D × D) of the mechanical branches.
+    pub fn dynamical(&self, k: [f64; D]) -> [[Complex64; D]; D] {
         let j = self.jacobian(k);
-        let mut d = [[Complex64::new(0.0, 0.0); 2]; 2];
-        for a in 0..2 {
-            for b in 0..2 {
+        let mut d = [[Complex64::new(0.0, 0.0); D]; D];
+        for a in 0..D {
+            for b in 0..D {
                 let mut v = -j[(self.iv[a], self.ix[b])];
                 for &q in &self.iq {
                     v -= j[(self.iv[a], q)] * j[(q, self.iv[b])];
@@ -172,31 +293,14 @@ impl Linearisation2D {
         d
     }
 
-    /// The two branches at k: (ω² (complex in general), unit polarisation), ascending in Re ω².
-    pub fn branches(&self, k: [f64; 2]) -> Vec<(Complex64, [Complex64; 2])> {
+    /// The D branches at k: (ω² (complex in general), unit polarisation), ascending in Re ω².
+    pub fn branches(&self, k: [f64; D]) -> Vec<(Complex64, [Complex64; D])> {
         let d = self.dynamical(k);
-        let tr = d[0][0] + d[1][1];
-        let det = d[0][0] * d[1][1] - d[0][1] * d[1][0];
-        let disc = (tr * tr * 0.25 - det).sqrt();
-        let mut out: Vec<(Complex64, [Complex64; 2])> = [tr * 0.5 - disc, tr * 0.5 + disc]
-            .into_iter()
-            .map(|l| {
-                // eigenvector: (d01, l − d00) or (l − d11, d10)
-                let v1 = [d[0][1], l - d[0][0]];
-                let v2 = [l - d[1][1], d[1][0]];
-                let n1 = v1[0].norm_sqr() + v1[1].norm_sqr();
-                let n2 = v2[0].norm_sqr() + v2[1].norm_sqr();
-                let (v, n) = if n1 >= n2 { (v1, n1) } else { (v2, n2) };
-                let pol = if n > 1e-300 {
-                    let s = n.sqrt();
-                    [v[0] / s, v[1] / s]
-                } else {
-                    // degenerate (D ∝ I): any direction
-                    [Complex64::new(1.0, 0.0), Complex64::new(0.0, 0.0)]
-                };
-                (l, pol)
-            })
-            .collect();
+        let mut out = match D {
+            1 => vec![(d[0][0], [Complex64::new(1.0, 0.0); D])],
+            2 => branches2(&d),
+            _ => branches3(&d),
+        };
         out.sort_by(|a, b| a.0.re.total_cmp(&b.0.re));
         out
     }
@@ -207,20 +311,25 @@ impl Linearisation2D {
     }
 
     /// Largest growth rate at k and the polarisation of that branch.
-    pub fn growth(&self, k: [f64; 2]) -> Result<(f64, [Complex64; 2])> {
+    pub fn growth(&self, k: [f64; D]) -> Result<(f64, [Complex64; D])> {
+        let b = self.branches(k);
         if self.is_dissipative() {
             let j = self.jacobian(k) * Complex64::new(self.time_scale, 0.0);
             let g = eigen(j)?.iter().map(|s| s.re).fold(0.0, f64::max);
-            let b = self.branches(k);
             return Ok((g, b[0].1));
         }
-        let b = self.branches(k);
-        let (g0, g1) = (Self::growth_of(b[0].0), Self::growth_of(b[1].0));
-        Ok(if g0 >= g1 { (g0, b[0].1) } else { (g1, b[1].1) })
+        let mut best = (Self::growth_of(b[0].0), b[0].1);
+        for br in &b[1..] {
+            let g = Self::growth_of(br.0);
+            if g > best.0 {
+                best = (g, br.1);
+            }
+        }
+        Ok(best)
     }
 
     /// Amplification matrix of one leapfrog step Δt (in Δx/c) for wave vector k.
-    pub fn amplification(&self, k: [f64; 2], dt: f64) -> DMatrix<Complex64> {
+    pub fn amplification(&self, k: [f64; D], dt: f64) -> DMatrix<Complex64> {
         let ms = super::amplification::ModeSystem::new(
             self.jacobian(k),
             self.ix.to_vec(),
@@ -231,7 +340,7 @@ impl Linearisation2D {
     }
 
     /// Spectral radius of the leapfrog amplification matrix at k.
-    pub fn spectral_radius(&self, k: [f64; 2], dt: f64) -> Result<f64> {
+    pub fn spectral_radius(&self, k: [f64; D], dt: f64) -> Result<f64> {
         Ok(eigen(self.amplification(k, dt))?
             .iter()
             .map(|l| l.norm())
@@ -239,30 +348,141 @@ impl Linearisation2D {
     }
 
     /// Eigenvalues s of J(k), normalised to c/Δx.
-    pub fn eigenvalues(&self, k: [f64; 2]) -> Result<Vec<Complex64>> {
+    pub fn eigenvalues(&self, k: [f64; D]) -> Result<Vec<Complex64>> {
         eigen(self.jacobian(k) * Complex64::new(self.time_scale, 0.0))
     }
 }
 
-/// Memory estimate of linearising on an n × n periodic patch, checked against the budget
-/// ([`crate::budget`]) before anything is allocated: every particle keeps a stencil of dual
-/// numbers per shape family (two for the mixed forms), ~πR²/A neighbours each (A the area per
-/// particle), with a quarter of spare capacity; plus the dual state and rate of every particle.
-pub fn check_patch_budget(p: &ModelParams2D, lat: &Lattice2D, dx: f64, n: usize) -> Result<()> {
+/// The two branches of a 2 × 2 dynamical matrix (closed form), unsorted.
+fn branches2<const D: usize>(d: &[[Complex64; D]; D]) -> Vec<(Complex64, [Complex64; D])> {
+    let tr = d[0][0] + d[1][1];
+    let det = d[0][0] * d[1][1] - d[0][1] * d[1][0];
+    let disc = (tr * tr * 0.25 - det).sqrt();
+    [tr * 0.5 - disc, tr * 0.5 + disc]
+        .into_iter()
+        .map(|l| {
+            // eigenvector: (d01, l − d00) or (l − d11, d10)
+            let v1 = [d[0][1], l - d[0][0]];
+            let v2 = [l - d[1][1], d[1][0]];
+            let n1 = v1[0].norm_sqr() + v1[1].norm_sqr();
+            let n2 = v2[0].norm_sqr() + v2[1].norm_sqr();
+            let (v, n) = if n1 >= n2 { (v1, n1) } else { (v2, n2) };
+            let mut pol = [Complex64::new(0.0, 0.0); D];
+            if n > 1e-300 {
+                let s = n.sqrt();
+                pol[0] = v[0] / s;
+                pol[1] = v[1] / s;
+            } else {
+                // degenerate (D ∝ I): any direction
+                pol[0] = Complex64::new(1.0, 0.0);
+            }
+            (l, pol)
+        })
+        .collect()
+}
+
+/// The three branches of a 3 × 3 dynamical matrix, unsorted: a Hermitian matrix (every
+/// conservative form on these centro-symmetric lattices) by the Hermitian eigendecomposition
+/// (orthonormal polarisations, also for degenerate branches); otherwise the eigenvalues of the
+/// complex Schur decomposition of D/‖D‖ and each polarisation as the null vector of D − ω²I
+/// (cross product of its two largest rows).
+fn branches3<const D: usize>(d: &[[Complex64; D]; D]) -> Vec<(Complex64, [Complex64; D])> {
+    let m = DMatrix::<Complex64>::from_fn(D, D, |a, b| d[a][b]);
+    let scale = m.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    let mut zero = [Complex64::new(0.0, 0.0); D];
+    if scale == 0.0 || !scale.is_finite() {
+        return (0..D)
+            .map(|a| {
+                let mut e = zero;
+                e[a] = Complex64::new(1.0, 0.0);
+                (Complex64::new(scale * 0.0, 0.0), e)
+            })
+            .collect();
+    }
+    let herm = (0..D).all(|a| (0..D).all(|b| (d[a][b] - d[b][a].conj()).norm() <= 1e-13 * scale));
+    if herm {
+        let h = (&m + m.adjoint()) * Complex64::new(0.5, 0.0);
+        let eig = nalgebra::SymmetricEigen::new(h);
+        return (0..D)
+            .map(|i| {
+                let mut e = zero;
+                for a in 0..D {
+                    e[a] = eig.eigenvectors[(a, i)];
+                }
+                (Complex64::new(eig.eigenvalues[i], 0.0), e)
+            })
+            .collect();
+    }
+    let vals = eigen(m.clone() * Complex64::new(1.0 / scale, 0.0))
+        .unwrap_or_else(|_| vec![Complex64::new(f64::NAN, 0.0); D]);
+    vals.into_iter()
+        .map(|l| {
+            let l = l * scale;
+            let mut a = m.clone();
+            for i in 0..D {
+                a[(i, i)] -= l;
+            }
+            let row = |i: usize| [a[(i, 0)], a[(i, 1)], a[(i, 2)]];
+            let cross = |u: [Complex64; 3], v: [Complex64; 3]| {
+                [
+                    u[1] * v[2] - u[2] * v[1],
+                    u[2] * v[0] - u[0] * v[2],
+                    u[0] * v[1] - u[1] * v[0],
+                ]
+            };
+            let nrm = |v: &[Complex64; 3]| v.iter().map(|z| z.norm_sqr()).sum::<f64>();
+            let mut best = [Complex64::new(0.0, 0.0); 3];
+            for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+                let c = cross(row(i), row(j));
+                if nrm(&c) > nrm(&best) {
+                    best = c;
+                }
+            }
+            let n = nrm(&best);
+            let mut e = zero;
+            if n > 1e-300 {
+                for a in 0..D {
+                    e[a] = best[a] / n.sqrt();
+                }
+            } else {
+                e[0] = Complex64::new(1.0, 0.0);
+            }
+            zero = [Complex64::new(0.0, 0.0); D];
+            (l, e)
+        })
+        .collect()
+}
+
+/// Memory estimate of linearising on a periodic patch of `count` particles, checked against the
+/// budget ([`crate::budget`]) before anything is allocated: every particle keeps a stencil of
+/// dual numbers per shape family (two for the mixed forms), ~(ball of radius R)/(volume per
+/// particle) neighbours each, with a quarter of spare capacity; plus the dual state and rate of
+/// every particle.
+pub fn check_patch_budget<const D: usize>(
+    p: &ModelParams2D,
+    lat: &Lattice<D>,
+    dx: f64,
+    count: usize,
+) -> Result<()> {
     let r = p.kp.support() / dx;
-    let particles = (n * n) as f64;
-    let neighbours = std::f64::consts::PI * r * r / lat.area() + 1.0;
+    let particles = count as f64;
+    let ball = match D {
+        1 => 2.0 * r,
+        2 => std::f64::consts::PI * r * r,
+        _ => 4.0 / 3.0 * std::f64::consts::PI * r * r * r,
+    };
+    let neighbours = ball / lat.area() + 1.0;
     let stencils = if matches!(p.form, FormKind::Lnl | FormKind::Cll) {
         2.0
     } else {
         1.0
     };
-    let entry = std::mem::size_of::<crate::forms::workspace::Nb2<Dual>>() as f64;
+    let entry = std::mem::size_of::<crate::forms::workspace::NbD<Dual, D>>() as f64;
     let bytes = particles * (neighbours * entry * stencils * 1.25 + 64.0 * 16.0);
     crate::budget::check_memory(
         "--h/--support",
         &format!(
-            "the 2D linearisation ({n} × {n} periodic patch, ~{neighbours:.0} neighbours per particle)"
+            "the {D}D linearisation ({count} particles in the periodic patch, ~{neighbours:.0} neighbours per particle)"
         ),
         bytes,
     )
