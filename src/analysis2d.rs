@@ -1,19 +1,20 @@
-//! 2D questions: stability over the Brillouin zone (`query --dim 2`), dispersion along the
-//! high-symmetry path, critical time step, growth-rate maps, and the finite-box prediction.
+//! Questions in 2D and 3D (`--dim 2|3`): stability over the Brillouin zone, dispersion along
+//! the high-symmetry path, critical time step, growth-rate maps (3D: a plane through the zone),
+//! and the finite-box prediction — one generic code path for both dimensions ([`Query`]).
 
 use crate::error::{Error, Result};
-use crate::forms::{ArtificialViscosity, FormKind, Material2D, ModelParams2D, ObjectiveRate};
+use crate::forms::{ArtificialViscosity, FormKind, Material, ModelParams2D, ObjectiveRate};
 use crate::kernel::Kernel;
-use crate::lattice::{Lattice2D, LatticeKind};
+use crate::lattice::{Lattice, LatticeKind};
 use crate::shape::ShapeFamily;
 use crate::shape2d::KernelParams2;
 use crate::vonneumann::amplification::AMPLIFICATION_TOL;
 use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL};
-use crate::vonneumann::linearise2d::Linearisation2D;
+use crate::vonneumann::linearise2d::Bloch;
 use serde::Serialize;
 use std::f64::consts::PI;
 
-/// Material choice of a 2D query.
+/// Material choice of a 2D or 3D query.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "kebab-case", tag = "kind")]
 pub enum MaterialSpec {
@@ -24,7 +25,7 @@ pub enum MaterialSpec {
         /// ν.
         poisson: f64,
     },
-    /// Linear elastic with Poisson ratio ν (plane strain) and an objective rate.
+    /// Linear elastic with Poisson ratio ν (plane strain in 2D) and an objective rate.
     Elastic {
         /// ν.
         poisson: f64,
@@ -33,9 +34,9 @@ pub enum MaterialSpec {
     },
 }
 
-/// A 2D stability question (units: Δx = 1, C = 1, ρ0 = 1).
+/// A stability question in D ∈ {2, 3} dimensions (units: Δx = 1, C = 1, ρ0 = 1).
 #[derive(Clone, Copy, Debug)]
-pub struct Query2D {
+pub struct Query<const D: usize> {
     /// Form.
     pub form: FormKind,
     /// Kernel.
@@ -51,19 +52,35 @@ pub struct Query2D {
     /// Material.
     pub material: MaterialSpec,
     /// Lattice.
-    pub lattice: Lattice2D,
+    pub lattice: Lattice<D>,
     /// Artificial viscosity (α, β), linearised on all pairs.
     pub av: Option<(f64, f64)>,
     /// Leapfrog Δt (Δx/c) to check.
     pub dt: Option<f64>,
     /// Artificial stress (ε, n) of the classical form.
     pub art_stress: Option<(f64, i32)>,
-    /// Wave vectors per reciprocal-lattice direction (the zone is sampled n × n).
+    /// Wave vectors per reciprocal-lattice direction (the zone is sampled n^D).
     pub grid: usize,
 }
 
-impl Query2D {
-    /// Defaults: square lattice, elastic ν = 0.3 (Jaumann), 64 × 64 wave vectors.
+/// A 2D question.
+pub type Query2D = Query<2>;
+/// A 3D question.
+pub type Query3D = Query<3>;
+
+/// Default `--grid`: 64 × 64 wave vectors in 2D, 16³ in 3D.
+pub const fn default_grid(dim: usize) -> usize {
+    if dim == 3 { 16 } else { 64 }
+}
+
+/// Largest `--grid` in dimension `dim` (2D: [`MAX_GRID`]; 3D: 128³ ≈ 2.1e6 wave vectors).
+pub const fn max_grid(dim: usize) -> usize {
+    if dim == 3 { 128 } else { MAX_GRID }
+}
+
+impl<const D: usize> Query<D> {
+    /// Defaults: square (2D) or simple cubic (3D) lattice, elastic ν = 0.3 (Jaumann),
+    /// [`default_grid`] wave vectors per direction.
     pub fn new(form: FormKind, kernel: &'static dyn Kernel, h_over_dx: f64, stress: f64) -> Self {
         Self {
             form,
@@ -76,14 +93,22 @@ impl Query2D {
                 poisson: 0.3,
                 rate: ObjectiveRate::Jaumann,
             },
-            lattice: Lattice2D {
-                kind: LatticeKind::Square { gamma: 1.0 },
-                a: [[1.0, 0.0], [0.0, 1.0]],
+            lattice: {
+                let mut a = [[0.0; D]; D];
+                for (i, row) in a.iter_mut().enumerate() {
+                    row[i] = 1.0;
+                }
+                let kind = if D == 3 {
+                    LatticeKind::Sc
+                } else {
+                    LatticeKind::Square { gamma: 1.0 }
+                };
+                Lattice { kind, a }
             },
             av: None,
             dt: None,
             art_stress: None,
-            grid: 64,
+            grid: default_grid(D),
         }
     }
 
@@ -97,12 +122,17 @@ impl Query2D {
             self.av,
             self.dt,
         )?;
-        check_count("--grid", self.grid, 2, MAX_GRID)?;
+        check_count("--grid", self.grid, 2, max_grid(D))?;
         if !self.form.in_2d() {
             return Err(Error::Incompatible(format!(
-                "--form {} is not available with --dim 2 (classical, nonlocal, local, lnl, cll, total-lagrangian)",
+                "--form {} is not available with --dim {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)",
                 self.form.name()
             )));
+        }
+        if D == 3 && self.art_stress.is_some() {
+            return Err(Error::Incompatible(
+                "--art-eps (artificial stress) is available with --dim 2 only".into(),
+            ));
         }
         if self.material == MaterialSpec::Hydro && self.stress >= 1.0 {
             return Err(Error::OutOfRange {
@@ -115,14 +145,14 @@ impl Query2D {
     }
 
     /// The material.
-    pub fn material(&self) -> Result<Material2D> {
+    pub fn material(&self) -> Result<Material> {
         match self.material {
-            MaterialSpec::Hydro => Ok(Material2D::Hydro { bulk: 1.0 }),
-            MaterialSpec::Elastic { poisson, rate } => Material2D::elastic(1.0, poisson, rate),
+            MaterialSpec::Hydro => Ok(Material::Hydro { bulk: 1.0 }),
+            MaterialSpec::Elastic { poisson, rate } => Material::elastic(1.0, poisson, rate),
             MaterialSpec::NeoHookean { poisson } => {
-                match Material2D::elastic(1.0, poisson, ObjectiveRate::Truesdell)? {
-                    Material2D::Elastic { lambda, shear, .. } => {
-                        Ok(Material2D::NeoHookean { lambda, shear })
+                match Material::elastic(1.0, poisson, ObjectiveRate::Truesdell)? {
+                    Material::Elastic { lambda, shear, .. } => {
+                        Ok(Material::NeoHookean { lambda, shear })
                     }
                     m => Ok(m),
                 }
@@ -159,106 +189,108 @@ impl Query2D {
     }
 
     /// Linearisation at stress `s`.
-    pub fn linearise_at(&self, s: f64) -> Result<Linearisation2D> {
+    pub fn linearise_at(&self, s: f64) -> Result<Bloch<D>> {
         self.validate()?;
-        Linearisation2D::new(self.params()?, &self.lattice, 1.0, s)
+        Bloch::new(self.params()?, &self.lattice, 1.0, s)
     }
 
-    /// Wave vectors sampling the reciprocal cell (n × n, without Γ, where the rigid modes
-    /// live), folded into the first zone.
-    pub fn kgrid(&self) -> Vec<[f64; 2]> {
+    /// Wave vectors sampling the reciprocal cell (n^D, without Γ, where the rigid modes live),
+    /// folded into the first zone.
+    pub fn kgrid(&self) -> Vec<[f64; D]> {
         let b = self.lattice.reciprocal();
         let n = self.grid;
-        let mut out = Vec::with_capacity(n * n);
-        for i in 0..n {
-            for j in 0..n {
-                if i == 0 && j == 0 {
-                    continue;
-                }
-                let (s, t) = (i as f64 / n as f64, j as f64 / n as f64);
-                out.push(fold(
-                    &self.lattice,
-                    [s * b[0][0] + t * b[1][0], s * b[0][1] + t * b[1][1]],
-                ));
+        let count = n.pow(D as u32);
+        let mut out = Vec::with_capacity(count);
+        for idx in 1..count {
+            let mut f = [0.0; D];
+            let mut rest = idx;
+            for a in (0..D).rev() {
+                f[a] = (rest % n) as f64 / n as f64;
+                rest /= n;
             }
+            let mut k = [0.0; D];
+            for c in 0..D {
+                let mut v = f[0] * b[0][c];
+                for a in 1..D {
+                    v += f[a] * b[a][c];
+                }
+                k[c] = v;
+            }
+            out.push(self.lattice.fold(k));
         }
         out
     }
 }
 
 /// The image of k in the first Brillouin zone (nearest to Γ among k − G).
-pub fn fold(lat: &Lattice2D, k: [f64; 2]) -> [f64; 2] {
-    let b = lat.reciprocal();
-    let mut best = k;
-    let mut bn = k[0].hypot(k[1]);
-    for m in -2i64..=2 {
-        for n in -2i64..=2 {
-            let q = [
-                k[0] - m as f64 * b[0][0] - n as f64 * b[1][0],
-                k[1] - m as f64 * b[0][1] - n as f64 * b[1][1],
-            ];
-            let qn = q[0].hypot(q[1]);
-            if qn < bn - 1e-12 {
-                best = q;
-                bn = qn;
-            }
-        }
-    }
-    best
+pub fn fold<const D: usize>(lat: &Lattice<D>, k: [f64; D]) -> [f64; D] {
+    lat.fold(k)
 }
 
 /// Polarisation of a branch: real unit vector and the longitudinal fraction |ê·k̂|².
 #[derive(Clone, Debug, Serialize)]
 pub struct Polarisation {
     /// Unit polarisation (real part after removing the global phase).
-    pub vector: [f64; 2],
+    pub vector: Vec<f64>,
     /// |ê·k̂|² (1 longitudinal, 0 transverse).
     pub longitudinal_fraction: f64,
 }
 
-fn polarisation(p: [num_complex::Complex64; 2], k: [f64; 2]) -> Polarisation {
-    // remove the global phase: make the largest component real
-    let m = if p[0].norm() >= p[1].norm() {
-        p[0]
-    } else {
-        p[1]
-    };
+fn polarisation<const D: usize>(p: [num_complex::Complex64; D], k: [f64; D]) -> Polarisation {
+    // remove the global phase: make the largest component real (the first of equals)
+    let mut m = p[0];
+    for &c in &p[1..] {
+        if c.norm() > m.norm() {
+            m = c;
+        }
+    }
     let ph = if m.norm() > 0.0 {
         m.conj() / m.norm()
     } else {
         num_complex::Complex64::new(1.0, 0.0)
     };
-    let v = [(p[0] * ph).re, (p[1] * ph).re];
-    let nv = v[0].hypot(v[1]).max(1e-300);
-    let kn = k[0].hypot(k[1]);
+    let v: Vec<f64> = p.iter().map(|&c| (c * ph).re).collect();
+    let len = |x: &[f64]| {
+        if D == 2 {
+            x[0].hypot(x[1])
+        } else {
+            x.iter().map(|a| a * a).sum::<f64>().sqrt()
+        }
+    };
+    let nv = len(&v).max(1e-300);
+    let kn = len(&k);
     let lf = if kn > 0.0 {
-        ((p[0] * k[0] + p[1] * k[1]).norm() / kn).powi(2)
+        let mut pk = p[0] * k[0];
+        for a in 1..D {
+            pk += p[a] * k[a];
+        }
+        (pk.norm() / kn).powi(2)
     } else {
         0.0
     };
     Polarisation {
-        vector: [v[0] / nv, v[1] / nv],
+        vector: v.iter().map(|x| x / nv).collect(),
         longitudinal_fraction: lf,
     }
 }
 
-/// One unstable or marginal set of wave vectors in 2D.
+/// One unstable or marginal set of wave vectors.
 #[derive(Clone, Debug, Serialize)]
 pub struct Instability2D {
     /// Kind.
     pub kind: Kind,
     /// Largest growth rate (c/Δx); 0 for zero-energy modes.
     pub growth_rate: f64,
-    /// Wave vector of the largest growth [κxΔx, κyΔx].
-    pub kappa_at_max: [f64; 2],
+    /// Wave vector of the largest growth [κxΔx, κyΔx(, κzΔx)].
+    pub kappa_at_max: Vec<f64>,
     /// Fraction of the sampled zone affected.
     pub zone_fraction: f64,
 }
 
-/// Verdict of a 2D query.
+/// Verdict of a 2D or 3D query.
 #[derive(Clone, Debug, Serialize)]
 pub struct QueryReport2D {
-    /// Always 2.
+    /// 2 or 3.
     pub dim: u8,
     /// Form name.
     pub form: &'static str,
@@ -276,14 +308,17 @@ pub struct QueryReport2D {
     pub material: MaterialSpec,
     /// Lattice.
     pub lattice: LatticeKind,
+    /// Δx as defined for the lattice (crate::lattice: the spacing in 2D, the cube root of the
+    /// volume per particle in 3D), and the nearest-neighbour distance in units of it.
+    pub nearest_neighbour_over_dx: f64,
     /// Sampled wave vectors per direction.
     pub grid: usize,
     /// No exponentially growing mode (and no time-step amplification at `dt`).
     pub stable: bool,
     /// Largest growth rate (c/Δx), 0 if stable.
     pub max_growth_rate: f64,
-    /// Fastest wave vector [κxΔx, κyΔx] (null if stable).
-    pub kappa_at_max: Option<[f64; 2]>,
+    /// Fastest wave vector [κxΔx, κyΔx(, κzΔx)] (null if stable).
+    pub kappa_at_max: Option<Vec<f64>>,
     /// Polarisation of the fastest mode (null if stable).
     pub polarisation: Option<Polarisation>,
     /// Unstable / marginal sets.
@@ -301,17 +336,17 @@ pub struct QueryReport2D {
 }
 
 /// Continuum branches (ω²/|k|² in units of c²) of the material at stress s: (P, S).
-pub fn continuum_moduli(q: &Query2D) -> Result<(f64, f64)> {
+pub fn continuum_moduli<const D: usize>(q: &Query<D>) -> Result<(f64, f64)> {
     let s = q.stress;
     Ok(match q.material()? {
-        Material2D::Hydro { .. } => (1.0, 0.0),
-        Material2D::NeoHookean { shear, .. } => (1.0, shear),
-        Material2D::Elastic {
+        Material::Hydro { .. } => (1.0, 0.0),
+        Material::NeoHookean { shear, .. } => (1.0, shear),
+        Material::Elastic {
             shear,
             rate: ObjectiveRate::Jaumann,
             ..
         } => (1.0, shear),
-        Material2D::Elastic {
+        Material::Elastic {
             shear,
             rate: ObjectiveRate::Truesdell,
             ..
@@ -319,12 +354,27 @@ pub fn continuum_moduli(q: &Query2D) -> Result<(f64, f64)> {
     })
 }
 
-/// Answers a 2D stability query.
+/// Answers a 2D stability query ([`query_nd`] with D = 2).
 pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
+    query_nd(q)
+}
+
+/// Nearest-neighbour distance of a lattice (units of its Δx).
+fn nearest_neighbour<const D: usize>(lat: &Lattice<D>) -> f64 {
+    lat.offsets_within(3.0)
+        .iter()
+        .map(|(_, p)| p.iter().map(|c| c * c).sum::<f64>().sqrt())
+        .filter(|&r| r > 1e-12)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Answers a stability query in D dimensions.
+pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
     let lin = q.linearise_at(q.stress)?;
     let ks = q.kgrid();
     let (cp, cs) = continuum_moduli(q)?;
-    let continuum_zero = usize::from(cs == 0.0);
+    // the continuum's own zero branches: the D − 1 transverse ones of a fluid
+    let continuum_zero = if cs == 0.0 { D - 1 } else { 0 };
     let mut grow = Vec::with_capacity(ks.len());
     let mut pol = Vec::with_capacity(ks.len());
     let mut w2max: f64 = 0.0;
@@ -332,7 +382,7 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
     for &k in &ks {
         let (g, p) = lin.growth(k)?;
         let br = lin.branches(k);
-        w2max = w2max.max(br[1].0.re);
+        w2max = w2max.max(br[D - 1].0.re);
         zeros.push(br);
         grow.push(g);
         pol.push(p);
@@ -345,7 +395,7 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
         .max_by(|&&a, &&b| grow[a].total_cmp(&grow[b]))
     {
         gmax = grow[imax];
-        kmax = Some(ks[imax]);
+        kmax = Some(ks[imax].to_vec());
         pmax = Some(polarisation(pol[imax], ks[imax]));
         let kind = if cp <= 0.0 || cs < 0.0 {
             Kind::Material
@@ -364,7 +414,7 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
         inst.push(Instability2D {
             kind,
             growth_rate: gmax,
-            kappa_at_max: ks[imax],
+            kappa_at_max: ks[imax].to_vec(),
             zone_fraction: growing.len() as f64 / ks.len() as f64,
         });
     }
@@ -372,7 +422,7 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
     let tol = ZERO_OMEGA2_TOL * w2max.max(1e-300);
     let spurious: Vec<usize> = (0..ks.len())
         .filter(|&i| {
-            ks[i][0].hypot(ks[i][1]) > 1e-12
+            ks[i].iter().any(|c| c.abs() > 1e-12)
                 && grow[i] <= GROWTH_TOL
                 && zeros[i].iter().filter(|b| b.0.norm() <= tol).count() > continuum_zero
         })
@@ -381,7 +431,7 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
         inst.push(Instability2D {
             kind: Kind::RankDeficiency,
             growth_rate: 0.0,
-            kappa_at_max: ks[i0],
+            kappa_at_max: ks[i0].to_vec(),
             zone_fraction: spurious.len() as f64 / ks.len() as f64,
         });
     }
@@ -400,7 +450,7 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
     let mut max_amp = None;
     let mut ts = false;
     if let Some(dt) = q.dt {
-        let mut best = (0.0f64, [0.0; 2], 0usize);
+        let mut best = (0.0f64, [0.0; D], 0usize);
         for (i, &k) in ks.iter().enumerate() {
             let r = lin.spectral_radius(k, dt)?;
             if r > 1.0 + AMPLIFICATION_TOL && grow[i] <= GROWTH_TOL {
@@ -416,13 +466,13 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
             inst.push(Instability2D {
                 kind: Kind::TimeStep,
                 growth_rate: best.0.ln() / dt,
-                kappa_at_max: best.1,
+                kappa_at_max: best.1.to_vec(),
                 zone_fraction: best.2 as f64 / ks.len() as f64,
             });
         }
     }
     Ok(QueryReport2D {
-        dim: 2,
+        dim: D as u8,
         form: q.form.name(),
         kernel: q.kernel.name(),
         shape: q.shape.name(),
@@ -431,6 +481,7 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
         stress: q.stress,
         material: q.material,
         lattice: q.lattice.kind,
+        nearest_neighbour_over_dx: nearest_neighbour(&q.lattice),
         grid: q.grid,
         stable: semi_stable && !ts,
         max_growth_rate: gmax,
@@ -446,7 +497,7 @@ pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
 }
 
 /// Critical Δt by bisection on the amplification matrices over the sampled zone.
-pub fn critical_dt_2d(lin: &Linearisation2D, ks: &[[f64; 2]]) -> Result<f64> {
+pub fn critical_dt_2d<const D: usize>(lin: &Bloch<D>, ks: &[[f64; D]]) -> Result<f64> {
     let stable = |dt: f64| -> Result<bool> {
         for &k in ks {
             if lin.spectral_radius(k, dt)? > 1.0 + AMPLIFICATION_TOL {
@@ -489,14 +540,14 @@ pub struct Dispersion2D {
     pub labels: Vec<(String, f64)>,
     /// Arc length along the path (units 1/Δx).
     pub path: Vec<f64>,
-    /// Wave vectors [κxΔx, κyΔx].
-    pub kappa: Vec<[f64; 2]>,
-    /// Re ω²Δx²/c² of the two branches (ascending).
-    pub omega2: Vec<[f64; 2]>,
+    /// Wave vectors [κxΔx, κyΔx(, κzΔx)].
+    pub kappa: Vec<Vec<f64>>,
+    /// Re ω²Δx²/c² of the D branches (ascending).
+    pub omega2: Vec<Vec<f64>>,
     /// Growth rate at each point (c/Δx).
     pub growth_rate: Vec<f64>,
-    /// Continuum P and S branches ω²Δx²/c².
-    pub omega2_continuum: Vec<[f64; 2]>,
+    /// Continuum branches ω²Δx²/c², ascending: the D − 1 S (transverse) branches, then P.
+    pub omega2_continuum: Vec<Vec<f64>>,
 }
 
 /// Largest `--grid` (wave vectors per reciprocal direction): 1024² wave vectors take ~8 s for
@@ -522,8 +573,9 @@ pub fn check_count(name: &'static str, n: usize, lo: usize, hi: usize) -> Result
     }
 }
 
-/// Dispersion along Γ–X–M–Γ (square) or Γ–M–K–Γ (hexagonal), `n` points per segment.
-pub fn dispersion2d(q: &Query2D, n: usize) -> Result<Dispersion2D> {
+/// Dispersion along the high-symmetry path of the lattice ([`Lattice::symmetry_points`]), `n`
+/// points per segment.
+pub fn dispersion2d<const D: usize>(q: &Query<D>, n: usize) -> Result<Dispersion2D> {
     check_count("--points", n, 2, MAX_PATH_POINTS)?;
     let lin = q.linearise_at(q.stress)?;
     let (cp, cs) = continuum_moduli(q)?;
@@ -533,7 +585,14 @@ pub fn dispersion2d(q: &Query2D, n: usize) -> Result<Dispersion2D> {
     let mut s = 0.0;
     labels.push((pts[0].0.to_string(), 0.0));
     for w in pts.windows(2) {
-        s += (w[1].1[0] - w[0].1[0]).hypot(w[1].1[1] - w[0].1[1]);
+        s += if D == 2 {
+            (w[1].1[0] - w[0].1[0]).hypot(w[1].1[1] - w[0].1[1])
+        } else {
+            (0..D)
+                .map(|a| (w[1].1[a] - w[0].1[a]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        };
         labels.push((w[1].0.to_string(), s));
     }
     let mut out = Dispersion2D {
@@ -550,42 +609,103 @@ pub fn dispersion2d(q: &Query2D, n: usize) -> Result<Dispersion2D> {
     };
     for (k, s) in path {
         let b = lin.branches(k);
-        let k2 = k[0] * k[0] + k[1] * k[1];
+        let mut k2 = k[0] * k[0];
+        for a in 1..D {
+            k2 += k[a] * k[a];
+        }
         out.path.push(s);
-        out.kappa.push(k);
-        out.omega2.push([b[0].0.re, b[1].0.re]);
+        out.kappa.push(k.to_vec());
+        out.omega2.push(b.iter().map(|x| x.0.re).collect());
         out.growth_rate.push(lin.growth(k)?.0);
-        out.omega2_continuum.push([cs * k2, cp * k2]);
+        let mut cont = vec![cs * k2; D - 1];
+        cont.push(cp * k2);
+        out.omega2_continuum.push(cont);
     }
     Ok(out)
 }
 
-/// Growth-rate map over the zone: (κx, κy) grid and γ.
+/// Growth-rate map over the zone: (κx, κy) grid and γ; in 3D over a plane ([`Plane`]).
 #[derive(Clone, Debug, Serialize)]
 pub struct GrowthMap {
-    /// κxΔx values.
+    /// κxΔx values (3D: the first in-plane coordinate).
     pub kx: Vec<f64>,
-    /// κyΔx values.
+    /// κyΔx values (3D: the second in-plane coordinate).
     pub ky: Vec<f64>,
     /// γ at (kx\[i\], ky\[j\]), indexed `growth[i][j]` (c/Δx).
     pub growth: Vec<Vec<f64>>,
     /// Largest ω² (for the critical Δt).
     pub omega2_max: f64,
+    /// 3D: the plane (in-plane unit vectors e_u, e_v; k = kx e_u + ky e_v); null in 2D.
+    pub plane: Option<[[f64; 3]; 2]>,
 }
 
-/// Growth over the square [−π, π] × [−π, π] (n × n), any lattice.
-pub fn growth_map(q: &Query2D, n: usize) -> Result<GrowthMap> {
+/// A plane through Γ of the 3D zone for `map --dim 3 --plane`: k = u e_u + v e_v.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Plane {
+    /// k_z = 0: e_u = x̂, e_v = ŷ.
+    Xy,
+    /// k_y = 0: e_u = x̂, e_v = ẑ.
+    Xz,
+    /// k_x = 0: e_u = ŷ, e_v = ẑ.
+    Yz,
+    /// The (1, −1, 0) mirror plane: e_u = (x̂ + ŷ)/√2, e_v = ẑ (contains Γ–M–R of sc).
+    Diagonal,
+}
+
+impl Plane {
+    /// All planes with their CLI names.
+    pub const ALL: [(Plane, &'static str); 4] = [
+        (Plane::Xy, "xy"),
+        (Plane::Xz, "xz"),
+        (Plane::Yz, "yz"),
+        (Plane::Diagonal, "diagonal"),
+    ];
+
+    /// By CLI name.
+    pub fn by_name(name: &str) -> Result<Self> {
+        crate::error::lookup("plane", &Self::ALL, name)
+    }
+
+    /// The in-plane unit vectors (e_u, e_v).
+    pub fn basis(self) -> [[f64; 3]; 2] {
+        let r = std::f64::consts::FRAC_1_SQRT_2;
+        match self {
+            Plane::Xy => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            Plane::Xz => [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+            Plane::Yz => [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            Plane::Diagonal => [[r, r, 0.0], [0.0, 0.0, 1.0]],
+        }
+    }
+}
+
+/// Growth over the square [−π, π]² (n × n) of wave vectors: (κx, κy) in 2D, (u, v) on `plane`
+/// in 3D (ignored in 2D), any lattice.
+pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Result<GrowthMap> {
     check_count("--n", n, 2, MAX_MAP_N)?;
     let lin = q.linearise_at(q.stress)?;
     let ax: Vec<f64> = (0..n)
         .map(|i| -PI + 2.0 * PI * (i as f64 + 0.5) / n as f64)
         .collect();
+    let e = plane.basis();
+    let at = |u: f64, v: f64| {
+        let mut k = [0.0; D];
+        if D == 2 {
+            k[0] = u;
+            k[1] = v;
+        } else {
+            for c in 0..D {
+                k[c] = u * e[0][c] + v * e[1][c];
+            }
+        }
+        k
+    };
     let mut g = vec![vec![0.0; n]; n];
     let mut w2: f64 = 0.0;
     for (i, &kx) in ax.iter().enumerate() {
         for (j, &ky) in ax.iter().enumerate() {
-            g[i][j] = lin.growth([kx, ky])?.0;
-            w2 = w2.max(lin.branches([kx, ky])[1].0.re);
+            let k = at(kx, ky);
+            g[i][j] = lin.growth(k)?.0;
+            w2 = w2.max(lin.branches(k)[D - 1].0.re);
         }
     }
     Ok(GrowthMap {
@@ -593,23 +713,27 @@ pub fn growth_map(q: &Query2D, n: usize) -> Result<GrowthMap> {
         ky: ax,
         growth: g,
         omega2_max: w2,
+        plane: (D == 3).then_some(e),
     })
 }
 
-/// The growth rate a box of `n_free` × `n_free` free particles between fixed boundary layers can
-/// show: standing modes sin(mπi/(n+1)) admit k = (mπ/(n+1), lπ/(n+1)), m, l = 1..n; the largest
-/// growth over those wave vectors, and where.
-pub fn box_prediction(lin: &Linearisation2D, n_free: usize) -> Result<(f64, [f64; 2])> {
+/// The growth rate a box of n_free^D free particles between fixed boundary layers can show:
+/// standing modes sin(mπi/(n+1)) admit k = (m_1, …, m_D)π/(n+1), m_a = 1..n; the largest growth
+/// over those wave vectors, and where.
+pub fn box_prediction<const D: usize>(lin: &Bloch<D>, n_free: usize) -> Result<(f64, [f64; D])> {
     check_count("--box", n_free, 1, MAX_BOX)?;
-    let mut best = (0.0, [0.0; 2]);
+    let mut best = (0.0, [0.0; D]);
     let d = PI / (n_free as f64 + 1.0);
-    for m in 1..=n_free {
-        for l in 1..=n_free {
-            let k = [m as f64 * d, l as f64 * d];
-            let g = lin.growth(k)?.0;
-            if g > best.0 {
-                best = (g, k);
-            }
+    for idx in 0..n_free.pow(D as u32) {
+        let mut k = [0.0; D];
+        let mut rest = idx;
+        for a in (0..D).rev() {
+            k[a] = ((rest % n_free) + 1) as f64 * d;
+            rest /= n_free;
+        }
+        let g = lin.growth(k)?.0;
+        if g > best.0 {
+            best = (g, k);
         }
     }
     Ok(best)

@@ -168,6 +168,53 @@ impl Lattice<3> {
 }
 
 impl<const D: usize> Lattice<D> {
+    /// The lattice of `kind`; an error if `kind` is not a lattice of dimension D.
+    pub fn of_kind(kind: LatticeKind) -> Result<Self> {
+        let (dim, a3): (usize, [[f64; 3]; 3]) = match kind {
+            LatticeKind::Square { gamma } => {
+                crate::error::check_range("--gamma", gamma, 0.1, 10.0, true, true)?;
+                (2, [[1.0, 0.0, 0.0], [0.0, gamma, 0.0], [0.0; 3]])
+            }
+            LatticeKind::Hexagonal => (2, [[1.0, 0.0, 0.0], [0.5, 3f64.sqrt() / 2.0, 0.0], [0.0; 3]]),
+            LatticeKind::Sc => (3, Lattice3D::sc().a),
+            LatticeKind::Bcc => (3, Lattice3D::bcc().a),
+            LatticeKind::Fcc => (3, Lattice3D::fcc().a),
+        };
+        if dim != D {
+            return Err(Error::Incompatible(format!(
+                "--lattice: the {kind} is {dim}-dimensional, not {D}-dimensional (--dim 2: square, hex; --dim 3: sc, bcc, fcc)"
+            )));
+        }
+        let mut a = [[0.0; D]; D];
+        for i in 0..D {
+            a[i].copy_from_slice(&a3[i][..D]);
+        }
+        Ok(Self { kind, a })
+    }
+
+    /// By CLI name: `square` (aspect ratio `gamma`) or `hex` in 2D, `sc`, `bcc` or `fcc` in 3D.
+    pub fn named(name: &str, gamma: f64) -> Result<Self> {
+        let kind = match name {
+            "square" => LatticeKind::Square { gamma },
+            "hex" => LatticeKind::Hexagonal,
+            "sc" => LatticeKind::Sc,
+            "bcc" => LatticeKind::Bcc,
+            "fcc" => LatticeKind::Fcc,
+            _ => {
+                return Err(Error::UnknownName {
+                    what: "lattice",
+                    given: name.into(),
+                    valid: if D == 3 {
+                        "sc, bcc, fcc".into()
+                    } else {
+                        "square, hex".into()
+                    },
+                });
+            }
+        };
+        Self::of_kind(kind)
+    }
+
     /// Cell area (2D) or volume (3D): |det a|, the area or volume per particle.
     pub fn area(&self) -> f64 {
         det(&self.a).abs()

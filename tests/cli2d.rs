@@ -163,7 +163,7 @@ fn timestep_2d() {
 #[test]
 fn bad_2d_input_exits_2_naming_the_flag() {
     let cases: &[(&[&str], &str)] = &[
-        (&["query", "--dim", "3"], "--dim"),
+        (&["query", "--dim", "4"], "--dim"),
         (&["query", "--dim", "2", "--lattice", "cubic"], "lattice"),
         (&["query", "--dim", "2", "--material", "rubber"], "material"),
         (&["query", "--dim", "2", "--poisson", "0.5"], "--poisson"),

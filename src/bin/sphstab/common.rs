@@ -46,23 +46,25 @@ pub struct Config {
     /// Monaghan artificial viscosity β (vanishes in the linearisation), ≥ 0.
     #[arg(long = "av-beta", allow_hyphen_values = true)]
     pub av_beta: Option<f64>,
-    /// Dimension: 1 (plane wave in a bar, default) or 2 (in-plane Bloch analysis of a lattice).
+    /// Dimension: 1 (plane wave in a bar, default), 2 (in-plane Bloch analysis of a lattice) or
+    /// 3 (Bloch analysis of a 3D lattice).
     #[arg(long)]
     pub dim: Option<u8>,
-    /// 2D lattice: square (default) or hex.
+    /// Lattice: 2D square (default) or hex; 3D sc (default), bcc or fcc (Δx = (volume per
+    /// particle)^⅓).
     #[arg(long)]
     pub lattice: Option<String>,
     /// 2D square lattice aspect ratio γ = Δy/Δx, in [0.1, 10] (default 1; square lattice only).
     #[arg(long, allow_hyphen_values = true)]
     pub gamma: Option<f64>,
-    /// 2D material: hydro (p = K(ρ/ρ0 − 1), G = 0, σ̄ = 1 − ρ/ρ0), elastic, or neo-hookean
+    /// 2D/3D material: hydro (p = K(ρ/ρ0 − 1), G = 0, σ̄ = 1 − ρ/ρ0), elastic, or neo-hookean
     /// (total-lagrangian only, unstressed reference). Default elastic.
     #[arg(long)]
     pub material: Option<String>,
-    /// 2D elastic Poisson ratio ν (plane strain), in [−0.99, 0.5) (default 0.3).
+    /// 2D/3D elastic Poisson ratio ν (plane strain in 2D), in [−0.99, 0.5) (default 0.3).
     #[arg(long, allow_hyphen_values = true)]
     pub poisson: Option<f64>,
-    /// 2D elastic objective stress rate: jaumann (default) or truesdell (the 1D law).
+    /// 2D/3D elastic objective stress rate: jaumann (default) or truesdell (the 1D law).
     #[arg(long)]
     pub rate: Option<String>,
     /// 2D classical/cll: Monaghan–Gray artificial stress ε (≥ 0; typical 0.2–0.3).
@@ -71,49 +73,53 @@ pub struct Config {
     /// Artificial-stress exponent n of f = W(r)/W(Δx), in [1, 12] (default 4; needs --art-eps).
     #[arg(long = "art-n")]
     pub art_n: Option<i32>,
-    /// 2D: wave vectors per reciprocal direction (the zone is sampled grid × grid), in
-    /// [2, 1024] (default 64).
+    /// 2D/3D: wave vectors per reciprocal direction (the zone is sampled grid^D), 2D in
+    /// [2, 1024] (default 64), 3D in [2, 128] (default 16).
     #[arg(long)]
     pub grid: Option<usize>,
 }
 
 impl Config {
-    /// Whether this is a 2D question (`--dim 2`); any other value than 1 or 2 is an error.
-    pub fn is_2d(&self) -> Result<bool> {
+    /// The dimension (`--dim`, default 1); any other value than 1, 2 or 3 is an error.
+    pub fn dim(&self) -> Result<u8> {
         match self.dim.unwrap_or(1) {
-            1 => Ok(false),
-            2 => Ok(true),
+            d @ 1..=3 => Ok(d),
             d => Err(sphstab::error::Error::OutOfRange {
                 name: "--dim",
                 value: d as f64,
-                range: "must be 1 or 2".into(),
+                range: "must be 1, 2 or 3".into(),
             }
             .into()),
         }
     }
 
-    /// Builds and validates the 2D query.
-    pub fn query2d(&self) -> Result<sphstab::analysis2d::Query2D> {
-        use sphstab::analysis2d::{MaterialSpec, Query2D};
+    /// Builds and validates the query in D ∈ {2, 3} dimensions.
+    pub fn query_nd<const D: usize>(&self) -> Result<sphstab::analysis2d::Query<D>> {
+        use sphstab::analysis2d::{MaterialSpec, Query};
         use sphstab::forms::ObjectiveRate;
         let q1 = self.query(2)?;
-        let mut q = Query2D::new(q1.form, q1.kernel, q1.h_over_dx, q1.stress);
+        let mut q = Query::<D>::new(q1.form, q1.kernel, q1.h_over_dx, q1.stress);
         if self.shape.is_some() {
             q.shape = q1.shape;
         }
         q.c_partition = q1.c_partition;
         q.av = q1.av;
         q.dt = q1.dt;
-        q.grid = self.grid.unwrap_or(64);
+        q.grid = self
+            .grid
+            .unwrap_or(sphstab::analysis2d::default_grid(D));
         q.art_stress = art_stress(self.art_eps, self.art_n)?;
-        let lattice = self.lattice.as_deref().unwrap_or("square");
+        let lattice = self
+            .lattice
+            .as_deref()
+            .unwrap_or(if D == 3 { "sc" } else { "square" });
         if lattice != "square" && self.gamma.is_some() {
             return Err(crate::query::not_in(
                 "--gamma",
-                "--lattice hex (the aspect ratio is for the square lattice)",
+                &format!("--lattice {lattice} (the aspect ratio is for the 2D square lattice)"),
             ));
         }
-        q.lattice = sphstab::lattice::Lattice2D::by_name(lattice, self.gamma.unwrap_or(1.0))?;
+        q.lattice = sphstab::lattice::Lattice::<D>::named(lattice, self.gamma.unwrap_or(1.0))?;
         let material = self.material.as_deref().unwrap_or("elastic");
         if material == "hydro" && (self.poisson.is_some() || self.rate.is_some()) {
             return Err(crate::query::not_in(
@@ -178,7 +184,7 @@ impl Config {
         match given.iter().find(|(_, g)| *g) {
             Some((flag, _)) => Err(crate::query::not_in(
                 flag,
-                "--dim 1 (it is a 2D flag; add --dim 2)",
+                "--dim 1 (it is a 2D/3D flag; add --dim 2 or --dim 3)",
             )),
             None => Ok(()),
         }

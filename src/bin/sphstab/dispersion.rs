@@ -8,8 +8,8 @@ use anyhow::{Context, Result};
 pub struct Args {
     #[command(flatten)]
     cfg: Config,
-    /// 1D: κ points in (0, π], in [2, 10000000]; 2D: points per segment of the symmetry path,
-    /// in [2, 100000].
+    /// 1D: κ points in (0, π], in [2, 10000000]; 2D/3D: points per segment of the symmetry
+    /// path, in [2, 100000].
     #[arg(long, default_value_t = 256)]
     points: usize,
     /// Print one JSON document instead of a table.
@@ -24,8 +24,10 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
-    if a.cfg.is_2d()? {
-        return run2d(a);
+    match a.cfg.dim()? {
+        2 => return run_nd::<2>(a),
+        3 => return run_nd::<3>(a),
+        _ => {}
     }
     a.cfg.reject_2d_flags()?;
     let q = a.cfg.query(a.points)?;
@@ -56,13 +58,13 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
-fn run2d(a: Args) -> Result<()> {
+fn run_nd<const D: usize>(a: Args) -> Result<()> {
     use sphstab::plot::{Curve, lines_svg};
-    let q = a.cfg.query2d()?;
+    let q = a.cfg.query_nd::<D>()?;
     let r = sphstab::analysis2d::dispersion2d(&q, a.points)?;
     if let Some(path) = &a.plot {
-        let col = |i: usize, v: &Vec<[f64; 2]>| v.iter().map(|b| b[i]).collect::<Vec<_>>();
-        let curves = [
+        let col = |i: usize, v: &Vec<Vec<f64>>| v.iter().map(|b| b[i]).collect::<Vec<_>>();
+        let mut curves = vec![
             Curve {
                 label: "continuum S".into(),
                 x: r.path.clone(),
@@ -72,22 +74,18 @@ fn run2d(a: Args) -> Result<()> {
             Curve {
                 label: "continuum P".into(),
                 x: r.path.clone(),
-                y: col(1, &r.omega2_continuum),
+                y: col(D - 1, &r.omega2_continuum),
                 dashed: true,
             },
-            Curve {
-                label: format!("{} branch 1", r.form),
-                x: r.path.clone(),
-                y: col(0, &r.omega2),
-                dashed: false,
-            },
-            Curve {
-                label: format!("{} branch 2", r.form),
-                x: r.path.clone(),
-                y: col(1, &r.omega2),
-                dashed: false,
-            },
         ];
+        for b in 0..D {
+            curves.push(Curve {
+                label: format!("{} branch {}", r.form, b + 1),
+                x: r.path.clone(),
+                y: col(b, &r.omega2),
+                dashed: false,
+            });
+        }
         let labels: Vec<String> = r
             .labels
             .iter()
@@ -97,7 +95,7 @@ fn run2d(a: Args) -> Result<()> {
         let dmin = r.omega2.iter().flatten().fold(0.0f64, |m, &y| m.min(y));
         let svg = lines_svg(
             &format!(
-                "{} / {} h = {}Δx, σ̄ = {} (2D, high-symmetry path)",
+                "{} / {} h = {}Δx, σ̄ = {} ({D}D, high-symmetry path)",
                 r.form, r.kernel, r.h_over_dx, r.stress
             ),
             &format!(
@@ -128,25 +126,32 @@ fn run2d(a: Args) -> Result<()> {
         r.stress,
         path.join(" – ")
     );
-    println!(
-        "{:>8} {:>10} {:>10} {:>14} {:>14} {:>12}",
-        "s", "κxΔx/π", "κyΔx/π", "ω²₁Δx²/c²", "ω²₂Δx²/c²", "growth"
-    );
+    let axes = ["κxΔx/π", "κyΔx/π", "κzΔx/π"];
+    let mut head = format!("{:>8}", "s");
+    for ax in &axes[..D] {
+        head += &format!(" {ax:>10}");
+    }
+    for b in 1..=D {
+        head += &format!(" {:>14}", format!("ω²{b}Δx²/c²"));
+    }
+    head += &format!(" {:>12}", "growth");
+    println!("{head}");
     for i in 0..r.path.len() {
-        println!(
-            "{:>8.4} {:>10.5} {:>10.5} {:>14.6e} {:>14.6e} {:>12.4e}",
-            r.path[i],
-            r.kappa[i][0] / std::f64::consts::PI,
-            r.kappa[i][1] / std::f64::consts::PI,
-            r.omega2[i][0] + 0.0,
-            r.omega2[i][1] + 0.0,
-            // below the growth tolerance is not growth (eigenvalue round-off)
-            if r.growth_rate[i] > sphstab::vonneumann::classify::GROWTH_TOL {
-                r.growth_rate[i]
-            } else {
-                0.0
-            }
-        );
+        let mut line = format!("{:>8.4}", r.path[i]);
+        for c in &r.kappa[i] {
+            line += &format!(" {:>10.5}", c / std::f64::consts::PI);
+        }
+        for w in &r.omega2[i] {
+            line += &format!(" {:>14.6e}", w + 0.0);
+        }
+        // below the growth tolerance is not growth (eigenvalue round-off)
+        let g = if r.growth_rate[i] > sphstab::vonneumann::classify::GROWTH_TOL {
+            r.growth_rate[i]
+        } else {
+            0.0
+        };
+        line += &format!(" {g:>12.4e}");
+        println!("{line}");
     }
     Ok(())
 }

@@ -1,4 +1,5 @@
-//! `sphstab map`: 2D stability map, growth rate over (κx, κy) as a heat map.
+//! `sphstab map`: stability map, the growth rate over (κx, κy) (2D) or over a plane through the
+//! 3D zone (`--dim 3 --plane`) as a heat map.
 
 use crate::common::Config;
 use anyhow::{Context, Result};
@@ -17,23 +18,52 @@ pub struct Args {
     /// Write the heat map SVG to this file.
     #[arg(long)]
     plot: Option<std::path::PathBuf>,
+    /// 3D: the plane through Γ: xy (k_z = 0, default), xz, yz, or diagonal (spanned by
+    /// (x̂ + ŷ)/√2 and ẑ); map coordinates (u, v) ∈ [−π, π]².
+    #[arg(long)]
+    plane: Option<String>,
 }
 
 pub fn run(a: Args) -> Result<()> {
-    if a.cfg.dim.is_some_and(|d| d != 2) {
+    if a.cfg.dim.is_some_and(|d| d == 1) {
         return Err(crate::query::not_in(
-            "--dim other than 2",
-            "map (the map is over the 2D zone; omit --dim)",
+            "--dim 1",
+            "map (the map is over the 2D zone or a plane of the 3D zone; --dim 2 or 3)",
         ));
     }
+    let mut cfg = a.cfg.clone();
+    cfg.dim = Some(cfg.dim.unwrap_or(2));
+    if cfg.dim()? == 3 {
+        run_nd::<3>(a, cfg)
+    } else {
+        if a.plane.is_some() {
+            return Err(crate::query::not_in("--plane", "--dim 2 (it is a 3D flag)"));
+        }
+        run_nd::<2>(a, cfg)
+    }
+}
+
+fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config) -> Result<()> {
+    use sphstab::analysis2d::Plane;
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
-    let mut cfg = a.cfg.clone();
-    cfg.dim = Some(2);
-    let q = cfg.query2d()?;
+    let plane = match &a.plane {
+        Some(p) => Plane::by_name(p)?,
+        None => Plane::Xy,
+    };
+    let q = cfg.query_nd::<D>()?;
     let t = std::time::Instant::now();
-    let m = sphstab::analysis2d::growth_map(&q, a.n)?;
+    let m = sphstab::analysis2d::growth_map(&q, a.n, plane)?;
+    let (xl, yl) = if D == 3 {
+        let name = a.plane.as_deref().unwrap_or("xy");
+        (
+            format!("u Δx / π (plane {name}, k = u e_u + v e_v)"),
+            "v Δx / π".to_string(),
+        )
+    } else {
+        ("κxΔx / π".to_string(), "κyΔx / π".to_string())
+    };
     let secs = t.elapsed().as_secs_f64();
     if let Some(path) = &a.plot {
         let pi = std::f64::consts::PI;
@@ -50,8 +80,8 @@ pub fn run(a: Args) -> Result<()> {
                 a.n,
                 a.n
             ),
-            "κxΔx / π",
-            "κyΔx / π",
+            &xl,
+            &yl,
             &xs,
             &ys,
             &m.growth,
@@ -65,7 +95,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     let gmax = m.growth.iter().flatten().fold(0.0f64, |x, &y| x.max(y));
     println!(
-        "{}×{} wave vectors (cell centres of [−π, π]², not the first-zone grid of `query --dim 2`, so maxima differ by the resolution) in {:.3} s; max growth rate {:.6} c/Δx",
+        "{}×{} wave vectors (cell centres of [−π, π]², not the first-zone grid of `query --dim {D}`, so maxima differ by the resolution) in {:.3} s; max growth rate {:.6} c/Δx",
         a.n, a.n, secs, gmax
     );
     Ok(())

@@ -14,25 +14,26 @@ pub struct Args {
     /// Print one JSON document instead of a table.
     #[arg(long)]
     json: bool,
-    /// 2D: also predict the growth a box of N × N free particles between fixed layers can show
-    /// (standing modes k = (mπ/(N+1), lπ/(N+1))), N in [1, 1000].
+    /// 2D/3D: also predict the growth a box of N^D free particles between fixed layers can
+    /// show (standing modes k = (m_1, …, m_D)π/(N+1)), N in [1, 1000].
     #[arg(long = "box")]
     box_free: Option<usize>,
 }
 
 pub fn run(a: Args) -> Result<()> {
-    if a.cfg.is_2d()? {
+    let dim = a.cfg.dim()?;
+    if dim > 1 {
         if a.points.is_some() {
             return Err(not_in(
                 "--points",
-                "--dim 2 (use --grid for the zone sampling)",
+                &format!("--dim {dim} (use --grid for the zone sampling)"),
             ));
         }
-        return run2d(a);
+        return if dim == 3 { run_nd::<3>(a) } else { run_nd::<2>(a) };
     }
     a.cfg.reject_2d_flags()?;
     if a.box_free.is_some() {
-        return Err(not_in("--box", "--dim 1 (it predicts a 2D box)"));
+        return Err(not_in("--box", "--dim 1 (it predicts a 2D or 3D box)"));
     }
     let q = a.cfg.query(a.points.unwrap_or(512))?;
     let r = sphstab::analysis::query(&q)?;
@@ -103,12 +104,21 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
-fn run2d(a: Args) -> Result<()> {
-    let q = a.cfg.query2d()?;
+/// A wave vector in units of π: "(0.1234π, 0.5000π)".
+pub fn fmt_k(k: &[f64]) -> String {
+    let parts: Vec<String> = k
+        .iter()
+        .map(|c| format!("{:.4}π", c / std::f64::consts::PI))
+        .collect();
+    format!("({})", parts.join(", "))
+}
+
+fn run_nd<const D: usize>(a: Args) -> Result<()> {
+    let q = a.cfg.query_nd::<D>()?;
     if let Some(n) = a.box_free {
         sphstab::analysis2d::check_count("--box", n, 1, sphstab::analysis2d::MAX_BOX)?;
     }
-    let r = sphstab::analysis2d::query2d(&q)?;
+    let r = sphstab::analysis2d::query_nd(&q)?;
     let boxp = match a.box_free {
         Some(n) => Some(sphstab::analysis2d::box_prediction(
             &q.linearise_at(q.stress)?,
@@ -121,21 +131,20 @@ fn run2d(a: Args) -> Result<()> {
         if let Some((g, k)) = boxp {
             v["box_free_particles"] = serde_json::json!(a.box_free);
             v["box_growth_rate"] = serde_json::json!(g);
-            v["box_kappa"] = serde_json::json!(k);
+            v["box_kappa"] = serde_json::json!(k.to_vec());
         }
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
     if let Some((g, k)) = boxp {
         println!(
-            "box of {0}×{0} free particles: predicted growth {g:.6} c/Δx at κΔx = ({1:.4}π, {2:.4}π)",
+            "box of {}^{D} free particles: predicted growth {g:.6} c/Δx at κΔx = {}",
             a.box_free.unwrap_or(0),
-            k[0] / std::f64::consts::PI,
-            k[1] / std::f64::consts::PI
+            fmt_k(&k)
         );
     }
     println!(
-        "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}, {}, {}, first zone sampled {}×{}",
+        "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}, {}, {} (nearest neighbour {:.4}Δx), first zone sampled {}^{D}",
         r.form,
         r.kernel,
         r.shape,
@@ -144,7 +153,7 @@ fn run2d(a: Args) -> Result<()> {
         r.stress,
         r.material,
         r.lattice,
-        r.grid,
+        r.nearest_neighbour_over_dx,
         r.grid
     );
     let kinds2: Vec<String> = r
@@ -153,27 +162,28 @@ fn run2d(a: Args) -> Result<()> {
         .filter(|i| i.kind != sphstab::vonneumann::classify::Kind::RankDeficiency)
         .map(|i| kind_name(i.kind))
         .collect();
-    match (r.stable, r.kappa_at_max, &r.polarisation) {
+    match (r.stable, &r.kappa_at_max, &r.polarisation) {
         (true, _, _) => println!("verdict: STABLE (no exponentially growing mode)"),
         (false, Some(k), Some(p)) => println!(
-            "verdict: UNSTABLE ({}) — max growth rate {:.6} c/Δx at κΔx = ({:.4}π, {:.4}π), polarisation ({:.3}, {:.3}), longitudinal fraction {:.3}",
+            "verdict: UNSTABLE ({}) — max growth rate {:.6} c/Δx at κΔx = {}, polarisation ({}), longitudinal fraction {:.3}",
             kinds2.join(", "),
             r.max_growth_rate,
-            k[0] / std::f64::consts::PI,
-            k[1] / std::f64::consts::PI,
-            p.vector[0],
-            p.vector[1],
+            fmt_k(k),
+            p.vector
+                .iter()
+                .map(|c| format!("{c:.3}"))
+                .collect::<Vec<_>>()
+                .join(", "),
             p.longitudinal_fraction
         ),
         _ => println!("verdict: UNSTABLE (time-step: max |λ| > 1 at the given --dt)"),
     }
     for i in &r.instabilities {
         println!(
-            "{:<16} growth {:.6} c/Δx at κΔx = ({:.4}π, {:.4}π), {:.1}% of the zone",
+            "{:<16} growth {:.6} c/Δx at κΔx = {}, {:.1}% of the zone",
             kind_name(i.kind),
             i.growth_rate,
-            i.kappa_at_max[0] / std::f64::consts::PI,
-            i.kappa_at_max[1] / std::f64::consts::PI,
+            fmt_k(&i.kappa_at_max),
             100.0 * i.zone_fraction
         );
     }

@@ -23,46 +23,15 @@ pub fn run(a: Args) -> Result<()> {
             "timestep (it computes the critical Δt; check a given Δt with `query --dt`)",
         ));
     }
-    if a.cfg.is_2d()? {
+    let dim = a.cfg.dim()?;
+    if dim > 1 {
         if a.points.is_some() {
             return Err(crate::query::not_in(
                 "--points",
-                "--dim 2 (use --grid for the zone sampling)",
+                &format!("--dim {dim} (use --grid for the zone sampling)"),
             ));
         }
-        let q = a.cfg.query2d()?;
-        let lin = q.linearise_at(q.stress)?;
-        let ks = q.kgrid();
-        let r = sphstab::analysis2d::query2d(&q)?;
-        let bis = if r.critical_dt.is_some() {
-            Some(sphstab::analysis2d::critical_dt_2d(&lin, &ks)?)
-        } else {
-            None
-        };
-        let v = serde_json::json!({
-            "dim": 2, "form": r.form, "kernel": r.kernel, "h_over_dx": r.h_over_dx, "support_over_dx": r.support_over_dx,
-            "stress": r.stress, "critical_dt": bis, "critical_dt_from_omega_max": r.critical_dt,
-            "critical_cfl": bis.map(|d| d / r.h_over_dx),
-        });
-        if a.json {
-            println!("{}", serde_json::to_string_pretty(&v)?);
-        } else {
-            match bis {
-                Some(dt) => println!(
-                    "{} / {} h = {}Δx σ̄ = {} (2D): critical leapfrog Δt = {dt:.9} Δx/c (bisection on the amplification matrices), 2/ω_max = {:.9}, CFL c Δt/h = {:.9}",
-                    r.form,
-                    r.kernel,
-                    r.h_over_dx,
-                    r.stress,
-                    r.critical_dt.unwrap_or(f64::NAN),
-                    dt / r.h_over_dx
-                ),
-                None => println!(
-                    "no critical Δt: the semi-discrete system already grows (see `sphstab query --dim 2`)"
-                ),
-            }
-        }
-        return Ok(());
+        return if dim == 3 { run_nd::<3>(a) } else { run_nd::<2>(a) };
     }
     a.cfg.reject_2d_flags()?;
     let q = a.cfg.query(a.points.unwrap_or(512))?;
@@ -84,6 +53,43 @@ pub fn run(a: Args) -> Result<()> {
         ),
         None => {
             println!("no critical Δt: the semi-discrete system already grows (see `sphstab query`)")
+        }
+    }
+    Ok(())
+}
+
+fn run_nd<const D: usize>(a: Args) -> Result<()> {
+    let q = a.cfg.query_nd::<D>()?;
+    let lin = q.linearise_at(q.stress)?;
+    let ks = q.kgrid();
+    let r = sphstab::analysis2d::query_nd(&q)?;
+    let bis = if r.critical_dt.is_some() {
+        Some(sphstab::analysis2d::critical_dt_2d(&lin, &ks)?)
+    } else {
+        None
+    };
+    let v = serde_json::json!({
+        "dim": D, "form": r.form, "kernel": r.kernel, "h_over_dx": r.h_over_dx, "support_over_dx": r.support_over_dx,
+        "stress": r.stress, "critical_dt": bis, "critical_dt_from_omega_max": r.critical_dt,
+        "critical_cfl": bis.map(|d| d / r.h_over_dx),
+    });
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        match bis {
+            Some(dt) => println!(
+                "{} / {} h = {}Δx σ̄ = {} ({D}D, {}): critical leapfrog Δt = {dt:.9} Δx/c (bisection on the amplification matrices), 2/ω_max = {:.9}, CFL c Δt/h = {:.9}",
+                r.form,
+                r.kernel,
+                r.h_over_dx,
+                r.stress,
+                r.lattice,
+                r.critical_dt.unwrap_or(f64::NAN),
+                dt / r.h_over_dx
+            ),
+            None => println!(
+                "no critical Δt: the semi-discrete system already grows (see `sphstab query --dim {D}`)"
+            ),
         }
     }
     Ok(())
