@@ -2,6 +2,9 @@
 //! the high-symmetry path, critical time step, growth-rate maps (3D: a plane through the zone),
 //! and the finite-box prediction — one generic code path for both dimensions ([`Query`]).
 
+// Small-vector algebra (D ≤ 3) reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use crate::error::{Error, Result};
 use crate::forms::{ArtificialViscosity, FormKind, Material, ModelParams2D, ObjectiveRate};
 use crate::kernel::Kernel;

@@ -175,7 +175,10 @@ impl<const D: usize> Lattice<D> {
                 crate::error::check_range("--gamma", gamma, 0.1, 10.0, true, true)?;
                 (2, [[1.0, 0.0, 0.0], [0.0, gamma, 0.0], [0.0; 3]])
             }
-            LatticeKind::Hexagonal => (2, [[1.0, 0.0, 0.0], [0.5, 3f64.sqrt() / 2.0, 0.0], [0.0; 3]]),
+            LatticeKind::Hexagonal => (
+                2,
+                [[1.0, 0.0, 0.0], [0.5, 3f64.sqrt() / 2.0, 0.0], [0.0; 3]],
+            ),
             LatticeKind::Sc => (3, Lattice3D::sc().a),
             LatticeKind::Bcc => (3, Lattice3D::bcc().a),
             LatticeKind::Fcc => (3, Lattice3D::fcc().a),

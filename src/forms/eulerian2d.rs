@@ -120,6 +120,12 @@ pub(crate) fn stress_rate<S: Scalar, const D: usize>(
     else {
         return r;
     };
+    if D == 1 && rate == ObjectiveRate::Truesdell {
+        // 1D: λ tr d + 2G d + Lσ + σL − tr(L)σ = (C + σ) ∂v/∂x with C = λ + 2G, the law of
+        // \[B00\] eq 72, written as there
+        r[0][0] = (s[0][0] + (lambda + 2.0 * shear)) * l[0][0];
+        return r;
+    }
     let mut tr = l[0][0];
     for a in 1..D {
         tr += l[a][a];
@@ -521,6 +527,17 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
                         p[a][b] = (f[a][b] - fit) * shear + lnj * fit * lambda;
                     }
                 }
+                p
+            }
+            Material::Elastic {
+                lambda,
+                shear,
+                rate: ObjectiveRate::Truesdell,
+            } if D == 1 => {
+                // 1D: the Truesdell law σ̇ = (C + σ)Ḟ/F integrates exactly to
+                // P = σ = (σ0 + C)F − C (\[B00\] eq 81's tangent C + σ0 at F = 1)
+                let mut p = [[S::zero(); D]; D];
+                p[0][0] = f[0][0] * (s0 + lambda + 2.0 * shear) - (lambda + 2.0 * shear);
                 p
             }
             Material::Elastic {

@@ -7,17 +7,13 @@
 //! The total-Lagrangian forms integrate the same law: `P(F) = (σ0 + C) F − C` in 1D, whose
 //! tangent at F = 1 is `C̄^{SE} = C + σ0` (\[B00\] eq 81).
 
-mod classical;
 mod eulerian2d;
 mod eulerian_common;
+mod lagrangian_stress_points;
 mod least_squares;
-mod lnl;
-mod local;
 mod model;
 mod model2d;
-mod nonlocal;
 mod stress_points;
-mod total_lagrangian;
 pub(crate) mod workspace;
 
 pub use model::{
@@ -157,19 +153,36 @@ impl Model1D {
         out: &mut State1D<S>,
     ) -> Result<()> {
         out.resize_like(z);
+        if let Some(nd) = &self.nd {
+            // the forms of every dimension: the D = 1 rate on views of the 1D fields
+            let view = StateView::<S, 1> {
+                x: z.x.as_chunks().0,
+                v: z.v.as_chunks().0,
+                rho: &z.rho,
+                sigma: z.sigma.as_chunks::<1>().0.as_chunks::<1>().0,
+                tau: z.tau.as_chunks::<1>().0.as_chunks::<1>().0,
+            };
+            let rates = RateOut::<S, 1> {
+                x: Some(out.x.as_chunks_mut().0),
+                v: Some(out.v.as_chunks_mut().0),
+                aux: Some(AuxRates {
+                    rho: &mut out.rho,
+                    sigma: out.sigma.as_chunks_mut::<1>().0.as_chunks_mut::<1>().0,
+                    tau: out.tau.as_chunks_mut::<1>().0.as_chunks_mut::<1>().0,
+                }),
+            };
+            return nd.rate_into(view, rates, &mut RateWorkspace::new());
+        }
         match self.p.form {
-            FormKind::Classical => classical::rate(self, z, out),
-            FormKind::Nonlocal => nonlocal::rate(self, z, out),
-            FormKind::Local => local::rate(self, z, out),
-            FormKind::Lnl => lnl::rate(self, z, out, lnl::Mix::LocalNonlocal),
-            FormKind::Cll => lnl::rate(self, z, out, lnl::Mix::ClassicalLocal),
-            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints => {
-                total_lagrangian::rate(self, z, out)
-            }
+            FormKind::LagrangianStressPoints => lagrangian_stress_points::rate(self, z, out),
             FormKind::EulerianStressPoints | FormKind::EulerianNodal => {
                 stress_points::rate(self, z, out)
             }
             FormKind::LeastSquares => least_squares::rate(self, z, out),
+            f => Err(Error::Incompatible(format!(
+                "--form {}: no 1D model was built",
+                f.name()
+            ))),
         }
     }
 }

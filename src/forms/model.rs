@@ -1,4 +1,10 @@
 //! The constant part of a 1D particle system (model) and its state.
+//!
+//! The forms defined in every dimension (classical, nonlocal, local, lnl, cll,
+//! total-lagrangian) are evaluated by the one rate function of [`super::Model`] with D = 1:
+//! [`Model1D`] holds that model and lends it its state's fields without copying (a `Vec<S>` is
+//! viewed as `[[S; 1]]`). The 1D-only forms of \[B00\] (stress points, least squares,
+//! eulerian-nodal) add the stress-point fields and the consistent mass kept here.
 
 use super::FormKind;
 use crate::error::Result;
@@ -45,6 +51,31 @@ pub struct ModelParams {
     pub dx: f64,
 }
 
+impl ModelParams {
+    /// The same system as parameters of the dimension-generic model: the 1D law σ̇ = (C + σ)
+    /// ∂v/∂x is the hypo-elastic law with the Truesdell rate and P-wave modulus λ + 2G = C
+    /// (written with G = 0, λ = C: in 1D only λ + 2G enters).
+    pub fn nd_params(&self) -> super::ModelParams2D {
+        super::ModelParams2D {
+            form: self.form,
+            shape: self.shape,
+            kp: crate::shape2d::KernelParams2 {
+                kernel: self.kp.kernel,
+                h: self.kp.h,
+            },
+            material: super::Material::Elastic {
+                lambda: self.modulus,
+                shear: 0.0,
+                rate: super::ObjectiveRate::Truesdell,
+            },
+            rho0: self.rho0,
+            c_partition: self.c_partition,
+            av: self.av,
+            art_stress: None,
+        }
+    }
+}
+
 /// Mass operator of the semi-discrete system.
 #[derive(Clone, Debug)]
 pub enum MassOperator {
@@ -88,6 +119,9 @@ pub struct Model1D {
     pub(crate) ls_stiffness: Vec<Vec<(usize, f64)>>,
     /// Mass operator.
     pub mass_op: MassOperator,
+    /// The D = 1 particle model of the forms defined in every dimension (`None` for the
+    /// 1D-only forms of \[B00\]).
+    pub(crate) nd: Option<super::Model<1>>,
 }
 
 /// State fields.
@@ -261,7 +295,20 @@ impl Model1D {
             ref_sp: Vec::new(),
             ls_stiffness: Vec::new(),
             mass_op: MassOperator::Lumped,
+            nd: None,
         };
+        if p.form.in_2d() {
+            let vols = model.vol_ref.clone();
+            model.nd = Some(super::Model::new(
+                p.nd_params(),
+                model.x_ref.iter().map(|&x| [x]).collect(),
+                vols,
+                p.rho0,
+                p.sigma0,
+                period.map(|l| [[l]]),
+            )?);
+            return Ok(model);
+        }
         if p.form.is_lagrangian() {
             model.ref_master = (0..n)
                 .map(|i| model.ref_stencil(model.x_ref[i]))

@@ -105,9 +105,7 @@ impl Config {
         q.c_partition = q1.c_partition;
         q.av = q1.av;
         q.dt = q1.dt;
-        q.grid = self
-            .grid
-            .unwrap_or(sphstab::analysis2d::default_grid(D));
+        q.grid = self.grid.unwrap_or(sphstab::analysis2d::default_grid(D));
         q.art_stress = art_stress(self.art_eps, self.art_n)?;
         let lattice = self
             .lattice

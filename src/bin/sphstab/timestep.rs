@@ -31,7 +31,11 @@ pub fn run(a: Args) -> Result<()> {
                 &format!("--dim {dim} (use --grid for the zone sampling)"),
             ));
         }
-        return if dim == 3 { run_nd::<3>(a) } else { run_nd::<2>(a) };
+        return if dim == 3 {
+            run_nd::<3>(a)
+        } else {
+            run_nd::<2>(a)
+        };
     }
     a.cfg.reject_2d_flags()?;
     let q = a.cfg.query(a.points.unwrap_or(512))?;

@@ -1,6 +1,7 @@
-//! `total-lagrangian` and `lagrangian-stress-points`: Lagrangian kernel (shape functions on
-//! the reference configuration, fixed neighbours), Galerkin form with nodal or stress-point
-//! integration \[B00 eq 77–81, 99–102\].
+//! `lagrangian-stress-points` (1D only): Lagrangian kernel (shape functions on the reference
+//! configuration, fixed neighbours), Galerkin form with stress-point integration
+//! \[B00 eq 99–102\] — the total-Lagrangian form of every dimension (`eulerian2d::rate_tl`,
+//! \[B00 eq 77–81\]) with the mid-interval stress points added as integration points.
 //!
 //! ```text
 //! F_p = 1 + Σ_K φ'_K(X_p) (u_K − ū_p),   ū_p = Σ_K φ_K(X_p) u_K / Σ_K φ_K(X_p),   u = x − X
