@@ -398,7 +398,7 @@ impl FormKind {
     }
 
     /// Default shape family in 2D and 3D: as in 1D, except total-Lagrangian, whose closest
-    /// multi-dimensional paper is the thesis [T] (TL SPH, `sph` shapes). (With `mls`, nodal
+    /// multi-dimensional paper is the thesis \[T\] (TL SPH, `sph` shapes). (With `mls`, nodal
     /// integration of a pre-stressed rest state is not in equilibrium within two supports of a
     /// boundary: the residual force ∝ σ0 drifts a fixed-boundary box; see the closing notes of
     /// issue 4.)

@@ -90,10 +90,10 @@ mod tests {
     }
 }
 
-/// Sine-transform power of an n × n field f[i][j] (row-major, i along x), the free particles of a
+/// Sine-transform power of an n × n field f\[i\]\[j\] (row-major, i along x), the free particles of a
 /// box with fixed walls: coefficient (m, l) of sin(mπ(i+1)/(n+1)) sin(lπ(j+1)/(n+1)), computed
 /// with rustfft on the odd extension of length 2(n+1) along each axis. Returns the power
-/// P[m−1][l−1], m, l = 1..n.
+/// P\[m−1\]\[l−1\], m, l = 1..n.
 pub fn sine_power(f: &[f64], n: usize) -> Vec<Vec<f64>> {
     use rustfft::{FftPlanner, num_complex::Complex};
     let len = 2 * (n + 1);
