@@ -162,20 +162,7 @@ impl Linearisation {
     /// multiplied by M̂(κ)⁻¹ for a consistent mass.
     pub fn jacobian(&self, kappa: f64) -> DMatrix<Complex64> {
         let nd = self.size();
-        let mut j = DMatrix::<Complex64>::zeros(nd, nd);
-        for (b, col) in self.cols.iter().enumerate() {
-            for (i, c) in col {
-                let t = kappa * *i as f64;
-                let (s, half) = (t.sin(), (0.5 * t).sin());
-                let e = Complex64::new(t.cos(), -s);
-                let em1 = Complex64::new(-2.0 * half * half, -s);
-                for (a, &v) in c.iter().enumerate() {
-                    if v != 0.0 {
-                        j[(a, b)] += if self.zero_sum[a][b] { em1 * v } else { e * v };
-                    }
-                }
-            }
-        }
+        let mut j = bloch_sum(&self.cols, &self.zero_sum, |&i| kappa * i as f64);
         if !self.mass.is_empty() {
             let m = self.mass_symbol(kappa);
             for b in 0..nd {
@@ -233,6 +220,33 @@ impl Linearisation {
             Ok((-self.omega2(kappa).0).max(0.0).sqrt())
         }
     }
+}
+
+/// The Bloch sum of Jacobian columns: J_ab(k) = Σ_j A_ab(j) e^{−iθ_j}, θ_j = `phase(offset_j)`
+/// (= k·r_j), with the entries whose κ = 0 sum vanishes ([`zero_sums`]) summed as
+/// Σ_j A_ab(j)(e^{−iθ_j} − 1), e^{−iθ} − 1 = −2 sin²(θ/2) − i sin θ — exact as k → 0. The one
+/// projection of the 1D and the 2D/3D engines.
+pub(crate) fn bloch_sum<O>(
+    cols: &[Vec<(O, Vec<f64>)>],
+    zero_sum: &[Vec<bool>],
+    phase: impl Fn(&O) -> f64,
+) -> DMatrix<Complex64> {
+    let nd = cols.len();
+    let mut j = DMatrix::<Complex64>::zeros(nd, nd);
+    for (b, col) in cols.iter().enumerate() {
+        for (o, c) in col {
+            let t = phase(o);
+            let (s, half) = (t.sin(), (0.5 * t).sin());
+            let e = Complex64::new(t.cos(), -s);
+            let em1 = Complex64::new(-2.0 * half * half, -s);
+            for (a, &v) in c.iter().enumerate() {
+                if v != 0.0 {
+                    j[(a, b)] += if zero_sum[a][b] { em1 * v } else { e * v };
+                }
+            }
+        }
+    }
+    j
 }
 
 /// For each Jacobian entry (a, b): whether its κ = 0 sum Σ_i A_ab(i) vanishes to rounding

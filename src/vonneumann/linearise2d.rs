@@ -14,7 +14,7 @@
 // Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::linearise::{check_rest, eigen, zero_sums};
+use super::linearise::{bloch_sum, check_rest, eigen, zero_sums};
 use crate::error::{Error, Result};
 use crate::forms::{Comp, FieldKind, FormKind, Material, Model, ModelParams2D, State};
 use crate::lattice::Lattice;
@@ -256,25 +256,13 @@ impl<const D: usize> Bloch<D> {
 
     /// J(k) (physical units; k in units of 1/Δx).
     pub fn jacobian(&self, k: [f64; D]) -> DMatrix<Complex64> {
-        let nd = self.comps.len();
-        let mut j = DMatrix::<Complex64>::zeros(nd, nd);
-        for (b, col) in self.cols.iter().enumerate() {
-            for (r, c) in col {
-                let mut t = k[0] * r[0];
-                for a in 1..D {
-                    t += k[a] * r[a];
-                }
-                let (s, h) = (t.sin(), (0.5 * t).sin());
-                let e = Complex64::new(t.cos(), -s);
-                let em1 = Complex64::new(-2.0 * h * h, -s);
-                for (ai, &v) in c.iter().enumerate() {
-                    if v != 0.0 {
-                        j[(ai, b)] += if self.zero_sum[ai][b] { em1 * v } else { e * v };
-                    }
-                }
+        bloch_sum(&self.cols, &self.zero_sum, |r: &[f64; D]| {
+            let mut t = k[0] * r[0];
+            for a in 1..D {
+                t += k[a] * r[a];
             }
-        }
-        j
+            t
+        })
     }
 
     /// Normalised dynamical matrix D(k)Δx²/c² (D × D) of the mechanical branches.
