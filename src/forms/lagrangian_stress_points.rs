@@ -1,6 +1,6 @@
 //! `lagrangian-stress-points` (1D only): Lagrangian kernel (shape functions on the reference
 //! configuration, fixed neighbours), Galerkin form with stress-point integration
-//! \[B00 eq 99–102\] — the total-Lagrangian form of every dimension (`eulerian2d::rate_tl`,
+//! \[B00 eq 99–102\] — the total-Lagrangian form of every dimension (`rates::rate_tl`,
 //! \[B00 eq 77–81\]) with the mid-interval stress points added as integration points.
 //!
 //! ```text

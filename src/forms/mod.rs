@@ -16,8 +16,8 @@
 //!
 //! | form | where its rate is defined (1D, 2D and 3D alike) |
 //! |---|---|
-//! | classical, nonlocal, local, lnl, cll | `eulerian2d::rate`: one routine, the momentum term per form (\[V21 eq 53–56\]): `div_sum` (classical, cll's nonlocal part), `div_difference` (nonlocal, local, lnl); continuity and stress rates from the velocity gradient of the form's stencil |
-//! | total-lagrangian | `eulerian2d::rate_tl` (\[B00 eq 77–81\] in D dimensions) |
+//! | classical, nonlocal, local, lnl, cll | `rates::rate`: one routine, the momentum term per form (\[V21 eq 53–56\]): `div_sum` (classical, cll's nonlocal part), `div_difference` (nonlocal, local, lnl); continuity and stress rates from the velocity gradient of the form's stencil |
+//! | total-lagrangian | `rates::rate_tl` (\[B00 eq 77–81\] in D dimensions) |
 //! | eulerian-stress-points, eulerian-nodal | `stress_points.rs` (1D only, \[B00 §4.1.1, §4.2.1\]) |
 //! | lagrangian-stress-points | `lagrangian_stress_points.rs` (1D only, \[B00 eq 99–102\]) |
 //! | least-squares | `least_squares.rs` (1D only, \[B00 §4.3\]) |
@@ -34,19 +34,19 @@
 //! with the tangent of the Eulerian law. Hydrodynamic (p = K(ρ/ρ0 − 1)) and neo-Hookean
 //! materials in 2D and 3D.
 
-mod eulerian2d;
 mod eulerian_common;
 mod lagrangian_stress_points;
 mod least_squares;
 mod model;
-mod model2d;
+mod model_nd;
+mod rates;
 mod stress_points;
 pub(crate) mod workspace;
 
 pub use model::{
     ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,
 };
-pub use model2d::{
+pub use model_nd::{
     ArtificialStress, AuxRates, AuxRates2D, Comp, Comp2, Material, Material2D, Model, Model2D,
     Model3D, ModelParams2D, ObjectiveRate, RateOut, RateOut2D, State, State2D, State3D, StateView,
     StateView2D, Tensor, n_sym, voigt,

@@ -20,7 +20,7 @@
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::model2d::{Model, StateView, Tensor};
+use super::model_nd::{Model, StateView, Tensor};
 use crate::error::Result;
 use crate::neighbours::CellList;
 use crate::scalar::Scalar;

@@ -20,7 +20,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::FormKind;
-use super::model2d::{AuxRates, Material, Model, ObjectiveRate, RateOut, State, StateView, Tensor};
+use super::model_nd::{
+    AuxRates, Material, Model, ObjectiveRate, RateOut, State, StateView, Tensor,
+};
 use super::workspace::{NbD, RateWorkspace};
 use crate::error::Result;
 use crate::kernel;

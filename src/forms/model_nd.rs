@@ -11,7 +11,7 @@
 //!   forms); tangent modulus C = λ + 2G (P-wave modulus; plane strain in 2D).
 //! - total-Lagrangian forms: hydro is the fluid P = −p(J) cof F; elastic is St Venant–Kirchhoff
 //!   about the pre-stress with the moduli that give the Eulerian law's tangent (see
-//!   `eulerian2d::rate_tl`).
+//!   `rates::rate_tl`).
 
 // Small-tensor algebra (D × D, D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
