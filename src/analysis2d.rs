@@ -385,6 +385,9 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
     for &k in &ks {
         let (g, p) = lin.growth(k)?;
         let br = lin.branches(k);
+        if !g.is_finite() || br.iter().any(|b| !b.0.re.is_finite()) {
+            return Err(Error::NonFinite("dispersion branches (eigenvalues)"));
+        }
         w2max = w2max.max(br[D - 1].0.re);
         zeros.push(br);
         grow.push(g);

@@ -595,8 +595,8 @@ fn lattice_spacing_scales_out() {
 /// per lattice, so one configuration: classical, hydro) on sc, bcc, fcc, σ̄ = 0.01: the engine
 /// builds, D is finite and equals the closed form to 1e-10; the nonlocal branches are finite
 /// and ≥ 0 (its closed form is positive semi-definite while C + σ > 0). Branches of every form
-/// are checked in [`extreme_stress_is_finite_and_exact`]; at h = 3 see the ignored
-/// [`branches_finite_at_the_degenerate_bcc_p_point`] (an engine defect).
+/// are checked in [`extreme_stress_is_finite_and_exact`]; at h = 3 see
+/// [`branches_finite_at_the_degenerate_bcc_p_point`].
 #[test]
 fn smoothing_length_extremes_work() {
     let mut worst: f64 = 0.0;
@@ -633,14 +633,13 @@ fn smoothing_length_extremes_work() {
 }
 
 /// Branches (ω², polarisations) finite for classical, m4, h/Δx = 3, Truesdell, σ̄ = 0.01 on
-/// bcc (sc and fcc pass). FAILS at P = (1, 1, 1)π/2^⅓: D is triply degenerate there by symmetry
+/// bcc. The regression of a defect: at P = (1, 1, 1)π/2^⅓ D is triply degenerate by symmetry
 /// (≈ 3.985e-7 I, equal to the closed form) with rounding noise ~1e-19 in its off-diagonal and
-/// imaginary parts — above the 1e-13·‖D‖ Hermitian test of `linearise2d::branches3` — so the
-/// complex-Schur route runs, `eigen` of D/‖D‖ (≈ I + 1e-12 noise) does not converge, and the
-/// fallback returns NaN for all three ω². `query --dim 3 --lattice bcc --h 3` samples ±P on
-/// every even grid and its maximum drops the NaN growth rates silently.
+/// imaginary parts; that failed the old purely relative Hermitian test of
+/// `linearise2d::branches3`, the complex-Schur route of D/‖D‖ (≈ I + 1e-12 noise) did not
+/// converge and all three ω² came back NaN, which `query --dim 3` dropped silently (now also an
+/// error there).
 #[test]
-#[ignore = "engine defect in linearise2d::branches3: NaN at the degenerate bcc P point, h/Δx = 3"]
 fn branches_finite_at_the_degenerate_bcc_p_point() {
     let (_, mat) = materials()[2];
     let lat = Lattice3D::bcc();
