@@ -39,6 +39,7 @@
 //! | [`vonneumann`] | linearisation, amplification, classification, closed forms, kernel transforms |
 //! | [`analysis`] | `query`, `dispersion`, `timestep` |
 //! | [`solver`] | the reference solver (1D, 2D), the Swegle test, [`solver::throughput`] |
+//! | [`pairing`] | the 3D pairing study: growth under pressure vs neighbour number, kernel W* sign |
 //! | [`plot`], [`figures`] | SVG output |
 //!
 //! References: \[B00] Belytschko, Guo, Liu, Xiao 2000; [V21\] Vignjevic, De Vuyst, Campbell 2021;
@@ -55,6 +56,7 @@ pub mod integrator;
 pub mod kernel;
 pub mod lattice;
 pub mod neighbours;
+pub mod pairing;
 pub mod plot;
 pub mod scalar;
 pub mod shape;

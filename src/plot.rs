@@ -346,3 +346,191 @@ pub fn pareto_svg(
     }
     Ok(svg)
 }
+
+/// One curve of a multi-panel figure ([`panels_svg`]); curve i of every panel is drawn in the
+/// style of legend entry i.
+#[derive(Clone, Debug)]
+pub struct PanelCurve {
+    /// Abscissae.
+    pub x: Vec<f64>,
+    /// Ordinates.
+    pub y: Vec<f64>,
+}
+
+/// One panel of [`panels_svg`].
+#[derive(Clone, Debug)]
+pub struct Panel {
+    /// Panel caption.
+    pub title: String,
+    /// Curves, indexed like the legend (an empty curve draws nothing).
+    pub curves: Vec<PanelCurve>,
+}
+
+/// Marker shapes of [`panels_svg`], cycled by curve index.
+const MARKERS: usize = 6;
+/// Panel size of [`panels_svg`] (pixels).
+const PANEL_W: u32 = 400;
+/// Panel height of [`panels_svg`] (pixels).
+const PANEL_H: u32 = 330;
+
+/// Draws a marker at pixel `at` of `area`: shape `kind` (circle, square, up-triangle,
+/// diamond, down-triangle, cross), filled or hollow.
+fn draw_marker<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    at: (i32, i32),
+    kind: usize,
+    color: RGBColor,
+    filled: bool,
+) -> Result<()> {
+    let style = if filled {
+        color.filled()
+    } else {
+        color.stroke_width(2)
+    };
+    let poly = |pts: Vec<(i32, i32)>| {
+        if filled {
+            area.draw(&(EmptyElement::at(at) + Polygon::new(pts, style)))
+        } else {
+            let mut closed = pts.clone();
+            closed.push(pts[0]);
+            area.draw(&(EmptyElement::at(at) + PathElement::new(closed, style)))
+        }
+    };
+    match kind % MARKERS {
+        0 => area.draw(&(EmptyElement::at(at) + Circle::new((0, 0), 4, style))),
+        1 => area.draw(&(EmptyElement::at(at) + Rectangle::new([(-4, -4), (4, 4)], style))),
+        2 => poly(vec![(0, -5), (5, 4), (-5, 4)]),
+        3 => poly(vec![(0, -6), (5, 0), (0, 6), (-5, 0)]),
+        4 => poly(vec![(0, 5), (5, -4), (-5, -4)]),
+        _ => area.draw(&(EmptyElement::at(at) + Cross::new((0, 0), 4, color.stroke_width(2)))),
+    }
+    .map_err(plot_err)
+}
+
+/// Style of legend entry i: (colour, marker, filled marker and solid line).
+fn panel_style(i: usize) -> (RGBColor, usize, bool) {
+    (
+        PARETO_PALETTE[i % PARETO_PALETTE.len()],
+        i % MARKERS,
+        (i / MARKERS).is_multiple_of(2),
+    )
+}
+
+/// A grid of panels (`cols` per row) sharing the x axis (log scale, positive x only) and, per
+/// row, the y range (from 0), with one legend column on the right: curve i is drawn with colour
+/// i of the colour-blind-safe palette, marker shape i mod 6, filled markers and solid lines for
+/// i < 6, hollow markers and dashed lines for 6 ≤ i < 12 — distinguishable in greyscale.
+pub fn panels_svg(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    legend: &[String],
+    panels: &[Panel],
+    cols: usize,
+) -> Result<String> {
+    let cols = cols.max(1);
+    let rows = panels.len().div_ceil(cols).max(1);
+    let pts = || {
+        panels.iter().flat_map(|p| {
+            p.curves
+                .iter()
+                .flat_map(|c| c.x.iter().copied().zip(c.y.iter().copied()))
+        })
+    };
+    let (x0, x1) = pts()
+        .filter(|(x, y)| x.is_finite() && *x > 0.0 && y.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(a, b), (x, _)| {
+            (a.min(x), b.max(x))
+        });
+    if !(x0.is_finite() && x1 > 0.0) {
+        return Err(Error::Incompatible(
+            "nothing to plot: no finite points".into(),
+        ));
+    }
+    let (x0, x1) = (x0 / 1.15, x1 * 1.15);
+    let mut svg = String::new();
+    {
+        let (w, h) = (PANEL_W * cols as u32 + 200, PANEL_H * rows as u32 + 50);
+        let base = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+        base.fill(&WHITE).map_err(plot_err)?;
+        let root = base.titled(title, ("sans-serif", 19)).map_err(plot_err)?;
+        let (grid, side) = root.split_horizontally(PANEL_W * cols as u32);
+        let areas = grid.split_evenly((rows, cols));
+        for (pi, (panel, area)) in panels.iter().zip(&areas).enumerate() {
+            let row = pi / cols;
+            let ymax = panels[row * cols..((row + 1) * cols).min(panels.len())]
+                .iter()
+                .flat_map(|p| p.curves.iter().flat_map(|c| c.y.iter().copied()))
+                .filter(|y| y.is_finite())
+                .fold(0.0f64, f64::max);
+            let ymax = if ymax > 0.0 { 1.08 * ymax } else { 1.0 };
+            let mut chart = ChartBuilder::on(area)
+                .caption(&panel.title, ("sans-serif", 15))
+                .margin(8)
+                .x_label_area_size(40)
+                .y_label_area_size(55)
+                .build_cartesian_2d((x0..x1).log_scale(), -0.02 * ymax..ymax)
+                .map_err(plot_err)?;
+            chart
+                .configure_mesh()
+                .x_desc(x_desc)
+                .y_desc(y_desc)
+                .x_label_formatter(&|v| format!("{v:.0}"))
+                .y_label_formatter(&|v| format!("{v:.2}"))
+                .label_style(("sans-serif", 12))
+                .bold_line_style(BLACK.mix(0.12))
+                .light_line_style(WHITE)
+                .draw()
+                .map_err(plot_err)?;
+            for (i, c) in panel.curves.iter().enumerate() {
+                let (color, kind, solid) = panel_style(i);
+                let line: Vec<(f64, f64)> =
+                    c.x.iter()
+                        .copied()
+                        .zip(c.y.iter().copied())
+                        .filter(|(x, y)| x.is_finite() && *x > 0.0 && y.is_finite())
+                        .collect();
+                if solid {
+                    chart
+                        .draw_series(LineSeries::new(line.clone(), color.stroke_width(1)))
+                        .map_err(plot_err)?;
+                } else {
+                    chart
+                        .draw_series(DashedLineSeries::new(
+                            line.clone(),
+                            6,
+                            4,
+                            color.stroke_width(1),
+                        ))
+                        .map_err(plot_err)?;
+                }
+                for p in line {
+                    draw_marker(&base, chart.backend_coord(&p), kind, color, solid)?;
+                }
+            }
+        }
+        // the legend column
+        for (i, label) in legend.iter().enumerate() {
+            let (color, kind, solid) = panel_style(i);
+            let y = 60 + 24 * i as i32;
+            let seg = vec![(10, y), (46, y)];
+            if solid {
+                side.draw(&PathElement::new(seg, color.stroke_width(1)))
+                    .map_err(plot_err)?;
+            } else {
+                side.draw(&plotters::element::DashedPathElement::new(
+                    seg,
+                    6,
+                    4,
+                    color.stroke_width(1),
+                ))
+                .map_err(plot_err)?;
+            }
+            draw_marker(&side, (28, y), kind, color, solid)?;
+            side.draw(&Text::new(label.clone(), (54, y - 7), ("sans-serif", 14)))
+                .map_err(plot_err)?;
+        }
+        base.present().map_err(plot_err)?;
+    }
+    Ok(svg)
+}

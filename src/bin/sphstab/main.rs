@@ -8,6 +8,7 @@ mod figures;
 mod kernels;
 mod map;
 mod merge;
+mod pairing;
 mod progress;
 mod query;
 mod simulate;
@@ -76,6 +77,9 @@ enum Cmd {
     Merge(merge::Args),
     /// Speed and memory of the 2D solver on an open square block (and its scaling with N).
     Throughput(throughput::Args),
+    /// 3D pairing study: growth under pressure against neighbour number N_H, every kernel ×
+    /// lattice (sc, bcc, fcc) × h/Δx, next to the kernel's W* sign criterion.
+    Pairing(pairing::Args),
 }
 
 fn main() {
@@ -134,6 +138,7 @@ fn main() {
         Cmd::Atlas(a) => atlas::run(a),
         Cmd::Merge(a) => merge::run(a),
         Cmd::Throughput(a) => throughput::run(a),
+        Cmd::Pairing(a) => pairing::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");

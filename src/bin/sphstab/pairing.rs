@@ -1,0 +1,169 @@
+//! `sphstab pairing`: the 3D pairing study (classical SPH, hydro, under pressure) for every
+//! kernel × lattice × h/Δx, next to the kernel's W* sign criterion; table, JSON and figure.
+
+use crate::progress;
+use anyhow::{Context, Result};
+use sphstab::pairing::{PairingConfig, PairingReport};
+use std::path::{Path, PathBuf};
+
+/// Flags of `pairing`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Comma-separated kernel names (default: all eleven).
+    #[arg(long, value_delimiter = ',')]
+    kernels: Vec<String>,
+    /// Comma-separated lattices: sc, bcc, fcc (default: all three).
+    #[arg(long, value_delimiter = ',')]
+    lattices: Vec<String>,
+    /// Smallest h/Δx, in [0.1, 10] (default 0.8).
+    #[arg(long, allow_hyphen_values = true)]
+    h_min: Option<f64>,
+    /// Largest h/Δx, in [--h-min, 10] (default 3).
+    #[arg(long, allow_hyphen_values = true)]
+    h_max: Option<f64>,
+    /// Step of h/Δx, in [0.001, 10], at most 1000 values (default 0.1).
+    #[arg(long, allow_hyphen_values = true)]
+    h_step: Option<f64>,
+    /// Comma-separated pre-stresses σ̄ = σ/K, each in [−10, 1), 1 to 16 values (default
+    /// −0.01,−0.1; negative = pressure).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    stresses: Vec<f64>,
+    /// Wave vectors per reciprocal direction (grid³ − 1 sampled), in [2, 128] (default 16).
+    #[arg(long)]
+    grid: Option<usize>,
+    /// A study config (JSON: kernels, lattices, h_min, h_max, h_step, stresses, grid, output,
+    /// note); its `output` names the figure written to figures/ together with the data (same
+    /// name, .json). Not combined with the study flags.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Re-draw the figure from stored data (a JSON written by --json or --config) without
+    /// computing; needs --plot.
+    #[arg(long)]
+    from: Option<PathBuf>,
+    /// Print the JSON report instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// Write the figure (SVG: growth against N_H, one panel per lattice and σ̄) here.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+}
+
+impl Args {
+    /// The study flags given on the command line.
+    fn study_flags(&self) -> Vec<&'static str> {
+        let mut v = Vec::new();
+        let given = [
+            (!self.kernels.is_empty(), "--kernels"),
+            (!self.lattices.is_empty(), "--lattices"),
+            (self.h_min.is_some(), "--h-min"),
+            (self.h_max.is_some(), "--h-max"),
+            (self.h_step.is_some(), "--h-step"),
+            (!self.stresses.is_empty(), "--stresses"),
+            (self.grid.is_some(), "--grid"),
+        ];
+        for (g, name) in given {
+            if g {
+                v.push(name);
+            }
+        }
+        v
+    }
+}
+
+pub fn run(a: Args) -> Result<()> {
+    if let Some(p) = &a.plot {
+        crate::common::check_writable("--plot", p)?;
+    }
+    let flags = a.study_flags();
+    if let Some(from) = &a.from {
+        if a.config.is_some() || !flags.is_empty() || a.json {
+            anyhow::bail!(
+                "--from redraws stored data: it takes only --plot (not --config, --json or the study flags)"
+            );
+        }
+        let path = a.plot.as_ref().ok_or_else(|| {
+            sphstab::error::Error::Incompatible("--from needs --plot (where to draw)".into())
+        })?;
+        let text = std::fs::read_to_string(from)
+            .with_context(|| format!("--from: cannot read {}", from.display()))?;
+        let rep: PairingReport =
+            serde_json::from_str(&text).map_err(|e| sphstab::error::Error::Config {
+                file: from.display().to_string(),
+                msg: e.to_string(),
+            })?;
+        return write_plot(&rep, path);
+    }
+    let (cfg, config_out) = match &a.config {
+        Some(p) => {
+            if !flags.is_empty() {
+                anyhow::bail!(
+                    "--config holds the whole study: do not combine it with {}",
+                    flags.join(", ")
+                );
+            }
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("--config: cannot read {}", p.display()))?;
+            let cfg = sphstab::pairing::parse_config(&p.display().to_string(), &text)?;
+            let out = cfg.output.clone();
+            (cfg, out)
+        }
+        None => {
+            let d = PairingConfig::default();
+            (
+                PairingConfig {
+                    kernels: a.kernels.clone(),
+                    lattices: a.lattices.clone(),
+                    h_min: a.h_min.unwrap_or(d.h_min),
+                    h_max: a.h_max.unwrap_or(d.h_max),
+                    h_step: a.h_step.unwrap_or(d.h_step),
+                    stresses: if a.stresses.is_empty() {
+                        d.stresses
+                    } else {
+                        a.stresses.clone()
+                    },
+                    grid: a.grid.unwrap_or(d.grid),
+                    ..d
+                },
+                None,
+            )
+        }
+    };
+    // validate everything before the first row is computed
+    sphstab::pairing::plan(&cfg)?;
+    if let Some(name) = &config_out {
+        crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
+    }
+    let pb = progress::bar(progress::wanted(a.json));
+    let rep = sphstab::pairing::run(&cfg, |d, t| progress::set(&pb, d as f64 / t.max(1) as f64))?;
+    pb.finish_and_clear();
+    if let Some(path) = &a.plot {
+        write_plot(&rep, path)?;
+    }
+    if let Some(name) = config_out {
+        let svg = PathBuf::from("figures").join(&name);
+        write_plot(&rep, &svg)?;
+        let data = svg.with_extension("json");
+        std::fs::write(&data, serde_json::to_string_pretty(&rep)? + "\n")
+            .with_context(|| format!("cannot write {}", data.display()))?;
+        eprintln!("wrote {} and {}", svg.display(), data.display());
+    }
+    if a.json {
+        println!("{}", serde_json::to_string(&rep)?);
+    } else {
+        print!("{}", sphstab::pairing::table(&rep));
+        println!(
+            "{} rows in {:.1} s ({} threads)",
+            rep.rows.len(),
+            rep.runtime_s,
+            rep.threads
+        );
+    }
+    Ok(())
+}
+
+fn write_plot(rep: &PairingReport, path: &Path) -> Result<()> {
+    let svg = sphstab::pairing::figure_svg(rep)?;
+    std::fs::write(path, svg)
+        .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+    Ok(())
+}

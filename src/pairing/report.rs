@@ -1,0 +1,196 @@
+//! The study as a text table and as the figure (growth against N_H, one panel per lattice and
+//! stress, one curve per kernel).
+
+use super::{PairingReport, PairingRow};
+use crate::error::Result;
+use crate::plot::{Panel, PanelCurve, panels_svg};
+use std::fmt::Write;
+
+fn opt(v: Option<f64>, prec: usize) -> String {
+    v.map_or_else(|| "—".into(), |x| format!("{x:.prec$}"))
+}
+
+/// The human-readable table: the W* criterion per kernel, then one line per row, then the
+/// onsets.
+pub fn table(rep: &PairingReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "pairing study: {} / {} / {} material, Δx = {}, zone sampled {}³, growth > {:e} c/Δx",
+        rep.form, rep.shape, rep.material, rep.dx, rep.grid, rep.growth_tol
+    );
+    let _ = writeln!(
+        s,
+        "\nkernel 3D Fourier transform W*(k)/W*(0), k in 1/h over [0, {}]",
+        rep.kernels.first().map_or(0.0, |k| k.k_max)
+    );
+    let _ = writeln!(
+        s,
+        "{:<12} {:>4} {:>13} {:>9} {:>9} {:>13}",
+        "kernel", "ζ", "min W*", "k at min", "negative", "first k < 0"
+    );
+    for k in &rep.kernels {
+        let _ = writeln!(
+            s,
+            "{:<12} {:>4} {:>13.4e} {:>9.4} {:>9} {:>13}",
+            k.kernel,
+            k.zeta,
+            k.min,
+            k.k_at_min,
+            if k.negative { "yes" } else { "no" },
+            opt(k.first_negative_k, 6)
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n{:<12} {:<4} {:>5} {:>6} {:>5} {:>7} {:>11} {:>8} {:>6} {:>11} {:>11} {:>9}",
+        "kernel",
+        "lat",
+        "h/Δx",
+        "R/Δx",
+        "N_H",
+        "σ̄",
+        "growth",
+        "|κ|Δx/π",
+        "L-frac",
+        "pairing",
+        "transverse",
+        "W*<0 κΔx"
+    );
+    for r in &rep.rows {
+        let _ = writeln!(s, "{}", row_line(r));
+    }
+    let _ = writeln!(
+        s,
+        "\nonsets (smallest h/Δx with growth; pairing = a longitudinal mode, |ê·k̂|² ≥ ½)"
+    );
+    let _ = writeln!(
+        s,
+        "{:<12} {:<4} {:>7} {:>16} {:>16} {:>13} {:>9}",
+        "kernel", "lat", "σ̄", "growth at h (N_H)", "pairing at h (N_H)", "max pairing", "computed"
+    );
+    let at =
+        |v: Option<(f64, usize)>| v.map_or_else(|| "none".into(), |(h, n)| format!("{h:.2} ({n})"));
+    for o in &rep.onsets {
+        let _ = writeln!(
+            s,
+            "{:<12} {:<4} {:>7} {:>16} {:>16} {:>13.6} {:>5}/{:<3}",
+            o.kernel,
+            o.lattice,
+            o.stress,
+            at(o.first_growth),
+            at(o.first_pairing),
+            o.max_pairing_growth,
+            o.computed,
+            o.computed + o.skipped
+        );
+    }
+    s
+}
+
+fn row_line(r: &PairingRow) -> String {
+    let head = format!(
+        "{:<12} {:<4} {:>5.2} {:>6.3} {:>5} {:>7}",
+        r.kernel, r.lattice, r.h_over_dx, r.support_over_dx, r.n_h, r.stress
+    );
+    if let Some(why) = &r.skipped {
+        return format!("{head}  skipped: {why}");
+    }
+    format!(
+        "{head} {:>11.6} {:>8} {:>6} {:>11.6} {:>11.6} {:>9}",
+        r.max_growth_rate.unwrap_or(0.0),
+        opt(r.kappa_abs_over_pi, 4),
+        opt(r.longitudinal_fraction, 3),
+        r.pairing_growth_rate.unwrap_or(0.0),
+        r.transverse_growth_rate.unwrap_or(0.0),
+        opt(r.wstar_first_negative_kdx, 4)
+    )
+}
+
+/// Title of the figure.
+pub fn figure_title(rep: &PairingReport) -> String {
+    format!(
+        "Pairing in 3D: classical SPH, hydro, under pressure — largest growth over the zone ({}³ wave vectors) vs neighbour number",
+        rep.grid
+    )
+}
+
+/// Which growth rate a panel row shows.
+#[derive(Clone, Copy)]
+enum Quantity {
+    Pairing,
+    Transverse,
+}
+
+/// The figure: growth rate (c/Δx) against N_H (log scale), one column per lattice; one row of
+/// panels per σ̄ (most negative first) with the pairing (longitudinal) growth, then one row with
+/// the transverse growth at the most negative σ̄; one curve per kernel (legend: its W* sign).
+/// Skipped rows are left out.
+pub fn figure_svg(rep: &PairingReport) -> Result<String> {
+    let mut lattices: Vec<&str> = Vec::new();
+    for r in &rep.rows {
+        if !lattices.contains(&r.lattice.as_str()) {
+            lattices.push(&r.lattice);
+        }
+    }
+    let mut stresses = rep.stresses.clone();
+    stresses.sort_by(f64::total_cmp);
+    let mut rows: Vec<(Quantity, f64)> = stresses.iter().map(|&s| (Quantity::Pairing, s)).collect();
+    if let Some(&s) = stresses.first() {
+        rows.push((Quantity::Transverse, s));
+    }
+    let mut panels = Vec::new();
+    for &(what, s) in &rows {
+        for &l in &lattices {
+            let curves = rep
+                .kernels
+                .iter()
+                .map(|k| {
+                    let pts: Vec<(f64, f64)> = rep
+                        .rows
+                        .iter()
+                        .filter(|r| r.kernel == k.kernel && r.lattice == l && r.stress == s)
+                        .filter_map(|r| {
+                            let g = match what {
+                                Quantity::Pairing => r.pairing_growth_rate,
+                                Quantity::Transverse => r.transverse_growth_rate,
+                            };
+                            Some((r.n_h as f64, g?))
+                        })
+                        .collect();
+                    PanelCurve {
+                        x: pts.iter().map(|p| p.0).collect(),
+                        y: pts.iter().map(|p| p.1).collect(),
+                    }
+                })
+                .collect();
+            let label = match what {
+                Quantity::Pairing => "pairing (longitudinal)",
+                Quantity::Transverse => "transverse",
+            };
+            panels.push(Panel {
+                title: format!("{l}: {label}, σ̄ = {s}"),
+                curves,
+            });
+        }
+    }
+    let legend: Vec<String> = rep
+        .kernels
+        .iter()
+        .map(|k| {
+            format!(
+                "{} ({})",
+                k.kernel,
+                if k.negative { "W* < 0" } else { "W* ≥ 0" }
+            )
+        })
+        .collect();
+    panels_svg(
+        &figure_title(rep),
+        "N_H (particles inside the support)",
+        "growth rate (c/Δx)",
+        &legend,
+        &panels,
+        lattices.len(),
+    )
+}
