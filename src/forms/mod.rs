@@ -181,6 +181,11 @@ impl Model1D {
     ) -> Result<()> {
         out.resize_like(z);
         if let Some(nd) = &self.nd {
+            if nd.mass != self.mass {
+                return Err(Error::Incompatible(
+                    "Model1D: masses edited in place; use Model1D::set_masses".into(),
+                ));
+            }
             // the forms of every dimension: the D = 1 rate on views of the 1D fields
             let view = StateView::<S, 1> {
                 x: z.x.as_chunks().0,

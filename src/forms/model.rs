@@ -99,7 +99,8 @@ pub struct Model1D {
     pub p: ModelParams,
     /// Period of a periodic chain (None: open chain).
     pub period: Option<f64>,
-    /// Master masses.
+    /// Master masses (change them with [`Model1D::set_masses`]: the rate function refuses a
+    /// model whose masses were edited in place).
     pub mass: Vec<f64>,
     /// Master reference positions X.
     pub x_ref: Vec<f64>,
@@ -326,6 +327,23 @@ impl Model1D {
             }
         }
         Ok(model)
+    }
+
+    /// Replaces the master masses (e.g. a bar of two materials), in this model and in the
+    /// D = 1 model that evaluates the forms of every dimension.
+    pub fn set_masses(&mut self, mass: Vec<f64>) -> Result<()> {
+        if mass.len() != self.x_ref.len() {
+            return Err(crate::error::Error::Incompatible(format!(
+                "masses: {} given for {} particles",
+                mass.len(),
+                self.x_ref.len()
+            )));
+        }
+        if let Some(nd) = &mut self.nd {
+            nd.mass.clone_from(&mass);
+        }
+        self.mass = mass;
+        Ok(())
     }
 
     /// Minimum-image relative position `b − a`.

@@ -100,9 +100,7 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
     let mut model = Model1D::new(p, x.clone(), vec![dx; n], None)?;
     let a = 0.5 * len;
     let rho_of = |xi: f64| if xi < a { rho_a } else { rho_b };
-    for (m, &xi) in model.mass.iter_mut().zip(&x) {
-        *m = rho_of(xi) * dx;
-    }
+    model.set_masses(x.iter().map(|&xi| rho_of(xi) * dx).collect())?;
     let mut z = model.rest_state();
     for (r, &xi) in z.rho.iter_mut().zip(&x) {
         *r = rho_of(xi);
