@@ -563,6 +563,13 @@ pub const MAX_GRID: usize = 1024;
 pub const MAX_MAP_N: usize = 1024;
 /// Largest `--box` (free particles per side): 1000² standing modes take ~4 s.
 pub const MAX_BOX: usize = 1000;
+/// Largest `--box` in 3D: 100³ = 1e6 standing modes (the 2D bound's count).
+pub const MAX_BOX_3D: usize = 100;
+
+/// Largest `--box` in dimension `dim`.
+pub const fn max_box(dim: usize) -> usize {
+    if dim == 3 { MAX_BOX_3D } else { MAX_BOX }
+}
 /// Largest `dispersion --dim 2 --points` (per path segment).
 pub const MAX_PATH_POINTS: usize = 100_000;
 
@@ -727,7 +734,7 @@ pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Resul
 /// standing modes sin(mπi/(n+1)) admit k = (m_1, …, m_D)π/(n+1), m_a = 1..n; the largest growth
 /// over those wave vectors, and where.
 pub fn box_prediction<const D: usize>(lin: &Bloch<D>, n_free: usize) -> Result<(f64, [f64; D])> {
-    check_count("--box", n_free, 1, MAX_BOX)?;
+    check_count("--box", n_free, 1, max_box(D))?;
     let mut best = (0.0, [0.0; D]);
     let d = PI / (n_free as f64 + 1.0);
     for idx in 0..n_free.pow(D as u32) {

@@ -15,7 +15,7 @@ pub struct Args {
     #[arg(long)]
     json: bool,
     /// 2D/3D: also predict the growth a box of N^D free particles between fixed layers can
-    /// show (standing modes k = (m_1, …, m_D)π/(N+1)), N in [1, 1000].
+    /// show (standing modes k = (m_1, …, m_D)π/(N+1)), N in [1, 1000] (3D: [1, 100]).
     #[arg(long = "box")]
     box_free: Option<usize>,
 }
@@ -120,7 +120,7 @@ pub fn fmt_k(k: &[f64]) -> String {
 fn run_nd<const D: usize>(a: Args) -> Result<()> {
     let q = a.cfg.query_nd::<D>()?;
     if let Some(n) = a.box_free {
-        sphstab::analysis2d::check_count("--box", n, 1, sphstab::analysis2d::MAX_BOX)?;
+        sphstab::analysis2d::check_count("--box", n, 1, sphstab::analysis2d::max_box(D))?;
     }
     let r = sphstab::analysis2d::query_nd(&q)?;
     let boxp = match a.box_free {
