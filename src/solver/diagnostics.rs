@@ -90,61 +90,78 @@ mod tests {
     }
 }
 
-/// Sine-transform power of an n × n field f\[i\]\[j\] (row-major, i along x), the free particles of a
-/// box with fixed walls: coefficient (m, l) of sin(mπ(i+1)/(n+1)) sin(lπ(j+1)/(n+1)), computed
-/// with rustfft on the odd extension of length 2(n+1) along each axis. Returns the power
-/// P\[m−1\]\[l−1\], m, l = 1..n.
-pub fn sine_power(f: &[f64], n: usize) -> Vec<Vec<f64>> {
+/// Sine-transform power of an n^dim field (row-major: first index slowest, along x), the free
+/// particles of a box with fixed walls: coefficient (m_1, …, m_dim) of
+/// Π_a sin(m_a π(i_a+1)/(n+1)), computed with rustfft on the odd extension of length 2(n+1)
+/// along each axis, the last axis first. Returns the power, flat and row-major like the field,
+/// at index (m_1 − 1, …, m_dim − 1), m_a = 1..n.
+pub fn sine_power_nd(f: &[f64], n: usize, dim: usize) -> Vec<f64> {
     use rustfft::{FftPlanner, num_complex::Complex};
     let len = 2 * (n + 1);
     let mut planner = FftPlanner::<f64>::new();
     let fft = planner.plan_fft_forward(len);
-    // transform along j for every row i: coefficients S1[i][l]
-    let transform = |row: &[f64]| -> Vec<f64> {
-        let mut buf = vec![Complex::new(0.0, 0.0); len];
-        for (k, &v) in row.iter().enumerate() {
-            buf[k + 1] = Complex::new(v, 0.0);
-            buf[len - 1 - k] = Complex::new(-v, 0.0);
-        }
-        fft.process(&mut buf);
-        // FFT of the odd extension: X_l = −2i Σ f_k sin(π l k/(n+1))
-        (1..=n).map(|l| -buf[l].im / 2.0).collect()
-    };
-    let rows: Vec<Vec<f64>> = (0..n).map(|i| transform(&f[i * n..(i + 1) * n])).collect();
-    let mut p = vec![vec![0.0; n]; n];
-    for l in 0..n {
-        let col: Vec<f64> = rows.iter().map(|r| r[l]).collect();
-        let s = transform(&col);
-        for m in 0..n {
-            p[m][l] = s[m] * s[m];
+    let mut buf = vec![Complex::new(0.0, 0.0); len];
+    let mut c = f.to_vec();
+    for axis in (0..dim).rev() {
+        // elements along `axis` are `stride` apart; lines start at every index whose
+        // coordinate along `axis` is 0
+        let stride = n.pow((dim - 1 - axis) as u32);
+        for start in (0..c.len()).filter(|&i| (i / stride).is_multiple_of(n)) {
+            buf.fill(Complex::new(0.0, 0.0));
+            for k in 0..n {
+                let v = c[start + k * stride];
+                buf[k + 1] = Complex::new(v, 0.0);
+                buf[len - 1 - k] = Complex::new(-v, 0.0);
+            }
+            fft.process(&mut buf);
+            // FFT of the odd extension: X_l = −2i Σ f_k sin(π l k/(n+1))
+            for l in 1..=n {
+                c[start + (l - 1) * stride] = -buf[l].im / 2.0;
+            }
         }
     }
-    p
+    c.iter_mut().for_each(|v| *v *= *v);
+    c
 }
 
-/// The dominant standing mode (m, l) of [`sine_power`] summed over several fields (e.g. v_x and
-/// v_y), and its share of the total power.
-pub fn dominant_mode(fields: &[Vec<f64>], n: usize) -> ((usize, usize), f64) {
-    let mut total = vec![vec![0.0; n]; n];
+/// [`sine_power_nd`] of an n × n field as rows: P[m−1][l−1], m, l = 1..n.
+pub fn sine_power(f: &[f64], n: usize) -> Vec<Vec<f64>> {
+    sine_power_nd(f, n, 2)
+        .chunks(n)
+        .map(<[f64]>::to_vec)
+        .collect()
+}
+
+/// The dominant standing mode (m_1, …, m_dim) of [`sine_power_nd`] summed over several fields
+/// (e.g. the velocity components), and its share of the total power.
+pub fn dominant_mode_nd(fields: &[Vec<f64>], n: usize, dim: usize) -> (Vec<usize>, f64) {
+    let mut total = vec![0.0; n.pow(dim as u32)];
     for f in fields {
-        let p = sine_power(f, n);
-        for (t, r) in total.iter_mut().zip(&p) {
-            for (a, b) in t.iter_mut().zip(r) {
-                *a += b;
-            }
+        for (a, b) in total.iter_mut().zip(sine_power_nd(f, n, dim)) {
+            *a += b;
         }
     }
-    let mut best = ((1, 1), 0.0);
+    let mut best = (0, 0.0);
     let mut sum = 0.0;
-    for (m, r) in total.iter().enumerate() {
-        for (l, &v) in r.iter().enumerate() {
-            sum += v;
-            if v > best.1 {
-                best = ((m + 1, l + 1), v);
-            }
+    for (i, &v) in total.iter().enumerate() {
+        sum += v;
+        if v > best.1 {
+            best = (i, v);
         }
     }
-    (best.0, if sum > 0.0 { best.1 / sum } else { 0.0 })
+    let mut modes = vec![1; dim];
+    let mut rest = best.0;
+    for m in modes.iter_mut().rev() {
+        *m = rest % n + 1;
+        rest /= n;
+    }
+    (modes, if sum > 0.0 { best.1 / sum } else { 0.0 })
+}
+
+/// [`dominant_mode_nd`] of n × n fields: ((m, l), share).
+pub fn dominant_mode(fields: &[Vec<f64>], n: usize) -> ((usize, usize), f64) {
+    let (m, share) = dominant_mode_nd(fields, n, 2);
+    ((m[0], m[1]), share)
 }
 
 #[cfg(test)]
@@ -166,6 +183,22 @@ mod spectrum_tests {
             .collect();
         let (ml, share) = dominant_mode(&[f], n);
         assert_eq!(ml, (m, l));
+        assert!(share > 1.0 - 1e-12);
+    }
+
+    /// The same in 3D, with three fields (one holding the mode, two empty).
+    #[test]
+    fn sine_transform_finds_a_standing_mode_in_3d() {
+        let n = 7;
+        let m = [2usize, 7, 5];
+        let pi = std::f64::consts::PI;
+        let s = |mode: usize, i: usize| (mode as f64 * pi * (i + 1) as f64 / (n + 1) as f64).sin();
+        let f: Vec<f64> = (0..n * n * n)
+            .map(|k| s(m[0], k / (n * n)) * s(m[1], (k / n) % n) * s(m[2], k % n))
+            .collect();
+        let zero = vec![0.0; f.len()];
+        let (ml, share) = dominant_mode_nd(&[zero.clone(), f, zero], n, 3);
+        assert_eq!(ml, m.to_vec());
         assert!(share > 1.0 - 1e-12);
     }
 }

@@ -1,28 +1,65 @@
-//! The Swegle test \[V21 §7.2\]: a square block of particles (spacing 0.1 on [−1, 1]² for
-//! 21×21), outer `layers` layers fixed but taking part in every sum (their density evolving by
-//! continuity, or frozen), hydrodynamic aluminium ρ0 = 2.8, K = 0.686275, G = 0, initial density
-//! f ρ0 (f < 1 tension), the centre particle kicked with v_x = 1e−10, no artificial viscosity.
-//! The measured exponential growth of max |v| over the free particles is compared with the
-//! growth rate of the exact linear operator of the same finite particle set (dense, for small
-//! boxes) or of its admitted standing modes, and with the infinite lattice.
+//! The Swegle test \[V21 §7.2\] in D ∈ {2, 3} dimensions, one code path: a square (cubic) block
+//! of `size`^D particles (spacing 0.1 on [−1, 1]^D for size 21), outer `layers` layers fixed but
+//! taking part in every sum (their density evolving by continuity, or frozen), hydrodynamic
+//! aluminium ρ0 = 2.8, K = 0.686275, G = 0, initial density f ρ0 (f < 1 tension), the centre
+//! particle kicked with v_x = 1e−10, no artificial viscosity. The measured exponential growth of
+//! max |v| over the free particles is compared with the growth rate of the exact linear operator
+//! of the same finite particle set (dense, up to [`MAX_DENSE_BOX_DOFS`] free degrees of
+//! freedom) or of its admitted standing modes, and with the infinite lattice.
 
 use super::box_operator::{MAX_DENSE_DOFS, box_growth};
 use super::diagnostics::{GrowthFit, growth_fit};
-use super::run2d::{BoundaryDensity, Run2D};
+use super::run2d::{BoundaryDensity, Run};
 use crate::analysis2d::box_prediction;
-use crate::error::{Result, check_range};
-use crate::forms::{FormKind, Material2D, Model2D, ModelParams2D};
+use crate::error::{Error, Result, check_range};
+use crate::forms::{FormKind, Material2D, Model, ModelParams2D, State, State2D, State3D};
 use crate::kernel::Kernel;
-use crate::lattice::Lattice2D;
+use crate::lattice::{Lattice, LatticeKind};
 use crate::shape::ShapeFamily;
 use crate::shape2d::KernelParams2;
-use crate::vonneumann::linearise2d::Linearisation2D;
+use crate::vonneumann::linearise2d::Bloch;
 use serde::Serialize;
 use std::f64::consts::PI;
+
+/// Largest number of free mechanical degrees of freedom (D × free particles) for which the box
+/// prediction is the dense exact operator ([`box_growth`]); larger boxes use the standing modes
+/// the box admits ([`box_prediction`]). 1,000 in both dimensions: up to `--size` 28 in 2D
+/// (22² free particles) and 12 in 3D (6³ free particles) with 3 fixed layers.
+pub const MAX_DENSE_BOX_DOFS: usize = 1000;
+
+/// Default particles per side: 21 in 2D (the published box), 12 in 3D (the largest box whose
+/// prediction is the dense exact operator, [`dense_size_limit`]; the standing-mode prediction
+/// of a 3D box is off by up to ~10% at 13³–15³).
+pub const fn default_size(dim: usize) -> usize {
+    if dim == 3 { 12 } else { 21 }
+}
+
+/// Largest particles per side: 2001 in 2D, 201 in 3D (both also bounded by the memory and
+/// step budgets).
+pub const fn max_size(dim: usize) -> usize {
+    if dim == 3 { 201 } else { 2001 }
+}
+
+/// Wave vectors per axis of [0, π] sampled for the infinite-lattice rate (the irreducible wedge
+/// κ_1 ≥ … ≥ κ_D ≥ 0 of the square / simple-cubic zone, spacing π/n): 96 in 2D, 48 in 3D.
+pub const fn infinite_grid(dim: usize) -> usize {
+    if dim == 3 { 48 } else { 96 }
+}
+
+/// Largest `--size` whose box prediction is the dense operator, with `layers` fixed layers.
+pub fn dense_size_limit(dim: usize, layers: usize) -> usize {
+    let mut nf = 0;
+    while dim * (nf + 1usize).pow(dim as u32) <= MAX_DENSE_BOX_DOFS.min(MAX_DENSE_DOFS) {
+        nf += 1;
+    }
+    nf + 2 * layers
+}
 
 /// Configuration of a Swegle run.
 #[derive(Clone, Copy, Debug)]
 pub struct SwegleConfig {
+    /// Dimension D (2 or 3): the box holds `size`^D particles.
+    pub dim: usize,
     /// Form.
     pub form: FormKind,
     /// Kernel.
@@ -33,7 +70,7 @@ pub struct SwegleConfig {
     pub h_over_dx: f64,
     /// f = ρ/ρ0 (< 1 tension).
     pub density_ratio: f64,
-    /// Particles per side (21, 41, 81, …).
+    /// Particles per side (21, 41, 81, … in 2D; [`default_size`]).
     pub size: usize,
     /// Fixed layers per side.
     pub layers: usize,
@@ -63,7 +100,8 @@ pub struct SwegleConfig {
 }
 
 impl SwegleConfig {
-    /// The published test: 21×21, 3 fixed layers, Δx = 0.1, ρ0 = 2.8, K = 0.686275, t_end = 40.
+    /// The published test: 2D, 21×21, 3 fixed layers, Δx = 0.1, ρ0 = 2.8, K = 0.686275,
+    /// t_end = 40.
     pub fn new(
         form: FormKind,
         kernel: &'static dyn Kernel,
@@ -71,6 +109,7 @@ impl SwegleConfig {
         density_ratio: f64,
     ) -> Self {
         Self {
+            dim: 2,
             form,
             kernel,
             shape: form.default_shape_2d(),
@@ -92,8 +131,24 @@ impl SwegleConfig {
         }
     }
 
+    /// The same test in dimension `dim` with that dimension's [`default_size`].
+    pub fn with_dim(self, dim: usize) -> Self {
+        Self {
+            dim,
+            size: default_size(dim),
+            ..self
+        }
+    }
+
     /// Validates the inputs (flag names as on the CLI).
     pub fn validate(&self) -> Result<()> {
+        if !(2..=3).contains(&self.dim) {
+            return Err(Error::OutOfRange {
+                name: "--dim",
+                value: self.dim as f64,
+                range: "2 or 3".into(),
+            });
+        }
         // the density ratio first: the stress σ̄ = 1 − f checked below derives from it
         check_range("--density-ratio", self.density_ratio, 0.5, 1.5, true, true)?;
         crate::analysis::check_common(
@@ -106,37 +161,54 @@ impl SwegleConfig {
         )?;
         check_range("--t-end", self.t_end, 0.0, 1e6, false, true)?;
         check_range("--cfl", self.cfl, 0.0, 2.0, false, true)?;
-        if self.size < 2 * self.layers + 3 || self.size > 2001 {
-            return Err(crate::error::Error::OutOfRange {
+        let top = max_size(self.dim);
+        if self.size < 2 * self.layers + 3 || self.size > top {
+            return Err(Error::OutOfRange {
                 name: "--size",
                 value: self.size as f64,
-                range: format!("must be an integer in [{}, 2001]", 2 * self.layers + 3),
+                range: format!(
+                    "must be an integer in [{}, {top}] with --dim {}",
+                    2 * self.layers + 3,
+                    self.dim
+                ),
             });
         }
         if !self.form.in_2d() {
-            return Err(crate::error::Error::Incompatible(format!(
-                "--form {} is not available in 2D",
-                self.form.name()
+            return Err(Error::Incompatible(format!(
+                "--form {} is not available in {}D",
+                self.form.name(),
+                self.dim
             )));
+        }
+        if self.dim == 3 && self.art_stress.is_some() {
+            return Err(Error::Incompatible(
+                "--art-eps (artificial stress) is available with --dim 2 only".into(),
+            ));
         }
         self.form.check_shape(self.shape)?;
         // resources, before anything is allocated (crate::budget)
-        let particles = (self.size * self.size) as f64;
+        let particles = self.particles() as f64;
         let r = self.kernel.zeta() * self.h_over_dx;
-        let neighbours = PI * r * r + 1.0;
+        let neighbours = if self.dim == 3 {
+            4.0 / 3.0 * PI * r * r * r + 1.0
+        } else {
+            PI * r * r + 1.0
+        };
         let stencils = if matches!(self.form, FormKind::Lnl | FormKind::Cll) {
             2.0
         } else {
             1.0
         };
-        // stencil entries (index, offset, gradient: 40 B) with a quarter spare, and ~50 f64 of
-        // state, integrator copies and diagnostics per particle
-        let bytes = particles * (neighbours * 40.0 * stencils * 1.25 + 400.0);
+        // stencil entries (index, offset, gradient: 8 + 16D B) with a quarter spare, and ~50
+        // f64 (2D) or ~125 f64 (3D) of state, integrator copies and diagnostics per particle
+        let entry = 8.0 + 16.0 * self.dim as f64;
+        let state = if self.dim == 3 { 1000.0 } else { 400.0 };
+        let bytes = particles * (neighbours * entry * stencils * 1.25 + state);
         crate::budget::check_memory(
             "--size/--h",
             &format!(
-                "the Swegle box ({} × {} particles, ~{neighbours:.0} neighbours each)",
-                self.size, self.size
+                "the Swegle box ({} particles, ~{neighbours:.0} neighbours each)",
+                self.shape_label()
             ),
             bytes,
         )?;
@@ -178,34 +250,95 @@ impl SwegleConfig {
         (self.bulk / self.rho0).sqrt()
     }
 
-    /// Builds the run at rest with the kick applied.
-    pub fn build(&self) -> Result<Run2D> {
+    /// Particles in the box, `size`^D.
+    pub fn particles(&self) -> usize {
+        self.size.pow(self.dim as u32)
+    }
+
+    /// "21 × 21" or "15 × 15 × 15".
+    pub fn shape_label(&self) -> String {
+        vec![self.size.to_string(); self.dim].join(" × ")
+    }
+
+    /// Index of the particle at lattice coordinates `c` (first coordinate slowest).
+    fn index<const D: usize>(&self, c: [usize; D]) -> usize {
+        c.iter().fold(0, |k, &ca| k * self.size + ca)
+    }
+
+    /// Lattice coordinates of particle `k` of an `n`^D block (first coordinate slowest).
+    fn coords<const D: usize>(n: usize, k: usize) -> [usize; D] {
+        let mut c = [0; D];
+        let mut rest = k;
+        for a in (0..D).rev() {
+            c[a] = rest % n;
+            rest /= n;
+        }
+        c
+    }
+
+    /// Builds the run at rest with the kick applied; D must be [`SwegleConfig::dim`].
+    pub fn build<const D: usize>(&self) -> Result<Run<D>> {
         self.validate()?;
-        let n = self.size;
+        if D != self.dim {
+            return Err(Error::Incompatible(format!(
+                "a {D}D Swegle run from a --dim {} configuration",
+                self.dim
+            )));
+        }
+        let (n, l) = (self.size, self.layers);
         let half = (n - 1) as f64 / 2.0;
-        let mut x = Vec::with_capacity(n * n);
-        let mut fixed = Vec::with_capacity(n * n);
-        for i in 0..n {
-            for j in 0..n {
-                x.push([(i as f64 - half) * self.dx, (j as f64 - half) * self.dx]);
-                let l = self.layers;
-                fixed.push(i < l || j < l || i >= n - l || j >= n - l);
-            }
+        let count = self.particles();
+        let mut x = Vec::with_capacity(count);
+        let mut fixed = Vec::with_capacity(count);
+        for k in 0..count {
+            let c = Self::coords::<D>(n, k);
+            x.push(c.map(|ca| (ca as f64 - half) * self.dx));
+            fixed.push(c.iter().any(|&ca| ca < l || ca >= n - l));
         }
         let rho = self.density_ratio * self.rho0;
         let s0 = self.bulk * (1.0 - self.density_ratio);
-        let model = Model2D::new(
+        let model = Model::<D>::new(
             self.params(),
             x,
-            vec![self.dx * self.dx; n * n],
+            vec![self.dx.powi(D as i32); count],
             rho,
             s0,
             None,
         )?;
         let mut z = model.rest_state(rho);
-        let centre = (n / 2) * n + n / 2;
-        z.v[centre][0] = self.kick;
-        Run2D::new(model, z, fixed, self.boundary)
+        z.v[self.index([n / 2; D])][0] = self.kick;
+        Run::new(model, z, fixed, self.boundary)
+    }
+}
+
+/// The final particle state of a run, in its dimension.
+#[derive(Clone, Debug)]
+pub enum FinalState {
+    /// A 2D run.
+    Two(State2D<f64>),
+    /// A 3D run.
+    Three(State3D<f64>),
+}
+
+impl FinalState {
+    /// Legacy VTK of the particles ([`crate::solver::output::vtk_nd`]; 3D points in both cases).
+    pub fn vtk(&self, title: &str) -> String {
+        match self {
+            FinalState::Two(z) => super::output::vtk_nd(title, z),
+            FinalState::Three(z) => super::output::vtk_nd(title, z),
+        }
+    }
+}
+
+impl From<State2D<f64>> for FinalState {
+    fn from(z: State2D<f64>) -> Self {
+        FinalState::Two(z)
+    }
+}
+
+impl From<State3D<f64>> for FinalState {
+    fn from(z: State3D<f64>) -> Self {
+        FinalState::Three(z)
     }
 }
 
@@ -223,7 +356,9 @@ pub struct SwegleReport {
     pub h_over_dx: f64,
     /// f = ρ/ρ0.
     pub density_ratio: f64,
-    /// Box size.
+    /// Dimension.
+    pub dim: usize,
+    /// Particles per side (the box holds size^dim).
     pub size: usize,
     /// Boundary treatment.
     pub boundary_density: BoundaryDensity,
@@ -251,11 +386,13 @@ pub struct SwegleReport {
     pub steps: usize,
     /// Wall-clock seconds of the time loop.
     pub runtime_s: f64,
-    /// Dominant standing mode (m, l) of the free particles' velocity at the end of the fit window
-    /// (or the end), as a wave vector [κxΔx, κyΔx] = (mπ, lπ)/(n_free + 1), with its power share.
-    pub dominant_kappa: Option<([f64; 2], f64)>,
-    /// Wave vector of the fastest standing mode the box admits (engine), for comparison.
-    pub predicted_kappa_box: [f64; 2],
+    /// Dominant standing mode (m_1, …, m_D) of the free particles' velocity at the end of the
+    /// fit window (or the end), as a wave vector [κ_1Δx, …, κ_DΔx] = (m_1π, …, m_Dπ)/(n_free + 1),
+    /// with its power share.
+    pub dominant_kappa: Option<(Vec<f64>, f64)>,
+    /// Wave vector (D components) of the fastest standing mode the box admits (engine), for
+    /// comparison.
+    pub predicted_kappa_box: Vec<f64>,
     /// History (t, max |v|), at most ~400 samples.
     pub history: Vec<(f64, f64)>,
     /// Full history every step: t, centre |v|, max |v| and RMS |v| over the free particles,
@@ -264,17 +401,52 @@ pub struct SwegleReport {
     pub history_full: Vec<[f64; 5]>,
     /// Final particle state.
     #[serde(skip)]
-    pub final_state: Option<crate::forms::State2D<f64>>,
+    pub final_state: Option<FinalState>,
 }
 
-/// Runs the test.
-pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<SwegleReport> {
-    let mut run = cfg.build()?;
+/// Runs the test in the configuration's dimension.
+pub fn run_swegle(cfg: &SwegleConfig, progress: impl FnMut(f64)) -> Result<SwegleReport> {
+    cfg.validate()?;
+    match cfg.dim {
+        3 => run_d::<3>(cfg, progress),
+        _ => run_d::<2>(cfg, progress),
+    }
+}
+
+/// |v| (hypot in 2D, as the 2D test always computed it).
+fn speed<const D: usize>(v: &[f64; D]) -> f64 {
+    if D == 2 {
+        v[0].hypot(v[1])
+    } else {
+        v.iter().map(|c| c * c).sum::<f64>().sqrt()
+    }
+}
+
+/// The largest growth rate (c/Δx) over the irreducible wedge π ≥ κ_1 ≥ … ≥ κ_D ≥ 0 of the
+/// square / simple-cubic zone, sampled at spacing π/[`infinite_grid`].
+fn infinite_rate<const D: usize>(lin: &Bloch<D>) -> Result<f64> {
+    let n = infinite_grid(D);
+    let mut g: f64 = 0.0;
+    for idx in 0..(n + 1).pow(D as u32) {
+        let c = SwegleConfig::coords::<D>(n + 1, idx);
+        if c.windows(2).any(|w| w[1] > w[0]) {
+            continue;
+        }
+        g = g.max(lin.growth(c.map(|i| PI * i as f64 / n as f64))?.0);
+    }
+    Ok(g)
+}
+
+fn run_d<const D: usize>(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<SwegleReport>
+where
+    FinalState: From<State<f64, D>>,
+{
+    let mut run = cfg.build::<D>()?;
     let c = cfg.sound_speed();
     let unit = c / cfg.dx; // c/Δx: normalisation of rates
     // predictions
     let nfree = cfg.size - 2 * cfg.layers;
-    let lin_unit = Linearisation2D::new(
+    let lin_unit = Bloch::<D>::new(
         ModelParams2D {
             kp: KernelParams2 {
                 kernel: cfg.kernel,
@@ -291,30 +463,21 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
                 }),
             ..cfg.params()
         },
-        &Lattice2D::square(1.0)?,
+        &Lattice::<D>::of_kind(if D == 3 {
+            LatticeKind::Sc
+        } else {
+            LatticeKind::Square { gamma: 1.0 }
+        })?,
         1.0,
         1.0 - cfg.density_ratio,
     )?;
     let (standing_rate, standing_k) = box_prediction(&lin_unit, nfree)?;
-    let (box_rate, method) = if 2 * nfree * nfree <= MAX_DENSE_DOFS.min(1000) {
+    let (box_rate, method) = if D * nfree.pow(D as u32) <= MAX_DENSE_BOX_DOFS.min(MAX_DENSE_DOFS) {
         (box_growth(&run)?.0 / unit, "dense-operator")
     } else {
         (standing_rate, "standing-modes")
     };
-    let inf = {
-        let lin = &lin_unit;
-        let n = 96;
-        let mut g: f64 = 0.0;
-        for i in 0..=n {
-            for j in 0..=i {
-                g = g.max(
-                    lin.growth([PI * i as f64 / n as f64, PI * j as f64 / n as f64])?
-                        .0,
-                );
-            }
-        }
-        g
-    };
+    let inf = infinite_rate(&lin_unit)?;
     let dt = cfg.cfl * cfg.dx / c;
     let t_end = if cfg.until_window && box_rate > 1e-6 {
         cfg.t_end
@@ -330,7 +493,7 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
                 "running until the predicted mode (growth {box_rate:.3e} c/Δx) reaches the fit window ({} time steps)",
                 crate::budget::fmt_count(steps)
             ),
-            (cfg.size * cfg.size) as f64 * steps,
+            cfg.particles() as f64 * steps,
         )?;
     }
     let steps = (t_end / dt).ceil() as usize;
@@ -338,42 +501,41 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
     let mut y = vec![run.max_free_speed().max(cfg.kick)];
     let mut vmax_ever: f64 = 0.0;
     let mut snapshot: Option<Vec<Vec<f64>>> = None;
-    let centre = (cfg.size / 2) * cfg.size + cfg.size / 2;
+    let centre = cfg.index([cfg.size / 2; D]);
     let mut full = Vec::with_capacity(steps + 1);
-    let record = |run: &Run2D, full: &mut Vec<[f64; 5]>| {
+    let record = |run: &Run<D>, full: &mut Vec<[f64; 5]>| {
         let mut s2 = 0.0;
         let mut nf = 0usize;
         let mut ke = 0.0;
         for (i, v) in run.z.v.iter().enumerate() {
-            let v2 = v[0] * v[0] + v[1] * v[1];
+            let v2: f64 = v.iter().map(|c| c * c).sum();
             ke += 0.5 * run.model.mass[i] * v2;
             if !run.fixed[i] {
                 s2 += v2;
                 nf += 1;
             }
         }
-        let c = run.z.v[centre];
         full.push([
             run.t,
-            c[0].hypot(c[1]),
+            speed(&run.z.v[centre]),
             run.max_free_speed(),
             (s2 / nf.max(1) as f64).sqrt(),
             ke,
         ]);
     };
     record(&run, &mut full);
-    let free_fields = |run: &Run2D| -> Vec<Vec<f64>> {
-        let (n, l) = (cfg.size, cfg.layers);
-        let mut vx = Vec::with_capacity(nfree * nfree);
-        let mut vy = Vec::with_capacity(nfree * nfree);
-        for i in l..n - l {
-            for j in l..n - l {
-                let v = run.z.v[i * n + j];
-                vx.push(v[0]);
-                vy.push(v[1]);
+    // the velocity components of the free particles, row-major over the free block
+    let free_fields = |run: &Run<D>| -> Vec<Vec<f64>> {
+        let count = nfree.pow(D as u32);
+        let mut f = vec![Vec::with_capacity(count); D];
+        for k in 0..count {
+            let c = SwegleConfig::coords::<D>(nfree, k).map(|ca| ca + cfg.layers);
+            let v = run.z.v[cfg.index(c)];
+            for (fa, va) in f.iter_mut().zip(v) {
+                fa.push(va);
             }
         }
-        vec![vx, vy]
+        f
     };
     let start = std::time::Instant::now();
     // stop at the first non-finite value or a runaway (max |v| above
@@ -417,12 +579,8 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
     let fields = snapshot.unwrap_or_else(|| free_fields(&run));
     let d = PI / (nfree as f64 + 1.0);
     let dominant = {
-        let ((m, l), share) = crate::solver::diagnostics::dominant_mode(&fields, nfree);
-        if share > 0.0 {
-            Some(([m as f64 * d, l as f64 * d], share))
-        } else {
-            None
-        }
+        let (m, share) = crate::solver::diagnostics::dominant_mode_nd(&fields, nfree, D);
+        (share > 0.0).then(|| (m.iter().map(|&ma| ma as f64 * d).collect(), share))
     };
     let fit = growth_fit(&t, &y, cfg.window.0, cfg.window.1);
     let measured = fit.map(|f| f.rate / unit);
@@ -433,6 +591,7 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         kernel: cfg.kernel.name(),
         h_over_dx: cfg.h_over_dx,
         density_ratio: cfg.density_ratio,
+        dim: D,
         size: cfg.size,
         boundary_density: cfg.boundary,
         measured_growth_rate: measured,
@@ -454,14 +613,14 @@ pub fn run_swegle(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<S
         runtime_s,
         history_full: full,
         dominant_kappa: dominant,
-        predicted_kappa_box: standing_k,
+        predicted_kappa_box: standing_k.to_vec(),
         history: t
             .iter()
             .zip(&y)
             .step_by(stride)
             .map(|(&a, &b)| (a, b))
             .collect(),
-        final_state: Some(run.z),
+        final_state: Some(run.z.into()),
     })
 }
 

@@ -1,19 +1,21 @@
-//! Throughput of the 2D solver ([`Run2D::step`]) on an open square block: time per
+//! Throughput of the solver ([`Run::step`], D ∈ {2, 3}) on a square or cubic block: time per
 //! particle-step, neighbours per particle, memory per particle, and the scaling exponent of
 //! the time per step with the particle count.
 //!
-//! The block is n × n particles on a square lattice, Δx = 1, ρ0 = 1, tangent modulus C = 1 (so
-//! c = 1 and times are in Δx/c), open (no periodicity, no fixed particles), initially
-//! unstressed at ρ0 with the smooth velocity field v_x = A c sin(π y/L), v_y = A c sin(π x/L),
-//! L = (n − 1)Δx. One warm-up step (the buffers grow), then `repeats` × `steps` timed steps;
-//! the time per step is the median over the repeats. Memory is measured by the caller's
-//! allocator ([`MemoryProbe`]): the peak of the bytes allocated while the block is built and
-//! run, above those allocated before, per particle.
+//! The block is n^D particles on a square (simple-cubic) lattice, Δx = 1, ρ0 = 1, tangent
+//! modulus C = 1 (so c = 1 and times are in Δx/c), no fixed particles, initially unstressed at
+//! ρ0 with the smooth velocity field v_a = A c sin(k x_{a+1}) (axes cyclic: v_x depends on y,
+//! v_y on z, or on x in 2D, v_z on x). Open block ([`Domain::Open`], the 2D default):
+//! k = π/L, L = (n − 1)Δx; periodic box ([`Domain::Periodic`], the 3D default, period nΔx per
+//! axis): k = 2π/(nΔx). One warm-up step (the buffers grow), then `repeats` × `steps` timed
+//! steps; the time per step is the median over the repeats. Memory is measured by the
+//! caller's allocator ([`MemoryProbe`]): the peak of the bytes allocated while the block is
+//! built and run, above those allocated before, per particle.
 
-use super::run2d::{BoundaryDensity, Run2D};
+use super::run2d::{BoundaryDensity, Run, Run2D};
 use crate::error::{Error, Result, check_range};
 use crate::forms::{
-    ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model2D, ModelParams2D,
+    ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model, ModelParams2D,
     ObjectiveRate,
 };
 use crate::kernel::Kernel;
@@ -28,7 +30,7 @@ use std::time::Instant;
 pub enum BlockMaterial {
     /// p = K(ρ/ρ0 − 1), K = 1.
     Hydro,
-    /// Hypo-elastic, P-wave modulus 1, Poisson ratio ν (plane strain).
+    /// Hypo-elastic, P-wave modulus 1, Poisson ratio ν (plane strain in 2D).
     Elastic {
         /// ν.
         poisson: f64,
@@ -37,9 +39,33 @@ pub enum BlockMaterial {
     },
 }
 
+/// Boundary of the block.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Domain {
+    /// Free surfaces all round.
+    Open,
+    /// Periodic in every direction (period n Δx).
+    Periodic,
+}
+
+impl Domain {
+    /// CLI name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Domain::Open => "open",
+            Domain::Periodic => "periodic",
+        }
+    }
+}
+
 /// What to run.
 #[derive(Clone, Copy, Debug)]
 pub struct ThroughputConfig {
+    /// Dimension D (2 or 3): the block holds n^D particles.
+    pub dim: usize,
+    /// Open block or periodic box.
+    pub domain: Domain,
     /// The form.
     pub form: FormKind,
     /// Shape family.
@@ -65,11 +91,13 @@ pub struct ThroughputConfig {
 }
 
 impl ThroughputConfig {
-    /// The defaults of `sphstab throughput`: classical / m4, h = 1.3Δx, elastic (Jaumann,
-    /// ν = 0.3), AV (1, 1), artificial stress (0.3, 4), Δt = 0.2Δx/c, 50 steps × 3 repeats,
-    /// A = 10⁻³.
+    /// The 2D defaults of `sphstab throughput`: open block, classical / m4, h = 1.3Δx, elastic
+    /// (Jaumann, ν = 0.3), AV (1, 1), artificial stress (0.3, 4), Δt = 0.2Δx/c, 50 steps × 3
+    /// repeats, A = 10⁻³.
     pub fn new(kernel: &'static dyn Kernel) -> Self {
         Self {
+            dim: 2,
+            domain: Domain::Open,
             form: FormKind::Classical,
             shape: FormKind::Classical.default_shape_2d(),
             kernel,
@@ -87,13 +115,41 @@ impl ThroughputConfig {
         }
     }
 
+    /// The defaults in dimension `dim`: in 3D a periodic box and no artificial stress (not
+    /// available in 3D), everything else as in 2D.
+    pub fn with_dim(self, dim: usize) -> Self {
+        Self {
+            dim,
+            domain: if dim == 3 {
+                Domain::Periodic
+            } else {
+                Domain::Open
+            },
+            art_stress: if dim == 3 { None } else { self.art_stress },
+            ..self
+        }
+    }
+
     /// Checks every parameter; errors name the CLI flag.
     pub fn validate(&self) -> Result<()> {
+        if !(2..=3).contains(&self.dim) {
+            return Err(Error::OutOfRange {
+                name: "--dim",
+                value: self.dim as f64,
+                range: "2 or 3".into(),
+            });
+        }
         if !self.form.in_2d() {
             return Err(Error::Incompatible(format!(
-                "--form {} is not available in 2D (classical, nonlocal, local, lnl, cll, total-lagrangian)",
-                self.form.name()
+                "--form {} is not available in {}D (classical, nonlocal, local, lnl, cll, total-lagrangian)",
+                self.form.name(),
+                self.dim
             )));
+        }
+        if self.dim == 3 && self.art_stress.is_some() {
+            return Err(Error::Incompatible(
+                "--art-eps (artificial stress) is available with --dim 2 only".into(),
+            ));
         }
         self.form.check_shape(self.shape)?;
         check_range("--h", self.h_over_dx, 0.0, 10.0, false, true)?;
@@ -165,46 +221,89 @@ impl ThroughputConfig {
     }
 }
 
-/// Smallest and largest block side.
+/// Smallest and largest block side in 2D.
 pub const SIZE_RANGE: (usize, usize) = (4, 3000);
 
-/// Checks a block side (the flag is named in the error).
-pub fn check_size(name: &'static str, size: usize) -> Result<()> {
-    if size < SIZE_RANGE.0 || size > SIZE_RANGE.1 {
+/// Largest block side in 3D (8 × 10⁶ particles).
+pub const MAX_SIZE_3D: usize = 200;
+
+/// Checks a block side in dimension `dim` for `domain` (the flag is named in the error): in
+/// [4, 3000] (2D) or [4, 200] (3D), and a periodic box more than two support radii `support`
+/// wide, so that every neighbour has one image within the support.
+pub fn check_size(
+    name: &'static str,
+    size: usize,
+    dim: usize,
+    domain: Domain,
+    support: f64,
+) -> Result<()> {
+    let lo = if domain == Domain::Periodic {
+        SIZE_RANGE.0.max((2.0 * support).floor() as usize + 1)
+    } else {
+        SIZE_RANGE.0
+    };
+    let hi = if dim == 3 { MAX_SIZE_3D } else { SIZE_RANGE.1 };
+    if size < lo || size > hi {
         return Err(Error::OutOfRange {
             name,
             value: size as f64,
             range: format!(
-                "particles per side must be an integer in [{}, {}]",
-                SIZE_RANGE.0, SIZE_RANGE.1
+                "particles per side must be an integer in [{lo}, {hi}] ({}D, {} domain)",
+                dim,
+                domain.name()
             ),
         });
     }
     Ok(())
 }
 
-/// The open `size` × `size` block of the module docs, ready to run.
+/// The 2D block of the module docs, ready to run ([`build_block_nd`] with D = 2).
 pub fn build_block(cfg: &ThroughputConfig, size: usize) -> Result<Run2D> {
+    build_block_nd::<2>(cfg, size)
+}
+
+/// The `size`^D block of the module docs, ready to run; D must be [`ThroughputConfig::dim`].
+pub fn build_block_nd<const D: usize>(cfg: &ThroughputConfig, size: usize) -> Result<Run<D>> {
     cfg.validate()?;
-    check_size("--size", size)?;
-    let mut x = Vec::with_capacity(size * size);
-    for i in 0..size {
-        for j in 0..size {
-            x.push([i as f64, j as f64]);
+    if D != cfg.dim {
+        return Err(Error::Incompatible(format!(
+            "a {D}D block from a --dim {} configuration",
+            cfg.dim
+        )));
+    }
+    let support = cfg.kernel.zeta() * cfg.h_over_dx;
+    check_size("--size", size, D, cfg.domain, support)?;
+    let count = size.pow(D as u32);
+    let mut x = Vec::with_capacity(count);
+    for k in 0..count {
+        // first axis slowest
+        let mut p = [0.0; D];
+        let mut rest = k;
+        for a in (0..D).rev() {
+            p[a] = (rest % size) as f64;
+            rest /= size;
+        }
+        x.push(p);
+    }
+    let pi = std::f64::consts::PI;
+    let (period, l, wave) = match cfg.domain {
+        Domain::Open => (None, (size - 1) as f64, pi),
+        Domain::Periodic => {
+            let mut per = [[0.0; D]; D];
+            for (a, row) in per.iter_mut().enumerate() {
+                row[a] = size as f64;
+            }
+            (Some(per), size as f64, 2.0 * pi)
+        }
+    };
+    let model = Model::<D>::new(cfg.params()?, x, vec![1.0; count], 1.0, 0.0, period)?;
+    let mut z = model.rest_state(1.0);
+    for (v, x) in z.v.iter_mut().zip(&model.x_ref) {
+        for (a, va) in v.iter_mut().enumerate() {
+            *va = cfg.amplitude * (wave * x[(a + 1) % D] / l).sin();
         }
     }
-    let n = x.len();
-    let model = Model2D::new(cfg.params()?, x, vec![1.0; n], 1.0, 0.0, None)?;
-    let mut z = model.rest_state(1.0);
-    let l = (size - 1) as f64;
-    let pi = std::f64::consts::PI;
-    for (v, x) in z.v.iter_mut().zip(&model.x_ref) {
-        *v = [
-            cfg.amplitude * (pi * x[1] / l).sin(),
-            cfg.amplitude * (pi * x[0] / l).sin(),
-        ];
-    }
-    Run2D::new(model, z, vec![false; n], BoundaryDensity::Evolve)
+    Run::new(model, z, vec![false; count], BoundaryDensity::Evolve)
 }
 
 /// The caller's view of its global allocator (the binary installs a tracking one).
@@ -224,7 +323,7 @@ pub trait MemoryProbe: Sync {
 pub struct BlockTiming {
     /// Particles per side.
     pub size: usize,
-    /// Particles N = size².
+    /// Particles N = size^D.
     pub particles: usize,
     /// Median time per step over the repeats (s).
     pub seconds_per_step: f64,
@@ -246,19 +345,26 @@ pub struct BlockTiming {
 }
 
 /// Mean number of particles within the support of each particle (itself included): the
-/// Eulerian stencils' sizes, or a cell-list count at the current positions for the
-/// total-Lagrangian forms.
-fn mean_neighbours(run: &Run2D) -> f64 {
+/// Eulerian stencils' sizes, or a cell-list count at the current positions (nearest images in
+/// a periodic box) for the total-Lagrangian forms.
+fn mean_neighbours<const D: usize>(run: &Run<D>) -> f64 {
     if let Some(m) = run.mean_neighbours() {
         return m;
     }
     let r = run.model.p.kp.support();
-    let cl = CellList::new(&run.z.x, r, None);
+    let period = run.model.period.map(|l| {
+        let mut p = [0.0; D];
+        for (a, pa) in p.iter_mut().enumerate() {
+            *pa = l[a][a];
+        }
+        p
+    });
+    let cl = CellList::new(&run.z.x, r, period);
     let mut total = 0usize;
     for p in &run.z.x {
         cl.for_candidates(*p, |j| {
-            let d = [run.z.x[j][0] - p[0], run.z.x[j][1] - p[1]];
-            if d[0] * d[0] + d[1] * d[1] < r * r {
+            let d = run.model.rel(*p, run.z.x[j]);
+            if d.iter().map(|c| c * c).sum::<f64>() < r * r {
                 total += 1;
             }
         });
@@ -272,13 +378,25 @@ pub fn time_block(
     cfg: &ThroughputConfig,
     size: usize,
     mem: Option<&dyn MemoryProbe>,
+    progress: impl FnMut(f64),
+) -> Result<BlockTiming> {
+    match cfg.dim {
+        3 => time_block_nd::<3>(cfg, size, mem, progress),
+        _ => time_block_nd::<2>(cfg, size, mem, progress),
+    }
+}
+
+fn time_block_nd<const D: usize>(
+    cfg: &ThroughputConfig,
+    size: usize,
+    mem: Option<&dyn MemoryProbe>,
     mut progress: impl FnMut(f64),
 ) -> Result<BlockTiming> {
     let before = mem.map(|m| {
         m.reset_peak();
         m.current()
     });
-    let mut run = build_block(cfg, size)?;
+    let mut run = build_block_nd::<D>(cfg, size)?;
     let n = run.z.x.len();
     run.step(cfg.dt)?;
     let total = (cfg.steps * cfg.repeats) as f64;
@@ -340,6 +458,10 @@ pub fn scaling_exponent(blocks: &[BlockTiming]) -> Option<f64> {
 /// A throughput run over one or more block sizes.
 #[derive(Clone, Debug, Serialize)]
 pub struct ThroughputReport {
+    /// Dimension.
+    pub dim: usize,
+    /// Open block or periodic box.
+    pub domain: Domain,
     /// Form.
     pub form: &'static str,
     /// Shape family.
@@ -388,26 +510,38 @@ pub fn run_throughput(
         ));
     }
     // resources of the largest block and of all runs together (crate::budget): stencil
-    // entries of 40 B with a quarter spare and ~400 B of state per particle (1,439 B measured
-    // at 20.8 neighbours, README), and 1 warm-up + steps × repeats steps per size
+    // entries of 8 + 16D B with a quarter spare and ~400 B (2D) or ~1,000 B (3D) of state per
+    // particle (measured: 1,439 B at 20.8 neighbours in 2D, README; 6,395 B at 81 neighbours
+    // in 3D), and 1 warm-up + steps × repeats steps per size
     let r = cfg.kernel.zeta() * cfg.h_over_dx;
-    let neighbours = std::f64::consts::PI * r * r + 1.0;
+    let dim = cfg.dim as i32;
+    let neighbours = if cfg.dim == 3 {
+        4.0 / 3.0 * std::f64::consts::PI * r * r * r + 1.0
+    } else {
+        std::f64::consts::PI * r * r + 1.0
+    };
+    let entry = (8.0 + 16.0 * cfg.dim as f64) * 1.25;
+    let state = if cfg.dim == 3 { 1000.0 } else { 400.0 };
     let stencils = if matches!(cfg.form, FormKind::Lnl | FormKind::Cll) {
         2.0
     } else {
         1.0
     };
+    let flag = if sizes.len() > 1 { "--sizes" } else { "--size" };
     for &n in sizes {
-        check_size(if sizes.len() > 1 { "--sizes" } else { "--size" }, n)?;
+        check_size(flag, n, cfg.dim, cfg.domain, r)?;
     }
     let largest = sizes.iter().copied().max().unwrap_or(0) as f64;
     crate::budget::check_memory(
         "--size/--sizes",
-        &format!("the {largest} × {largest} block (~{neighbours:.0} neighbours per particle)"),
-        largest * largest * (neighbours * 50.0 * stencils + 400.0),
+        &format!(
+            "the {} block (~{neighbours:.0} neighbours per particle)",
+            vec![largest.to_string(); cfg.dim].join(" × ")
+        ),
+        largest.powi(dim) * (neighbours * entry * stencils + state),
     )?;
     let steps = (1 + cfg.steps * cfg.repeats) as f64;
-    let particle_steps: f64 = sizes.iter().map(|&n| (n * n) as f64 * steps).sum();
+    let particle_steps: f64 = sizes.iter().map(|&n| (n as f64).powi(dim) * steps).sum();
     crate::budget::check_steps(
         "--steps/--repeats/--size",
         &format!(
@@ -416,9 +550,6 @@ pub fn run_throughput(
         ),
         particle_steps,
     )?;
-    for &s in sizes {
-        check_size(if sizes.len() > 1 { "--sizes" } else { "--size" }, s)?;
-    }
     if let Some(t) = threads {
         check_range("--threads", t as f64, 1.0, 1024.0, true, true)?;
     }
@@ -429,7 +560,7 @@ pub fn run_throughput(
     // every worker runs once before anything is timed or counted: a thread that starts late
     // (a loaded machine) would otherwise allocate its thread-locals inside the timed steps
     pool.broadcast(|_| ());
-    let weights: Vec<f64> = sizes.iter().map(|&s| (s * s) as f64).collect();
+    let weights: Vec<f64> = sizes.iter().map(|&s| (s as f64).powi(dim)).collect();
     let total: f64 = weights.iter().sum();
     let mut done = 0.0;
     let mut blocks = Vec::with_capacity(sizes.len());
@@ -450,6 +581,8 @@ pub fn run_throughput(
         ),
     };
     Ok(ThroughputReport {
+        dim: cfg.dim,
+        domain: cfg.domain,
         form: cfg.form.name(),
         shape: cfg.shape.name(),
         kernel: cfg.kernel.name(),

@@ -65,7 +65,7 @@ enum Cmd {
     Map(map::Args),
     /// Anti-plane Galerkin stiffness K_jk for a quadrature pattern [B00 Table I].
     Stiffness(stiffness::Args),
-    /// The Swegle perturbed-particle test, measured against the engine's predictions.
+    /// The Swegle perturbed-particle test (2D or 3D), measured against the engine's predictions.
     Swegle(swegle::Args),
     /// Run a 1D scene (JSON file or built-in) and compare it with its analytic solution.
     Simulate(simulate::Args),
@@ -75,7 +75,7 @@ enum Cmd {
     Atlas(atlas::Args),
     /// Merge the shards of an atlas.
     Merge(merge::Args),
-    /// Speed and memory of the 2D solver on an open square block (and its scaling with N).
+    /// Speed and memory of the solver on a 2D or 3D block (and its scaling with N).
     Throughput(throughput::Args),
     /// 3D pairing study: growth under pressure against neighbour number N_H, every kernel ×
     /// lattice (sc, bcc, fcc) × h/Δx, next to the kernel's W* sign criterion.

@@ -1,13 +1,17 @@
-//! `sphstab swegle`: the Swegle perturbed-particle test [V21 §7.2] against the engine.
+//! `sphstab swegle`: the Swegle perturbed-particle test [V21 §7.2] against the engine, in 2D
+//! or 3D (`--dim`).
 
 use anyhow::{Context, Result};
 use sphstab::forms::FormKind;
 use sphstab::solver::BoundaryDensity;
-use sphstab::solver::swegle::{SwegleConfig, run_swegle};
+use sphstab::solver::swegle::{SwegleConfig, default_size, run_swegle};
 
 /// Flags of `swegle`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
+    /// Dimension: 2 (size² particles) or 3 (size³ particles).
+    #[arg(long, default_value_t = 2)]
+    dim: usize,
     /// classical, nonlocal, local, lnl, cll, total-lagrangian.
     #[arg(long, default_value = "classical")]
     form: String,
@@ -27,12 +31,14 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     density_ratio: f64,
-    /// Particles per side (21 = the published box, 41, 81, …), at least 2 × 3 fixed layers + 3;
-    /// bounded by --max-memory / --max-steps.
-    #[arg(long, default_value_t = 21)]
-    size: usize,
+    /// Particles per side, at least 2 × 3 fixed layers + 3 = 9, at most 2001 (2D) or 201 (3D),
+    /// and bounded by --max-memory / --max-steps. Default 21 in 2D (the published box), 12 in 3D.
+    /// The box prediction is the dense exact operator up to 1,000 free degrees of freedom
+    /// (--size 28 in 2D, 12 in 3D), the standing modes the box admits beyond.
+    #[arg(long)]
+    size: Option<usize>,
     /// End time in the test's units (Δx = 0.1, c = √(K/ρ) ≈ 0.495: t = 40 is ≈ 198 Δx/c), in
-    /// (0, 1e6]; the run (size² × t_end/Δt particle-steps) must fit --max-steps.
+    /// (0, 1e6]; the run (size^dim × t_end/Δt particle-steps) must fit --max-steps.
     #[arg(long = "t-end", default_value_t = 40.0, allow_hyphen_values = true)]
     t_end: f64,
     /// Run past --t-end until a mode growing at the box prediction reaches the fit window.
@@ -76,11 +82,19 @@ pub fn run(a: Args) -> Result<()> {
     }
     let form = FormKind::by_name(&a.form)?;
     let k = sphstab::kernel::by_name(&a.kernel)?;
-    let mut cfg = SwegleConfig::new(form, k, a.h, a.density_ratio);
+    if !(2..=3).contains(&a.dim) {
+        return Err(sphstab::error::Error::OutOfRange {
+            name: "--dim",
+            value: a.dim as f64,
+            range: "2 or 3 (the 1D scenes are `simulate`)".into(),
+        }
+        .into());
+    }
+    let mut cfg = SwegleConfig::new(form, k, a.h, a.density_ratio).with_dim(a.dim);
     if let Some(s) = &a.shape {
         cfg.shape = sphstab::shape::ShapeFamily::by_name(s)?;
     }
-    cfg.size = a.size;
+    cfg.size = a.size.unwrap_or(default_size(a.dim));
     cfg.t_end = a.t_end;
     cfg.cfl = a.cfl;
     cfg.c_partition = a.c;
@@ -94,6 +108,9 @@ pub fn run(a: Args) -> Result<()> {
                     form.name()
                 ),
             ));
+        }
+        if a.dim == 3 {
+            return Err(crate::query::not_in("--art-eps", "--dim 3"));
         }
         cfg.art_stress = Some((eps, n));
     }
@@ -137,11 +154,8 @@ pub fn run(a: Args) -> Result<()> {
                 r.density_ratio,
                 r.dt * r.steps as f64
             );
-            std::fs::write(
-                dir.join("final.vtk"),
-                sphstab::solver::output::vtk_2d(&title, z),
-            )
-            .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
+            std::fs::write(dir.join("final.vtk"), z.vtk(&title))
+                .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
         }
     }
     if let Some(path) = &a.plot {
@@ -173,8 +187,12 @@ pub fn run(a: Args) -> Result<()> {
         }
         let svg = lines_svg(
             &format!(
-                "Swegle test: {} / {} h = {}Δx, f = {}, {}×{}",
-                r.form, r.kernel, r.h_over_dx, r.density_ratio, r.size, r.size
+                "Swegle test: {} / {} h = {}Δx, f = {}, {}",
+                r.form,
+                r.kernel,
+                r.h_over_dx,
+                r.density_ratio,
+                cfg.shape_label().replace(' ', "")
             ),
             "time",
             "log10 max |v|",
@@ -193,8 +211,13 @@ pub fn run(a: Args) -> Result<()> {
         return diverged(&r);
     }
     println!(
-        "Swegle test {}×{}: {} / {} h = {}Δx, f = {}",
-        r.size, r.size, r.form, r.kernel, r.h_over_dx, r.density_ratio
+        "Swegle test {} ({}D): {} / {} h = {}Δx, f = {}",
+        cfg.shape_label().replace(' ', ""),
+        r.dim,
+        r.form,
+        r.kernel,
+        r.h_over_dx,
+        r.density_ratio
     );
     match r.measured_growth_rate {
         Some(m) if r.ratio_box.is_some() => println!(

@@ -1,18 +1,27 @@
-//! `sphstab throughput`: speed and memory of the 2D solver on an open square block.
+//! `sphstab throughput`: speed and memory of the solver on a square (2D) or cubic (3D) block.
 
 use anyhow::Result;
 use sphstab::error::Error;
 use sphstab::forms::{FormKind, ObjectiveRate};
-use sphstab::solver::throughput::{BlockMaterial, ThroughputConfig, run_throughput};
+use sphstab::solver::throughput::{BlockMaterial, Domain, ThroughputConfig, run_throughput};
 
 /// Flags of `throughput`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Particles per side of the block (N = size²), in [4, 3000].
-    #[arg(long, default_value_t = 200)]
-    size: usize,
-    /// Several sizes, comma-separated (e.g. 100,316,1000), to fit the scaling exponent p of
-    /// time per step ∝ N^p; replaces --size.
+    /// Dimension: 2 (N = size² particles) or 3 (N = size³).
+    #[arg(long, default_value_t = 2)]
+    dim: usize,
+    /// open (free surfaces) or periodic (period size·Δx per axis). Default: open in 2D,
+    /// periodic in 3D.
+    #[arg(long)]
+    domain: Option<String>,
+    /// Particles per side of the block, in [4, 3000] (2D) or [4, 200] (3D); a periodic box must
+    /// be wider than two support radii. Default 200 in 2D (4 × 10⁴ particles), 22 in 3D
+    /// (~10⁴ particles).
+    #[arg(long)]
+    size: Option<usize>,
+    /// Several sizes, comma-separated (e.g. 100,316,1000 in 2D, 22,46,100 in 3D), to fit the
+    /// scaling exponent p of time per step ∝ N^p; replaces --size.
     #[arg(long, value_delimiter = ',', num_args = 1..)]
     sizes: Option<Vec<usize>>,
     /// classical, nonlocal, local, lnl, cll, total-lagrangian.
@@ -30,7 +39,7 @@ pub struct Args {
     /// hydro (p = K(ρ/ρ0 − 1)) or elastic (hypo-elastic, P-wave modulus 1).
     #[arg(long, default_value = "elastic")]
     material: String,
-    /// Elastic Poisson ratio ν (plane strain), in [−0.99, 0.5).
+    /// Elastic Poisson ratio ν (plane strain in 2D), in [−0.99, 0.5).
     #[arg(long, default_value_t = 0.3, allow_hyphen_values = true)]
     poisson: f64,
     /// Elastic objective stress rate: jaumann or truesdell.
@@ -39,8 +48,8 @@ pub struct Args {
     /// Monaghan artificial viscosity "α,β" (each in [0, 100]), or "off".
     #[arg(long, default_value = "1,1", allow_hyphen_values = true)]
     av: String,
-    /// Monaghan–Gray artificial stress ε in [0, 10] (classical and cll; 0: off). Default 0.3
-    /// for classical and cll, off for the other forms.
+    /// Monaghan–Gray artificial stress ε in [0, 10] (classical and cll, 2D only; 0: off).
+    /// Default 0.3 for classical and cll in 2D, off otherwise.
     #[arg(long = "art-eps", allow_hyphen_values = true)]
     art_eps: Option<f64>,
     /// Artificial-stress exponent n, in [1, 12].
@@ -82,7 +91,29 @@ fn parse_av(s: &str) -> Result<Option<(f64, f64)>> {
 pub fn run(a: Args) -> Result<()> {
     let form = FormKind::by_name(&a.form)?;
     let kernel = sphstab::kernel::by_name(&a.kernel)?;
-    let mut cfg = ThroughputConfig::new(kernel);
+    if !(2..=3).contains(&a.dim) {
+        return Err(Error::OutOfRange {
+            name: "--dim",
+            value: a.dim as f64,
+            range: "2 or 3".into(),
+        }
+        .into());
+    }
+    let mut cfg = ThroughputConfig::new(kernel).with_dim(a.dim);
+    if let Some(d) = &a.domain {
+        cfg.domain = match d.as_str() {
+            "open" => Domain::Open,
+            "periodic" => Domain::Periodic,
+            d => {
+                return Err(Error::UnknownName {
+                    what: "--domain",
+                    given: d.into(),
+                    valid: "open, periodic".into(),
+                }
+                .into());
+            }
+        };
+    }
     cfg.form = form;
     cfg.shape = match &a.shape {
         Some(s) => sphstab::shape::ShapeFamily::by_name(s)?,
@@ -121,14 +152,18 @@ pub fn run(a: Args) -> Result<()> {
     cfg.art_stress = match a.art_eps {
         Some(0.0) => None,
         Some(e) => Some((e, a.art_n)),
-        None if art_form => Some((0.3, a.art_n)),
+        None if art_form && a.dim == 2 => Some((0.3, a.art_n)),
         None => None,
     };
     cfg.dt = a.dt;
     cfg.steps = a.steps;
     cfg.repeats = a.repeats;
     cfg.validate()?;
-    let sizes = a.sizes.clone().unwrap_or_else(|| vec![a.size]);
+    let default_size = if a.dim == 3 { 22 } else { 200 };
+    let sizes = a
+        .sizes
+        .clone()
+        .unwrap_or_else(|| vec![a.size.unwrap_or(default_size)]);
     let pb = crate::progress::bar(crate::progress::wanted(a.json));
     let probe = crate::alloc::Probe;
     let r = run_throughput(&cfg, &sizes, a.threads, Some(&probe), |f| {
@@ -152,8 +187,18 @@ pub fn run(a: Args) -> Result<()> {
         _ => "no artificial stress".into(),
     };
     println!(
-        "sphstab throughput: open block, {} / {} / {} h = {}Δx, {material}, {av}, {art}",
-        r.form, r.shape, r.kernel, r.h_over_dx
+        "sphstab throughput: {}D {} {}, {} / {} / {} h = {}Δx, {material}, {av}, {art}",
+        r.dim,
+        r.domain.name(),
+        if r.domain == Domain::Open {
+            "block"
+        } else {
+            "box"
+        },
+        r.form,
+        r.shape,
+        r.kernel,
+        r.h_over_dx
     );
     println!(
         "Δt = {} Δx/c; {} timed steps × {} repeats (median) after 1 warm-up step; {} thread{}",
