@@ -9,8 +9,8 @@ use sphstab::atlas::AtlasConfig;
 use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
+use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::shape2d::KernelParams2;
 use sphstab::solver::throughput::{ThroughputConfig, build_block};
 use sphstab::solver::{BoundaryDensity, Run2D};
 
@@ -47,7 +47,7 @@ fn benches(c: &mut Criterion) {
     let p = ModelParams2D {
         form: FormKind::Classical,
         shape: ShapeFamily::Sph,
-        kp: KernelParams2 { kernel: m4, h: 1.3 },
+        kp: KernelParams { kernel: m4, h: 1.3 },
         material: Material2D::Hydro { bulk: 1.0 },
         rho0: 1.0,
         c_partition: 0.5,

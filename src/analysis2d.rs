@@ -9,8 +9,8 @@ use crate::error::{Error, Result};
 use crate::forms::{ArtificialViscosity, FormKind, Material, ModelParams2D, ObjectiveRate};
 use crate::kernel::Kernel;
 use crate::lattice::{Lattice, LatticeKind};
+use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
-use crate::shape2d::KernelParams2;
 use crate::vonneumann::amplification::AMPLIFICATION_TOL;
 use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL};
 use crate::vonneumann::linearise2d::Bloch;
@@ -168,7 +168,7 @@ impl<const D: usize> Query<D> {
         Ok(ModelParams2D {
             form: self.form,
             shape: self.shape,
-            kp: KernelParams2 {
+            kp: KernelParams {
                 kernel: self.kernel,
                 h: self.h_over_dx,
             },

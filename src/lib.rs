@@ -60,7 +60,6 @@ pub mod pairing;
 pub mod plot;
 pub mod scalar;
 pub mod shape;
-pub mod shape2d;
 pub mod solver;
 pub mod tradeoff;
 pub mod vonneumann;

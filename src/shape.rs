@@ -5,8 +5,8 @@
 //! passed as *relative* positions `d_J = x_J − x` (already minimum-imaged for periodic
 //! systems) and volumes `V_J`; the result is `φ_J(x)` and `∇φ_J(x)` (nodes held fixed). Every
 //! routine is generic over [`Scalar`] so that the von Neumann engine can differentiate through
-//! it exactly (moment matrices included). [`eval`] (1D) and [`crate::shape2d::eval2`] (2D)
-//! are thin wrappers with the per-dimension argument types.
+//! it exactly (moment matrices included). [`eval`] is a thin 1D wrapper with scalar (rather
+//! than 1-array) positions, for the 1D-only [B00] forms.
 //!
 //! | family | definition | reference |
 //! |---|---|---|
@@ -78,6 +78,13 @@ impl KernelParams {
     /// Support radius R = ζ h.
     pub fn support(&self) -> f64 {
         self.kernel.zeta() * self.h
+    }
+
+    /// W(|d|) and ∇_x W(|x − x_J|) = −W'(r) d/r for d = x_J − x in D dimensions,
+    /// differentiable through d = 0 ([`kernel::w_and_grad`]).
+    #[inline]
+    pub fn w_and_grad<S: Scalar, const D: usize>(&self, d: [S; D]) -> (S, [S; D]) {
+        crate::kernel::w_and_grad(self.kernel, self.h, d)
     }
 }
 

@@ -2,15 +2,15 @@
 
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
+use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::shape2d::KernelParams2;
 use sphstab::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
 use std::f64::consts::PI;
 
 fn model(q: Quadrature, lat: &Lattice2D) -> AntiPlane {
     // [B00] Table I: mls shape, efg-cubic weight with circular support, D_mx = 2.0, γ = 1
     // (efg-cubic has ζ = 1, so h = D_mx Δx).
-    let kp = KernelParams2 {
+    let kp = KernelParams {
         kernel: kernel::by_name("efg-cubic").unwrap(),
         h: 2.0,
     };

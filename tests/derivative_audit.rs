@@ -29,7 +29,6 @@ use common::exact::{Q, mls_quartic_lattice};
 use sphstab::kernel::{self, Kernel};
 use sphstab::scalar::Dual;
 use sphstab::shape::{KernelParams, ShapeFamily, eval, eval_d, eval_with_second, lattice_shape};
-use sphstab::shape2d::{KernelParams2, V2, eval2};
 
 const FAMILIES: [ShapeFamily; 4] = [
     ShapeFamily::Sph,
@@ -540,17 +539,17 @@ fn jittered2() -> Points2 {
 /// (φ_J, ∇φ_J) at x for the fixed node subset, flattened [φ..., ∂xφ..., ∂yφ...].
 fn shape2(
     family: ShapeFamily,
-    kp: KernelParams2,
+    kp: KernelParams,
     p: &Points2,
     idx: &[usize],
     x: [f64; 2],
 ) -> Vec<f64> {
-    let nodes: Vec<(V2<f64>, f64)> = idx
+    let nodes: Vec<([f64; 2], f64)> = idx
         .iter()
         .map(|&j| ([p.x[j][0] - x[0], p.x[j][1] - x[1]], p.v[j]))
         .collect();
     let mut out = Vec::new();
-    eval2(family, kp, &nodes, x, &mut out).unwrap();
+    eval_d(family, kp, &nodes, x[0], &mut out).unwrap();
     out.iter()
         .map(|o| o.0)
         .chain(out.iter().map(|o| o.1[0]))
@@ -560,7 +559,7 @@ fn shape2(
 
 fn audit2_at(
     family: ShapeFamily,
-    kp: KernelParams2,
+    kp: KernelParams,
     p: &Points2,
     x: [f64; 2],
     sides: [Side; 2],
@@ -579,7 +578,7 @@ fn audit2_at(
     let mut grad_value = vec![0.0; 2 * n];
     for a in 0..2 {
         // dual route along e_a: the tangent of every relative position is −e_a
-        let dn: Vec<(V2<Dual>, Dual)> = idx
+        let dn: Vec<([Dual; 2], Dual)> = idx
             .iter()
             .map(|&j| {
                 let d = [p.x[j][0] - x[0], p.x[j][1] - x[1]];
@@ -591,7 +590,7 @@ fn audit2_at(
             })
             .collect();
         let mut dual = Vec::new();
-        eval2(family, kp, &dn, x, &mut dual).unwrap();
+        eval_d(family, kp, &dn, x[0], &mut dual).unwrap();
         let dphi_a: Vec<f64> = dual.iter().map(|o| o.0.d).collect();
         // ∂_a of both gradient components: [∂_a ∂x φ ..., ∂_a ∂y φ ...]
         let dgrad_a: Vec<f64> = dual
@@ -671,7 +670,7 @@ fn audit2_at(
 }
 
 fn audit2(kern: &'static dyn Kernel, h: f64, family: ShapeFamily, t: &mut Tally) {
-    let kp = KernelParams2 { kernel: kern, h };
+    let kp = KernelParams { kernel: kern, h };
     let r = kp.support();
     let mut rng = Lcg(0xfeed ^ (h * 1000.0) as u64);
     let cont = continuous_at_edge(kern);

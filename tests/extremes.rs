@@ -136,14 +136,14 @@ fn time_step_at_the_critical_value() {
 fn two_d_results_are_scale_free() {
     use sphstab::forms::{Material2D, ModelParams2D};
     use sphstab::lattice::Lattice2D;
-    use sphstab::shape2d::KernelParams2;
+    use sphstab::shape::KernelParams;
     use sphstab::vonneumann::linearise2d::Linearisation2D;
     let lat = Lattice2D::square(1.0).unwrap();
     let mk = |dx: f64| {
         let p = ModelParams2D {
             form: FormKind::Classical,
             shape: ShapeFamily::Sph,
-            kp: KernelParams2 {
+            kp: KernelParams {
                 kernel: k("m4"),
                 h: 1.2 * dx,
             },

@@ -19,8 +19,8 @@ use sphstab::analysis::{Query1D, dispersion};
 use sphstab::analysis2d::{MaterialSpec, Query2D, query2d};
 use sphstab::forms::{FormKind, ObjectiveRate};
 use sphstab::lattice::Lattice2D;
+use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::shape2d::KernelParams2;
 use sphstab::vonneumann::antiplane::{AntiPlane, Quadrature};
 use std::f64::consts::PI;
 use std::path::PathBuf;
@@ -151,7 +151,7 @@ fn table1() -> Value {
             &Lattice2D::square(1.0).unwrap(),
             q,
             ShapeFamily::Mls,
-            KernelParams2 {
+            KernelParams {
                 kernel: k("efg-cubic"),
                 h: 2.0,
             },

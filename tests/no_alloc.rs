@@ -17,7 +17,7 @@ use sphstab::forms::{
     ObjectiveRate,
 };
 use sphstab::kernel;
-use sphstab::shape2d::KernelParams2;
+use sphstab::shape::KernelParams;
 use sphstab::solver::{BoundaryDensity, Run2D};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -62,7 +62,7 @@ fn block(n: usize, form: FormKind, material: Material2D, av: bool, art: bool) ->
     let p = ModelParams2D {
         form,
         shape: form.default_shape_2d(),
-        kp: KernelParams2 {
+        kp: KernelParams {
             kernel: kernel::by_name("m4").unwrap(),
             h: 1.3,
         },

@@ -14,8 +14,8 @@ use sphstab::forms::{
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::scalar::{Dual, Scalar};
+use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::shape2d::KernelParams2;
 
 /// A deterministic pseudo-random number in [−1, 1].
 fn noise(k: usize, salt: f64) -> f64 {
@@ -26,7 +26,7 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material2D, kern: &str) 
     ModelParams2D {
         form,
         shape,
-        kp: KernelParams2 {
+        kp: KernelParams {
             kernel: kernel::by_name(kern).unwrap(),
             h: 1.3,
         },

@@ -4,8 +4,8 @@
 use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
+use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::shape2d::KernelParams2;
 use sphstab::solver::swegle::{SwegleConfig, run_swegle};
 use sphstab::solver::{BoundaryDensity, Run2D};
 use sphstab::vonneumann::linearise2d::{Linearisation2D, base_state};
@@ -96,7 +96,7 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material2D) -> ModelPara
     ModelParams2D {
         form,
         shape,
-        kp: KernelParams2 {
+        kp: KernelParams {
             kernel: kernel::by_name("m4").unwrap(),
             h: 1.2,
         },

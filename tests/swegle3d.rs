@@ -11,7 +11,7 @@ use common::{json, sphstab};
 use sphstab::forms::{FormKind, Material, Model, ModelParams2D, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::lattice::Lattice3D;
-use sphstab::shape2d::KernelParams2;
+use sphstab::shape::KernelParams;
 use sphstab::solver::swegle::{
     SwegleConfig, SwegleReport, default_size, dense_size_limit, run_swegle,
 };
@@ -130,7 +130,7 @@ fn periodic_box_at_rest_stays_at_rest() {
                     let p = ModelParams2D {
                         form,
                         shape: form.default_shape_2d(),
-                        kp: KernelParams2 { kernel: m4, h: 1.2 },
+                        kp: KernelParams { kernel: m4, h: 1.2 },
                         material,
                         rho0: 1.0,
                         c_partition: 0.5,

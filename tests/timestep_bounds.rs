@@ -3,7 +3,6 @@
 
 use sphstab::kernel;
 use sphstab::shape::{KernelParams, ShapeFamily};
-use sphstab::shape2d::KernelParams2;
 use sphstab::vonneumann::antiplane::Quadrature;
 use sphstab::vonneumann::timestep_bounds::{bounds_1d, bounds_2d};
 
@@ -41,7 +40,7 @@ fn bounds_hold_in_2d_eq146_eq148() {
     for d in [1.5, 2.0, 2.5, 3.0] {
         let b = bounds_2d(
             ShapeFamily::Mls,
-            KernelParams2 { kernel: k, h: d },
+            KernelParams { kernel: k, h: d },
             Quadrature::Cell2x2,
             48,
         )

@@ -4,8 +4,8 @@
 use sphstab::forms::{FormKind, Material2D, ModelParams2D, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
+use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::shape2d::KernelParams2;
 use sphstab::vonneumann::derived::{LatticeSums, classical_sum};
 use sphstab::vonneumann::derived2d::{rho_d, sums};
 use sphstab::vonneumann::linearise2d::{Linearisation2D, base_state};
@@ -21,7 +21,7 @@ fn params(
     ModelParams2D {
         form,
         shape,
-        kp: KernelParams2 {
+        kp: KernelParams {
             kernel: kernel::by_name(kern).unwrap(),
             h,
         },

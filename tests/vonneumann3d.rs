@@ -19,8 +19,8 @@ use sphstab::analysis2d::{MaterialSpec, Query3D, continuum_moduli};
 use sphstab::forms::{FormKind, Material, ModelParams2D, ObjectiveRate};
 use sphstab::kernel::{self, Kernel};
 use sphstab::lattice::{Lattice2D, Lattice3D};
+use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::shape2d::KernelParams2;
 use sphstab::vonneumann::derived2d::{rho_d, sums};
 use sphstab::vonneumann::linearise2d::{Bloch, Linearisation3D, base_state};
 use std::f64::consts::PI;
@@ -43,7 +43,7 @@ fn params(
     ModelParams2D {
         form,
         shape,
-        kp: KernelParams2 { kernel: kern, h },
+        kp: KernelParams { kernel: kern, h },
         material,
         rho0: 1.0,
         c_partition: 0.5,

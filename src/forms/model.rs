@@ -59,7 +59,7 @@ impl ModelParams {
         super::ModelParams2D {
             form: self.form,
             shape: self.shape,
-            kp: crate::shape2d::KernelParams2 {
+            kp: crate::shape::KernelParams {
                 kernel: self.kp.kernel,
                 h: self.kp.h,
             },

@@ -21,8 +21,8 @@ use super::model::ArtificialViscosity;
 use crate::error::{Error, Result};
 use crate::lattice::Lattice;
 use crate::scalar::Scalar;
+use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
-use crate::shape2d::KernelParams2;
 
 /// Objective stress rate of the hypo-elastic law.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -108,7 +108,7 @@ pub struct ModelParams2D {
     /// Shape family.
     pub shape: ShapeFamily,
     /// Kernel and h.
-    pub kp: KernelParams2,
+    pub kp: KernelParams,
     /// Material.
     pub material: Material,
     /// Reference density ρ0.

@@ -124,7 +124,7 @@ pub fn sine_power_nd(f: &[f64], n: usize, dim: usize) -> Vec<f64> {
     c
 }
 
-/// [`sine_power_nd`] of an n × n field as rows: P[m−1][l−1], m, l = 1..n.
+/// [`sine_power_nd`] of an n × n field as rows: P\[m−1\]\[l−1\], m, l = 1..n.
 pub fn sine_power(f: &[f64], n: usize) -> Vec<Vec<f64>> {
     sine_power_nd(f, n, 2)
         .chunks(n)

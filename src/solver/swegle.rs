@@ -15,8 +15,8 @@ use crate::error::{Error, Result, check_range};
 use crate::forms::{FormKind, Material2D, Model, ModelParams2D, State, State2D, State3D};
 use crate::kernel::Kernel;
 use crate::lattice::{Lattice, LatticeKind};
+use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
-use crate::shape2d::KernelParams2;
 use crate::vonneumann::linearise2d::Bloch;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -227,7 +227,7 @@ impl SwegleConfig {
         ModelParams2D {
             form: self.form,
             shape: self.shape,
-            kp: KernelParams2 {
+            kp: KernelParams {
                 kernel: self.kernel,
                 h: self.h_over_dx * self.dx,
             },
@@ -448,7 +448,7 @@ where
     let nfree = cfg.size - 2 * cfg.layers;
     let lin_unit = Bloch::<D>::new(
         ModelParams2D {
-            kp: KernelParams2 {
+            kp: KernelParams {
                 kernel: cfg.kernel,
                 h: cfg.h_over_dx,
             },

@@ -20,8 +20,8 @@ use crate::forms::{
 };
 use crate::kernel::Kernel;
 use crate::neighbours::CellList;
+use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
-use crate::shape2d::KernelParams2;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -199,7 +199,7 @@ impl ThroughputConfig {
         Ok(ModelParams2D {
             form: self.form,
             shape: self.shape,
-            kp: KernelParams2 {
+            kp: KernelParams {
                 kernel: self.kernel,
                 h: self.h_over_dx,
             },

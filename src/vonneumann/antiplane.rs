@@ -10,7 +10,7 @@
 use crate::error::{Error, Result};
 use crate::lattice::{Lattice2D, LatticeKind};
 use crate::shape::ShapeFamily;
-use crate::shape2d::{KernelParams2, eval2};
+use crate::shape::{KernelParams, eval_d};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use std::collections::BTreeMap;
@@ -242,7 +242,7 @@ impl AntiPlane {
         lat: &Lattice2D,
         q: Quadrature,
         family: ShapeFamily,
-        kp: KernelParams2,
+        kp: KernelParams,
     ) -> Result<Self> {
         let pattern = Pattern::new(lat, q)?;
         let r = kp.support();
@@ -274,7 +274,7 @@ impl AntiPlane {
                     }
                 }
             }
-            eval2(family, kp, &nodes, xq, &mut out)?;
+            eval_d(family, kp, &nodes, xq[0], &mut out)?;
             for (a, &(sa, ra)) in ids.iter().enumerate() {
                 for (b, &(sb, rb)) in ids.iter().enumerate() {
                     let key = (sa, sb, [rb[0] - ra[0], rb[1] - ra[1]]);

@@ -35,7 +35,6 @@ use crate::forms::{FormKind, Material2D, ObjectiveRate};
 use crate::kernel;
 use crate::lattice::{Lattice, det};
 use crate::shape::{KernelParams, ShapeFamily, eval_d};
-use crate::shape2d::KernelParams2;
 
 /// Lattice sums at one wave vector.
 #[derive(Clone, Copy, Debug)]
@@ -64,7 +63,7 @@ fn len<const D: usize>(r: &[f64; D]) -> f64 {
 
 /// ∇φ and ∇∇φ of the `sph` shape of node 0 (volume `vol`) at R.
 fn sph_derivs<const D: usize>(
-    kp: KernelParams2,
+    kp: KernelParams,
     vol: f64,
     r: [f64; D],
 ) -> ([f64; D], [[f64; D]; D]) {
@@ -93,7 +92,7 @@ fn sph_derivs<const D: usize>(
 pub fn sums<const D: usize>(
     lat: &Lattice<D>,
     family: ShapeFamily,
-    kp: KernelParams2,
+    kp: KernelParams,
     k: [f64; D],
 ) -> Result<Sums<D>> {
     let r = kp.support();

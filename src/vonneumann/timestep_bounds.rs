@@ -13,8 +13,8 @@
 use super::antiplane::{AntiPlane, Mass, Quadrature};
 use crate::error::Result;
 use crate::lattice::Lattice2D;
+use crate::shape::eval_d;
 use crate::shape::{KernelParams, ShapeFamily, eval};
-use crate::shape2d::{KernelParams2, eval2};
 use std::f64::consts::PI;
 
 /// \[B00\] eq 136.
@@ -125,7 +125,7 @@ pub fn bounds_1d(
 /// (the setting of B00 Fig 18), or any other quadrature pattern.
 pub fn bounds_2d(
     family: ShapeFamily,
-    kp: KernelParams2,
+    kp: KernelParams,
     q: Quadrature,
     n_grid: usize,
 ) -> Result<Bounds> {
@@ -155,7 +155,7 @@ pub fn bounds_2d(
                 }
             }
         }
-        eval2(family, kp, &nodes, xq, &mut out)?;
+        eval_d(family, kp, &nodes, xq[0], &mut out)?;
         let pos = out.iter().filter(|p| p.0 > 0.0);
         let lx: f64 = pos.clone().map(|p| p.1[0] * p.1[0] / p.0).sum();
         let ly: f64 = pos.map(|p| p.1[1] * p.1[1] / p.0).sum();

@@ -3,8 +3,8 @@
 
 use anyhow::Result;
 use sphstab::lattice::Lattice2D;
+use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::shape2d::KernelParams2;
 use sphstab::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
 
 /// Flags of `stiffness`.
@@ -68,7 +68,7 @@ pub fn run(a: Args) -> Result<()> {
         &lat,
         q,
         fam,
-        KernelParams2 {
+        KernelParams {
             kernel: k,
             h: a.support / k.zeta(),
         },
