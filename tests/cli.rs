@@ -203,3 +203,28 @@ fn extremes_give_finite_output() {
         }
     }
 }
+
+/// A reader that stops early (`sphstab dispersion … | head -1`) closes the pipe: the binary ends
+/// quietly with the SIGPIPE status 141, no panic message (6 MB of output, far beyond a pipe's
+/// buffer, so the write after the close is certain to fail).
+#[test]
+fn closed_pipe_ends_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sphstab"))
+        .args(["dispersion", "--form", "classical", "--kernel", "m4"])
+        .args(["--h", "1.2", "--stress", "0.01", "--points", "100000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    assert!(first.starts_with("# classical"), "{first}");
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(141), "{err}");
+    assert!(err.is_empty(), "{err}");
+}
