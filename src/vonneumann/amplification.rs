@@ -5,7 +5,7 @@
 use super::linearise::{Linearisation, eigen};
 use crate::error::Result;
 use crate::forms::FieldKind;
-use crate::integrator::{Scratch, SecondOrderSystem, kdk_step};
+use crate::integrator::{Integrator, SecondOrderSystem, Stepper};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -42,25 +42,67 @@ impl ModeSystem {
         s
     }
 
-    /// Amplification matrix of one leapfrog step of size `dt` (same units as J⁻¹).
+    /// Amplification matrix of one leapfrog (`kdk`) step of size `dt` (same units as J⁻¹).
     pub fn amplification(&self, dt: f64) -> DMatrix<Complex64> {
+        self.amplification_with(Integrator::Kdk, dt)
+    }
+
+    /// Amplification matrix of one cycle ([`Integrator::cycle`] steps, 1 for all schemes but
+    /// `verlet-euler`) of `integ` with step `dt`, acting on the mode's state followed by what the
+    /// scheme carries between steps ([`Integrator::memory`]: x, v, q parts in that order, each
+    /// in the order of the state's indices). Its spectral radius to the power 1/cycle is the
+    /// growth per step.
+    pub fn amplification_with(&self, integ: Integrator, dt: f64) -> DMatrix<Complex64> {
         let n = self.j.nrows();
-        let mut g = DMatrix::<Complex64>::zeros(n, n);
-        let mut scratch = Scratch::default();
-        let unit = |idx: &[usize], col: usize| -> Vec<Complex64> {
-            idx.iter()
-                .map(|&k| Complex64::new((k == col) as u8 as f64, 0.0))
-                .collect()
-        };
-        for col in 0..n {
-            let mut x = unit(&self.ix, col);
-            let mut v = unit(&self.iv, col);
-            let mut q = unit(&self.iq, col);
-            kdk_step(self, &mut x, &mut v, &mut q, dt, &mut scratch);
-            for (idx, vals) in [(&self.ix, &x), (&self.iv, &v), (&self.iq, &q)] {
+        let parts = [&self.ix, &self.iv, &self.iq];
+        let mem = integ.memory();
+        let mem_len: Vec<usize> = (0..3)
+            .map(|p| if mem[p] { parts[p].len() } else { 0 })
+            .collect();
+        let total = n + mem_len.iter().sum::<usize>();
+        let mut g = DMatrix::<Complex64>::zeros(total, total);
+        let one = Complex64::new(1.0, 0.0);
+        let zero = Complex64::new(0.0, 0.0);
+        let mut st = Stepper::new(integ);
+        for col in 0..total {
+            // the unit vector of column `col`: a state dof (its index in J) or a memory entry
+            let mut z: Vec<Vec<Complex64>> = parts
+                .iter()
+                .map(|idx| {
+                    idx.iter()
+                        .map(|&k| if k == col { one } else { zero })
+                        .collect()
+                })
+                .collect();
+            st.memory.x = vec![zero; mem_len[0]];
+            st.memory.v = vec![zero; mem_len[1]];
+            st.memory.q = vec![zero; mem_len[2]];
+            if col >= n {
+                let mut k = col - n;
+                for m in [&mut st.memory.x, &mut st.memory.v, &mut st.memory.q] {
+                    if k < m.len() {
+                        m[k] = one;
+                        break;
+                    }
+                    k -= m.len();
+                }
+            }
+            st.memory_valid = true;
+            st.steps = 0;
+            let [x, v, q] = &mut z[..] else {
+                unreachable!()
+            };
+            for _ in 0..integ.cycle() {
+                st.step(self, x, v, q, dt);
+            }
+            for (idx, vals) in parts.iter().zip(&z) {
                 for (k, &b) in idx.iter().enumerate() {
                     g[(b, col)] = vals[k];
                 }
+            }
+            let mem_vals = st.memory.x.iter().chain(&st.memory.v).chain(&st.memory.q);
+            for (row, &val) in (n..total).zip(mem_vals) {
+                g[(row, col)] = val;
             }
         }
         g
