@@ -40,6 +40,7 @@
 //! | [`analysis`] | `query`, `dispersion`, `timestep` |
 //! | [`solver`] | the reference solver (1D, 2D), the Swegle test, [`solver::throughput`] |
 //! | [`pairing`] | the 3D pairing study: growth under pressure vs neighbour number, kernel W* sign |
+//! | [`tradeoff`], [`study`] | the speed/accuracy trade-off study; config and report plumbing of the `analysis/` studies |
 //! | [`plot`], [`figures`] | SVG output |
 //!
 //! References: \[B00] Belytschko, Guo, Liu, Xiao 2000; [V21\] Vignjevic, De Vuyst, Campbell 2021;
@@ -61,5 +62,6 @@ pub mod plot;
 pub mod scalar;
 pub mod shape;
 pub mod solver;
+pub mod study;
 pub mod tradeoff;
 pub mod vonneumann;

@@ -115,22 +115,37 @@ impl Default for PairingConfig {
     }
 }
 
-/// Parses a study config; `file` names it in errors (unknown fields are rejected by name).
-pub fn parse_config(file: &str, text: &str) -> Result<PairingConfig> {
-    let cfg: PairingConfig = serde_json::from_str(text).map_err(|e| Error::Config {
-        file: file.into(),
-        msg: e.to_string(),
-    })?;
-    if let Some(o) = &cfg.output
-        && (o.is_empty() || o.contains(['/', '\\']) || o.contains("..") || !o.ends_with(".svg"))
-    {
-        return Err(Error::Config {
-            file: file.into(),
-            msg: format!(
-                "`output` = {o:?} must be a plain file name ending in .svg (no directory, no ..)"
-            ),
-        });
+/// The analysis config of the full study (every kernel × sc, bcc, fcc × h/Δx = 0.8…3 step 0.1
+/// × σ̄ = −0.01, −0.1 at 16³ wave vectors: 1,518 rows, ~47 min), which writes
+/// `figures/pairing3d.{svg,json}`.
+pub const FULL_STUDY_CONFIG: &str = "analysis/pairing3d.json";
+
+/// What [`PairingConfig::quick`] computes, in words (printed by bare `sphstab pairing`).
+pub const QUICK_DESCRIPTION: &str = "default quick subset: m4 (W* < 0) and wendland-c2 (W* ≥ 0) on sc, h/Δx = 0.8…2 step 0.2, σ̄ = −0.01, −0.1, 16³ wave vectors (its rows are rows of the full study)";
+
+impl PairingConfig {
+    /// The command line's default (bare `sphstab pairing`): a subset that runs in seconds — one
+    /// kernel whose W* turns negative (m4) and one whose W* does not (wendland-c2), on the
+    /// simple-cubic lattice, h/Δx = 0.8…2 in steps of 0.2, both stresses, the full study's 16³
+    /// wave vectors (so its 28 rows are rows of [`FULL_STUDY_CONFIG`]'s study). Flags not given
+    /// keep these values.
+    pub fn quick() -> Self {
+        Self {
+            kernels: vec!["m4".into(), "wendland-c2".into()],
+            lattices: vec!["sc".into()],
+            h_min: 0.8,
+            h_max: 2.0,
+            h_step: 0.2,
+            ..Self::default()
+        }
     }
+}
+
+/// Parses a study config; `file` names it in errors (unknown fields are rejected by name, as is
+/// an `output` that is not a plain .svg file name: [`crate::study`]).
+pub fn parse_config(file: &str, text: &str) -> Result<PairingConfig> {
+    let cfg: PairingConfig = crate::study::parse_json(file, text)?;
+    crate::study::check_output(file, cfg.output.as_deref())?;
     Ok(cfg)
 }
 

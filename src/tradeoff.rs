@@ -194,20 +194,7 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
             range: "must be an integer in [1, 64]".into(),
         });
     }
-    if let Some(o) = &cfg.output
-        && (o.is_empty()
-            || o.contains('/')
-            || o.contains('\\')
-            || o.contains("..")
-            || !o.ends_with(".svg"))
-    {
-        return Err(Error::Config {
-            file: "tradeoff config".into(),
-            msg: format!(
-                "`output` = {o:?} must be a plain file name ending in .svg (it goes into figures/)"
-            ),
-        });
-    }
+    crate::study::check_output("tradeoff config", cfg.output.as_deref())?;
     if cfg.repeats == 0 || cfg.repeats > 100 {
         return Err(Error::OutOfRange {
             name: "--repeats",
@@ -671,10 +658,7 @@ pub fn pareto_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
     )
 }
 
-/// Parses a study config; errors name the file and the field.
+/// Parses a study config; errors name the file and the field ([`crate::study`]).
 pub fn parse_config(file: &str, text: &str) -> Result<TradeoffConfig> {
-    serde_json::from_str(text).map_err(|e| Error::Config {
-        file: file.into(),
-        msg: e.to_string(),
-    })
+    crate::study::parse_json(file, text)
 }

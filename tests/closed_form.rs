@@ -401,7 +401,7 @@ fn gaussian(x: f64) -> f64 {
     (-x * x).exp() / PI.sqrt()
 }
 
-/// m4: quadrature vs analytic to 1e-13 (8-point Gauss–Legendre is exact on each cubic piece up
+/// m4: quadrature vs analytic to 1e-13 (16-point Gauss–Legendre is exact on each cubic piece up
 /// to the cosine, whose panel error is far below round-off); FFT (n = 256, dx = 1/64) vs
 /// analytic to 1e-8 on k ≤ 20: the aliasing bound 2.2·16·(dx/(2π − k dx))⁴ ≈ 2e-9.
 #[test]

@@ -8,26 +8,16 @@
 //! W*(k) = (4π/k) ∫₀^ζ q f(q) sin(kq) dq  /  4π ∫₀^ζ q² f(q) dq      (W*(0) = 1)
 //! ```
 //!
-//! evaluated as ∫ q² f(q) j₀(kq) dq / ∫ q² f(q) dq with j₀(x) = sin x / x. Quadrature
-//! ([`Transform3D::at`]): [0, ζ] is cut at every multiple of [`PIECE`] (so every breakpoint of the
-//! piecewise-polynomial kernels — B-spline knots at integers and half-integers, the EFG cubic's
-//! q = ½, the Wendland and Lucy supports — is a panel edge, as is the truncation of the
-//! Gaussian at ζ = 3), each piece into equal panels with k·width ≤ [`MAX_PANEL_PHASE`], and each
-//! panel is integrated by [`GL_POINTS`]-point Gauss–Legendre. The rule is exact for polynomials
-//! of degree 2·[`GL_POINTS`] − 1 = 31: for the polynomial kernels (degree ≤ 11, times q²) the
-//! only error is the truncated Taylor series of j₀ over one panel, of order
-//! [`MAX_PANEL_PHASE`]^32/32! ≈ 4e-36 — the result is exact to round-off (~1e-16). The smooth
-//! Gaussian and mollifier pieces converge spectrally at this resolution.
+//! evaluated as ∫ q² f(q) j₀(kq) dq / ∫ q² f(q) dq with j₀(x) = sin x / x by the crate's one
+//! kernel-transform quadrature, [`radial_integral`]`::<3>` (the 1D transform of \[V21\],
+//! [`crate::vonneumann::transform::kernel_ft_at`], is its D = 1 case): piecewise 16-point
+//! Gauss–Legendre, exact to round-off (~1e-16) for the piecewise-polynomial kernels, spectrally
+//! convergent for the Gaussian and the mollifier.
 
 use crate::kernel::Kernel;
+use crate::vonneumann::transform::radial_integral;
 use serde::Serialize;
 
-/// Gauss–Legendre points per panel.
-pub const GL_POINTS: usize = 16;
-/// Piece length in units of h: every multiple is a panel edge.
-pub const PIECE: f64 = 0.25;
-/// Largest k·(panel width) (radians of the oscillating factor per panel).
-pub const MAX_PANEL_PHASE: f64 = 1.0;
 /// The sign scan covers k ∈ [0, `K_MAX`] (units 1/h) ...
 pub const K_MAX: f64 = 40.0;
 /// ... in steps of `K_STEP` (then refined by bisection / golden section).
@@ -36,99 +26,24 @@ pub const K_STEP: f64 = 0.005;
 /// quadrature's round-off (~1e-16) and far below any physically meaningful value.
 pub const NEGATIVE_TOL: f64 = 1e-12;
 
-/// Gauss–Legendre nodes and weights on [−1, 1], n ≥ 2 (Newton iteration on the Legendre
-/// polynomial from the Tricomi initial guesses; converged to machine precision).
-pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let n = n.max(2);
-    let mut x = vec![0.0; n];
-    let mut w = vec![0.0; n];
-    let nf = n as f64;
-    for i in 0..n.div_ceil(2) {
-        let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (nf + 0.5)).cos();
-        let mut dp = 1.0;
-        for _ in 0..100 {
-            // P_n(z) and P_n'(z) by the three-term recurrence
-            let (mut p0, mut p1) = (1.0, z);
-            for j in 2..=n {
-                let jf = j as f64;
-                let p2 = ((2.0 * jf - 1.0) * z * p1 - (jf - 1.0) * p0) / jf;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = nf * (z * p1 - p0) / (z * z - 1.0);
-            let dz = p1 / dp;
-            z -= dz;
-            if dz.abs() < 1e-16 {
-                break;
-            }
-        }
-        x[i] = -z;
-        x[n - 1 - i] = z;
-        let wi = 2.0 / ((1.0 - z * z) * dp * dp);
-        w[i] = wi;
-        w[n - 1 - i] = wi;
-    }
-    (x, w)
-}
-
-/// sin x / x with its Taylor series near 0.
-fn j0(x: f64) -> f64 {
-    if x.abs() < 1e-3 {
-        let x2 = x * x;
-        1.0 - x2 / 6.0 * (1.0 - x2 / 20.0)
-    } else {
-        x.sin() / x
-    }
-}
-
-/// The normalised 3D transform of one kernel (quadrature set up once).
+/// The normalised 3D transform of one kernel (its normalisation ∫ q² f(q) dq computed once).
 #[derive(Clone, Debug)]
 pub struct Transform3D {
     kernel: &'static dyn Kernel,
-    nodes: Vec<f64>,
-    weights: Vec<f64>,
     norm: f64,
 }
 
 impl Transform3D {
-    /// Sets up the quadrature and the normalisation ∫ q² f(q) dq.
+    /// Computes the normalisation ∫ q² f(q) dq.
     pub fn new(kernel: &'static dyn Kernel) -> Self {
-        let (nodes, weights) = gauss_legendre(GL_POINTS);
-        let mut t = Self {
-            kernel,
-            nodes,
-            weights,
-            norm: 1.0,
-        };
+        let mut t = Self { kernel, norm: 1.0 };
         t.norm = t.raw(0.0);
         t
     }
 
     /// ∫₀^ζ q² f(q) j₀(kq) dq.
     fn raw(&self, k: f64) -> f64 {
-        let zeta = self.kernel.zeta();
-        let pieces = (zeta / PIECE).ceil() as usize;
-        let mut sum = 0.0;
-        for p in 0..pieces {
-            let a = p as f64 * PIECE;
-            let b = (a + PIECE).min(zeta);
-            if b <= a {
-                continue;
-            }
-            let panels = ((k.abs() * (b - a) / MAX_PANEL_PHASE).ceil() as usize).max(2);
-            let width = (b - a) / panels as f64;
-            for m in 0..panels {
-                let lo = a + m as f64 * width;
-                let (mid, half) = (lo + 0.5 * width, 0.5 * width);
-                let mut s = 0.0;
-                for (&x, &w) in self.nodes.iter().zip(&self.weights) {
-                    let q = mid + half * x;
-                    s += w * q * q * self.kernel.f(3, q) * j0(k * q);
-                }
-                sum += s * half;
-            }
-        }
-        sum
+        radial_integral::<3>(&|q| self.kernel.f(3, q), self.kernel.zeta(), k)
     }
 
     /// W*(k)/W*(0), k in units of 1/h.
@@ -224,15 +139,6 @@ pub fn sign_criterion(kernel: &'static dyn Kernel) -> WStarSign {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn gauss_legendre_integrates_polynomials_exactly() {
-        let (x, w) = gauss_legendre(GL_POINTS);
-        assert!((w.iter().sum::<f64>() - 2.0).abs() < 1e-14);
-        // ∫_{-1}^{1} x^{30} dx = 2/31 (degree 30 ≤ 31)
-        let s: f64 = x.iter().zip(&w).map(|(x, w)| w * x.powi(30)).sum();
-        assert!((s - 2.0 / 31.0).abs() < 1e-14, "{s}");
-    }
 
     #[test]
     fn normalised_at_zero() {

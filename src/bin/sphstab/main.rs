@@ -13,6 +13,7 @@ mod progress;
 mod query;
 mod simulate;
 mod stiffness;
+mod study;
 mod swegle;
 mod throughput;
 mod timestep;

@@ -1,27 +1,29 @@
 //! `sphstab pairing`: the 3D pairing study (classical SPH, hydro, under pressure) for every
 //! kernel × lattice × h/Δx, next to the kernel's W* sign criterion; table, JSON and figure.
+//! Bare, a quick subset ([`PairingConfig::quick`], seconds); the full study (~47 min) is
+//! `--config analysis/pairing3d.json`.
 
-use crate::progress;
-use anyhow::{Context, Result};
+use crate::{progress, study};
+use anyhow::Result;
 use sphstab::pairing::{PairingConfig, PairingReport};
 use std::path::{Path, PathBuf};
 
 /// Flags of `pairing`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Comma-separated kernel names (default: all eleven).
+    /// Comma-separated kernel names, or `all` for all eleven (default: m4,wendland-c2).
     #[arg(long, value_delimiter = ',')]
     kernels: Vec<String>,
-    /// Comma-separated lattices: sc, bcc, fcc (default: all three).
+    /// Comma-separated lattices: sc, bcc, fcc, or `all` (default: sc).
     #[arg(long, value_delimiter = ',')]
     lattices: Vec<String>,
     /// Smallest h/Δx, in [0.1, 10] (default 0.8).
     #[arg(long, allow_hyphen_values = true)]
     h_min: Option<f64>,
-    /// Largest h/Δx, in [--h-min, 10] (default 3).
+    /// Largest h/Δx, in [--h-min, 10] (default 2).
     #[arg(long, allow_hyphen_values = true)]
     h_max: Option<f64>,
-    /// Step of h/Δx, in [0.001, 10], at most 1000 values (default 0.1).
+    /// Step of h/Δx, in [0.001, 10], at most 1000 values (default 0.2).
     #[arg(long, allow_hyphen_values = true)]
     h_step: Option<f64>,
     /// Comma-separated pre-stresses σ̄ = σ/K, each in [−10, 1), 1 to 16 values (default
@@ -70,6 +72,15 @@ impl Args {
     }
 }
 
+/// A list flag: `all` alone is the whole set (an empty list for the library).
+fn all_or(v: &[String]) -> Vec<String> {
+    if v.len() == 1 && v[0] == "all" {
+        Vec::new()
+    } else {
+        v.to_vec()
+    }
+}
+
 pub fn run(a: Args) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
@@ -81,17 +92,9 @@ pub fn run(a: Args) -> Result<()> {
                 "--from redraws stored data: it takes only --plot (not --config, --json or the study flags)"
             );
         }
-        let path = a.plot.as_ref().ok_or_else(|| {
-            sphstab::error::Error::Incompatible("--from needs --plot (where to draw)".into())
-        })?;
-        let text = std::fs::read_to_string(from)
-            .with_context(|| format!("--from: cannot read {}", from.display()))?;
-        let rep: PairingReport =
-            serde_json::from_str(&text).map_err(|e| sphstab::error::Error::Config {
-                file: from.display().to_string(),
-                msg: e.to_string(),
-            })?;
-        return write_plot(&rep, path);
+        let path = study::plot_path(a.plot.as_ref())?;
+        let rep: PairingReport = study::read_report(from)?;
+        return study::write_plot(sphstab::pairing::figure_svg(&rep), path);
     }
     let (cfg, config_out) = match &a.config {
         Some(p) => {
@@ -101,18 +104,24 @@ pub fn run(a: Args) -> Result<()> {
                     flags.join(", ")
                 );
             }
-            let text = std::fs::read_to_string(p)
-                .with_context(|| format!("--config: cannot read {}", p.display()))?;
-            let cfg = sphstab::pairing::parse_config(&p.display().to_string(), &text)?;
+            let cfg = study::read_config(p, sphstab::pairing::parse_config)?;
             let out = cfg.output.clone();
             (cfg, out)
         }
         None => {
-            let d = PairingConfig::default();
+            let d = PairingConfig::quick();
             (
                 PairingConfig {
-                    kernels: a.kernels.clone(),
-                    lattices: a.lattices.clone(),
+                    kernels: if a.kernels.is_empty() {
+                        d.kernels
+                    } else {
+                        all_or(&a.kernels)
+                    },
+                    lattices: if a.lattices.is_empty() {
+                        d.lattices
+                    } else {
+                        all_or(&a.lattices)
+                    },
                     h_min: a.h_min.unwrap_or(d.h_min),
                     h_max: a.h_max.unwrap_or(d.h_max),
                     h_step: a.h_step.unwrap_or(d.h_step),
@@ -137,15 +146,10 @@ pub fn run(a: Args) -> Result<()> {
     let rep = sphstab::pairing::run(&cfg, |d, t| progress::set(&pb, d as f64 / t.max(1) as f64))?;
     pb.finish_and_clear();
     if let Some(path) = &a.plot {
-        write_plot(&rep, path)?;
+        study::write_plot(sphstab::pairing::figure_svg(&rep), path)?;
     }
     if let Some(name) = config_out {
-        let svg = PathBuf::from("figures").join(&name);
-        write_plot(&rep, &svg)?;
-        let data = svg.with_extension("json");
-        std::fs::write(&data, serde_json::to_string_pretty(&rep)? + "\n")
-            .with_context(|| format!("cannot write {}", data.display()))?;
-        eprintln!("wrote {} and {}", svg.display(), data.display());
+        study::write_figure_and_data(&rep, &name, sphstab::pairing::figure_svg)?;
     }
     if a.json {
         println!("{}", serde_json::to_string(&rep)?);
@@ -157,13 +161,17 @@ pub fn run(a: Args) -> Result<()> {
             rep.runtime_s,
             rep.threads
         );
+        if a.config.is_none() {
+            println!(
+                "{}\nthe full study (every kernel × sc, bcc, fcc × h/Δx = 0.8…3 step 0.1 × σ̄ = −0.01, −0.1 at 16³ wave vectors; ~47 min): cargo run --release -- pairing --config {}",
+                if flags.is_empty() {
+                    sphstab::pairing::QUICK_DESCRIPTION
+                } else {
+                    "a subset of the pairing study"
+                },
+                sphstab::pairing::FULL_STUDY_CONFIG
+            );
+        }
     }
-    Ok(())
-}
-
-fn write_plot(rep: &PairingReport, path: &Path) -> Result<()> {
-    let svg = sphstab::pairing::figure_svg(rep)?;
-    std::fs::write(path, svg)
-        .with_context(|| format!("--plot: cannot write {}", path.display()))?;
     Ok(())
 }

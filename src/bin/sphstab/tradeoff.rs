@@ -1,8 +1,8 @@
 //! `sphstab tradeoff`: the speed/accuracy trade-off study (cost, accuracy, robustness of every
 //! form × kernel × h/Δx), as a table, JSON and a Pareto figure.
 
-use crate::progress;
-use anyhow::{Context, Result};
+use crate::{progress, study};
+use anyhow::Result;
 use sphstab::tradeoff::{TradeoffConfig, TradeoffReport};
 use std::path::PathBuf;
 
@@ -53,24 +53,15 @@ pub fn run(a: Args) -> Result<()> {
         crate::common::check_writable("--plot", p)?;
     }
     if let Some(from) = &a.from {
-        let text = std::fs::read_to_string(from)
-            .with_context(|| format!("--from: cannot read {}", from.display()))?;
-        let rep: TradeoffReport =
-            serde_json::from_str(&text).map_err(|e| sphstab::error::Error::Config {
-                file: from.display().to_string(),
-                msg: e.to_string(),
-            })?;
-        let path = a.plot.as_ref().ok_or_else(|| {
-            sphstab::error::Error::Incompatible("--from needs --plot (where to draw)".into())
-        })?;
-        write_plot(&rep, path)?;
-        return Ok(());
+        let rep: TradeoffReport = study::read_report(from)?;
+        return study::write_plot(
+            sphstab::tradeoff::pareto_svg(&rep, &title(&rep)),
+            study::plot_path(a.plot.as_ref())?,
+        );
     }
     let (cfg, config_out) = match &a.config {
         Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .with_context(|| format!("--config: cannot read {}", p.display()))?;
-            let cfg = sphstab::tradeoff::parse_config(&p.display().to_string(), &text)?;
+            let cfg = study::read_config(p, sphstab::tradeoff::parse_config)?;
             let out = cfg.output.clone();
             (cfg, out)
         }
@@ -93,15 +84,10 @@ pub fn run(a: Args) -> Result<()> {
     })?;
     pb.finish_and_clear();
     if let Some(path) = &a.plot {
-        write_plot(&rep, path)?;
+        study::write_plot(sphstab::tradeoff::pareto_svg(&rep, &title(&rep)), path)?;
     }
     if let Some(name) = config_out {
-        let svg = PathBuf::from("figures").join(&name);
-        write_plot(&rep, &svg)?;
-        let data = svg.with_extension("json");
-        std::fs::write(&data, serde_json::to_string_pretty(&rep)? + "\n")
-            .with_context(|| format!("cannot write {}", data.display()))?;
-        eprintln!("wrote {} and {}", svg.display(), data.display());
+        study::write_figure_and_data(&rep, &name, |r| sphstab::tradeoff::pareto_svg(r, &title(r)))?;
     }
     if a.json {
         println!("{}", serde_json::to_string(&rep)?);
@@ -112,12 +98,5 @@ pub fn run(a: Args) -> Result<()> {
             total, rep.runtime_s, rep.threads, rep.scene
         );
     }
-    Ok(())
-}
-
-fn write_plot(rep: &TradeoffReport, path: &std::path::Path) -> Result<()> {
-    let svg = sphstab::tradeoff::pareto_svg(rep, &title(rep))?;
-    std::fs::write(path, svg)
-        .with_context(|| format!("--plot: cannot write {}", path.display()))?;
     Ok(())
 }

@@ -1,0 +1,58 @@
+//! The command-line side of the `analysis/` studies (`tradeoff`, `pairing`): `--config` read and
+//! parsed, `--from` read back, the figure drawn to `--plot` and, for a config with `output`, the
+//! figure and its data written into `figures/`. The library side is [`sphstab::study`].
+
+use anyhow::{Context, Result};
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use std::path::{Path, PathBuf};
+
+/// Reads and parses `--config` with the study's parser (errors name the file and the field).
+pub fn read_config<T>(
+    path: &Path,
+    parse: impl Fn(&str, &str) -> sphstab::error::Result<T>,
+) -> Result<T> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("--config: cannot read {}", path.display()))?;
+    Ok(parse(&path.display().to_string(), &text)?)
+}
+
+/// Reads a stored report (`--from`: a JSON written by `--json` or `--config`).
+pub fn read_report<T: DeserializeOwned>(from: &Path) -> Result<T> {
+    let text = std::fs::read_to_string(from)
+        .with_context(|| format!("--from: cannot read {}", from.display()))?;
+    Ok(sphstab::study::parse_json(
+        &from.display().to_string(),
+        &text,
+    )?)
+}
+
+/// `--from` needs `--plot`: where to draw.
+pub fn plot_path(plot: Option<&PathBuf>) -> Result<&Path> {
+    plot.map(PathBuf::as_path).ok_or_else(|| {
+        sphstab::error::Error::Incompatible("--from needs --plot (where to draw)".into()).into()
+    })
+}
+
+/// Writes a drawn figure to `path` (the `--plot` file or the config's figure).
+pub fn write_plot(svg: sphstab::error::Result<String>, path: &Path) -> Result<()> {
+    std::fs::write(path, svg?)
+        .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+    Ok(())
+}
+
+/// A config's `output`: the figure `figures/<name>` and the report next to it
+/// (`figures/<name>.json`, pretty JSON), reported on stderr.
+pub fn write_figure_and_data<T: Serialize>(
+    report: &T,
+    name: &str,
+    draw: impl Fn(&T) -> sphstab::error::Result<String>,
+) -> Result<()> {
+    let svg = PathBuf::from("figures").join(name);
+    write_plot(draw(report), &svg)?;
+    let data = svg.with_extension("json");
+    std::fs::write(&data, serde_json::to_string_pretty(report)? + "\n")
+        .with_context(|| format!("cannot write {}", data.display()))?;
+    eprintln!("wrote {} and {}", svg.display(), data.display());
+    Ok(())
+}
