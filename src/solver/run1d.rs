@@ -1,9 +1,9 @@
-//! A 1D particle run: a [`Model1D`] stepped by the shared leapfrog step, with particles whose
+//! A 1D particle run: a [`Model1D`] stepped by one of the shared integrators (default `kdk`), with particles whose
 //! velocity is prescribed (fixed: v = 0) and which still take part in every sum.
 
 use crate::error::{Error, Result};
 use crate::forms::{FlatSystem, Model1D, State1D};
-use crate::integrator::{Scratch, SecondOrderSystem, kdk_step};
+use crate::integrator::{Integrator, SecondOrderSystem, Stepper};
 
 /// A 1D run.
 #[derive(Clone, Debug)]
@@ -18,7 +18,7 @@ pub struct Run1D {
     pub t: f64,
     /// Steps taken.
     pub steps: usize,
-    scratch: Scratch<f64>,
+    stepper: Stepper<f64>,
 }
 
 struct Masked<'a> {
@@ -59,11 +59,24 @@ impl Run1D {
             prescribed,
             t: 0.0,
             steps: 0,
-            scratch: Scratch::default(),
+            stepper: Stepper::new(Integrator::Kdk),
         })
     }
 
-    /// One leapfrog step.
+    /// The time integrator of the following steps (default `kdk`); changing it starts the new
+    /// scheme afresh.
+    pub fn set_integrator(&mut self, integrator: Integrator) {
+        if self.stepper.integrator != integrator {
+            self.stepper = Stepper::new(integrator);
+        }
+    }
+
+    /// The time integrator.
+    pub fn integrator(&self) -> Integrator {
+        self.stepper.integrator
+    }
+
+    /// One step of the run's integrator.
     pub fn step(&mut self, dt: f64) -> Result<()> {
         let flat = FlatSystem::new(&self.model, self.z.clone())?;
         let (mut x, mut v, mut q) = flat.flatten(&self.z);
@@ -71,9 +84,7 @@ impl Run1D {
             flat,
             prescribed: &self.prescribed,
         };
-        let mut scratch = std::mem::take(&mut self.scratch);
-        kdk_step(&sys, &mut x, &mut v, &mut q, dt, &mut scratch);
-        self.scratch = scratch;
+        self.stepper.step(&sys, &mut x, &mut v, &mut q, dt);
         let z = sys.flat.unflatten(&x, &v, &q);
         if z.v.iter().any(|a| !a.is_finite()) {
             return Err(Error::NonFinite("solver state (the run diverged)"));

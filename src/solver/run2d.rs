@@ -8,7 +8,7 @@ use std::cell::RefCell;
 
 use crate::error::{Error, Result};
 use crate::forms::{AuxRates, Comp, Model, RateOut, RateWorkspace, State, StateView, Tensor};
-use crate::integrator::{Scratch, SecondOrderSystem, kdk_step};
+use crate::integrator::{Integrator, SecondOrderSystem, Stepper};
 
 /// Treatment of the boundary particles' auxiliary state.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -42,7 +42,7 @@ pub struct Run<const D: usize = 2> {
     pub steps: usize,
     layout: AuxLayout,
     bufs: StepBuffers<D>,
-    scratch: Scratch<f64>,
+    stepper: Stepper<f64>,
 }
 
 /// A 2D run.
@@ -125,6 +125,34 @@ impl<const D: usize> Sys<'_, D> {
     }
 }
 
+impl<const D: usize> Sys<'_, D> {
+    /// Fixed particles do not accelerate.
+    fn mask_accel(&self, a: &mut [f64]) {
+        for (ai, &f) in a.as_chunks_mut::<D>().0.iter_mut().zip(self.fixed) {
+            let keep = if f { 0.0 } else { 1.0 };
+            *ai = ai.map(|c| c * keep);
+        }
+    }
+
+    /// Frozen boundary particles keep their density and stress.
+    fn mask_qrate(&self, r: &mut [f64]) {
+        if self.frozen_aux {
+            let out = split_aux_mut::<D>(r, self.lens);
+            for (i, _) in self.fixed.iter().enumerate().filter(|(_, f)| **f) {
+                if let Some(p) = out.rho.get_mut(i) {
+                    *p = 0.0;
+                }
+                if let Some(p) = out.sigma.get_mut(i) {
+                    *p = [[0.0; D]; D];
+                }
+                if let Some(p) = out.tau.get_mut(i) {
+                    *p = [[0.0; D]; D];
+                }
+            }
+        }
+    }
+}
+
 impl<const D: usize> SecondOrderSystem<f64> for Sys<'_, D> {
     fn accel(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64]) {
         let out = RateOut {
@@ -140,18 +168,14 @@ impl<const D: usize> SecondOrderSystem<f64> for Sys<'_, D> {
             // A singular moment matrix mid-run: NaN rates stop the run at the divergence check.
             a.fill(f64::NAN);
         }
-        for (ai, &f) in a.as_chunks_mut::<D>().0.iter_mut().zip(self.fixed) {
-            let keep = if f { 0.0 } else { 1.0 };
-            *ai = ai.map(|c| c * keep);
-        }
+        self.mask_accel(a);
     }
     fn accel_depends_on_velocity(&self) -> bool {
         self.model.p.av.is_some()
     }
     fn qrate(&self, x: &[f64], v: &[f64], q: &[f64], r: &mut [f64]) {
-        let lens = self.lens;
         let out = RateOut {
-            aux: Some(split_aux_mut(r, lens)),
+            aux: Some(split_aux_mut(r, self.lens)),
             ..Default::default()
         };
         let mut ws = self.ws.borrow_mut();
@@ -162,20 +186,25 @@ impl<const D: usize> SecondOrderSystem<f64> for Sys<'_, D> {
         {
             r.fill(0.0);
         }
-        if self.frozen_aux {
-            let out = split_aux_mut::<D>(r, lens);
-            for (i, _) in self.fixed.iter().enumerate().filter(|(_, f)| **f) {
-                if let Some(p) = out.rho.get_mut(i) {
-                    *p = 0.0;
-                }
-                if let Some(p) = out.sigma.get_mut(i) {
-                    *p = [[0.0; D]; D];
-                }
-                if let Some(p) = out.tau.get_mut(i) {
-                    *p = [[0.0; D]; D];
-                }
-            }
+        self.mask_qrate(r);
+    }
+    fn rates(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64], r: &mut [f64]) {
+        let out = RateOut {
+            v: Some(a.as_chunks_mut().0),
+            aux: Some(split_aux_mut(r, self.lens)),
+            ..Default::default()
+        };
+        let mut ws = self.ws.borrow_mut();
+        if self
+            .model
+            .rate_into(self.view(x, v, q), out, &mut ws)
+            .is_err()
+        {
+            a.fill(f64::NAN);
+            r.fill(0.0);
         }
+        self.mask_accel(a);
+        self.mask_qrate(r);
     }
 }
 
@@ -207,7 +236,7 @@ impl<const D: usize> Run<D> {
             steps: 0,
             layout,
             bufs: StepBuffers::default(),
-            scratch: Scratch::default(),
+            stepper: Stepper::new(Integrator::Kdk),
         };
         run.check_state()?;
         Ok(run)
@@ -233,7 +262,21 @@ impl<const D: usize> Run<D> {
         Ok(())
     }
 
-    /// One leapfrog step of size `dt` (physical time), in place. Fixed particles keep x and v.
+    /// The time integrator of the following steps (default `kdk`; module docs of
+    /// [`crate::integrator`]). Changing it starts the new scheme afresh (what a scheme carries
+    /// between steps is rebuilt at its first step).
+    pub fn set_integrator(&mut self, integrator: Integrator) {
+        if self.stepper.integrator != integrator {
+            self.stepper = Stepper::new(integrator);
+        }
+    }
+
+    /// The time integrator.
+    pub fn integrator(&self) -> Integrator {
+        self.stepper.integrator
+    }
+
+    /// One step of size `dt` (physical time) of the run's integrator, in place. Fixed particles keep x and v.
     /// If the run diverges (a non-finite velocity), the error is returned and the state holds
     /// the non-finite values of the failed step.
     pub fn step(&mut self, dt: f64) -> Result<()> {
@@ -261,13 +304,12 @@ impl<const D: usize> Run<D> {
             lens,
             ws: RefCell::new(&mut self.bufs.ws),
         };
-        kdk_step(
+        self.stepper.step(
             &sys,
             z.x.as_flattened_mut(),
             z.v.as_flattened_mut(),
             q,
             dt,
-            &mut self.scratch,
         );
         let (rho, sigma, tau) = split_aux(q, lens);
         if self.layout.rho {

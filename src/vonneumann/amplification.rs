@@ -4,6 +4,7 @@
 
 use super::linearise::{Linearisation, eigen};
 use crate::error::Result;
+use super::classify::GROWTH_TOL;
 use crate::forms::FieldKind;
 use crate::integrator::{Integrator, SecondOrderSystem, Stepper};
 use nalgebra::DMatrix;
@@ -124,7 +125,173 @@ impl SecondOrderSystem<Complex64> for ModeSystem {
 
 /// Amplification matrix G(κ, Δt) of one leapfrog step; `dt` in Δx/c.
 pub fn amplification_matrix(lin: &Linearisation, kappa: f64, dt: f64) -> DMatrix<Complex64> {
+    amplification_matrix_with(lin, kappa, dt, Integrator::Kdk)
+}
+
+/// Amplification matrix of one cycle of `integ` ([`ModeSystem::amplification_with`]); `dt`
+/// in Δx/c.
+pub fn amplification_matrix_with(
+    lin: &Linearisation,
+    kappa: f64,
+    dt: f64,
+    integ: Integrator,
+) -> DMatrix<Complex64> {
     let (dx, c) = lin.units();
+    mode_system(lin, kappa).amplification_with(integ, dt * dx / c)
+}
+
+/// Growth per step of `integ`: the spectral radius of one cycle's amplification matrix to the
+/// power 1/cycle; `dt` in Δx/c.
+pub fn spectral_radius_with(
+    lin: &Linearisation,
+    kappa: f64,
+    dt: f64,
+    integ: Integrator,
+) -> Result<f64> {
+    let ev = eigen(amplification_matrix_with(lin, kappa, dt, integ))?;
+    let r = ev.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    Ok(r.powf(1.0 / integ.cycle() as f64))
+}
+
+/// What an integrator does to the modes of a linearisation (units Δx/c, c/Δx).
+#[derive(Clone, Copy, Debug)]
+pub struct StepStability {
+    /// The scheme.
+    pub integrator: Integrator,
+    /// Largest |s| over the modes that do not grow in the semi-discrete system (ω_max for a
+    /// non-dissipative one), c/Δx.
+    pub omega_max: f64,
+    /// The largest Δt with growth per step ≤ 1 + [`AMPLIFICATION_TOL`] on every such mode, by
+    /// bisection; `None` when the scheme amplifies already at Δt = [`WEAK_PROBE`]/ω_max (a weak
+    /// instability), ∞ when no Δt up to 1e6 amplifies.
+    pub critical_dt: Option<f64>,
+    /// The closed form [`Integrator::imaginary_axis_limit`]/ω_max, for non-dissipative systems.
+    pub closed_form_dt: Option<f64>,
+}
+
+/// ωΔt at which a weak instability is looked for: |λ| − 1 is ≈ y²/2 there for `euler` and the
+/// lagged velocity, y⁴/8 = 1.25e-5 for RK2, far above [`AMPLIFICATION_TOL`].
+pub const WEAK_PROBE: f64 = 0.1;
+
+/// The wave numbers of `kappas` whose semi-discrete modes do not grow (growth ≤
+/// [`GROWTH_TOL`]): the time-step analysis concerns these; growing modes are spatial
+/// instabilities, reported as such.
+fn non_growing(lin: &Linearisation, kappas: &[f64]) -> Result<Vec<f64>> {
+    let mut out = Vec::with_capacity(kappas.len());
+    for &k in kappas {
+        if lin.growth(k)? <= GROWTH_TOL {
+            out.push(k);
+        }
+    }
+    Ok(out)
+}
+
+/// The largest growth per step of `integ` over `kappas` at `dt` (Δx/c), and where.
+pub fn max_spectral_radius_with(
+    lin: &Linearisation,
+    kappas: &[f64],
+    dt: f64,
+    integ: Integrator,
+) -> Result<(f64, f64)> {
+    let mut best = (0.0, 0.0);
+    for &k in kappas {
+        let r = spectral_radius_with(lin, k, dt, integ)?;
+        if r > best.0 {
+            best = (r, k);
+        }
+    }
+    Ok(best)
+}
+
+/// The time-step stability of `integ` on the non-growing modes of `kappas` ([`StepStability`]).
+pub fn step_stability(
+    lin: &Linearisation,
+    kappas: &[f64],
+    integ: Integrator,
+) -> Result<StepStability> {
+    let ks = non_growing(lin, kappas)?;
+    let mut omega_max: f64 = 0.0;
+    for &k in &ks {
+        let m = lin.eigenvalues(k)?.iter().map(|s| s.norm()).fold(0.0, f64::max);
+        omega_max = omega_max.max(m);
+    }
+    let closed_form_dt = if lin.is_dissipative() || omega_max == 0.0 {
+        None
+    } else {
+        integ.imaginary_axis_limit().map(|y| y / omega_max)
+    };
+    let stable = |dt: f64| -> Result<bool> {
+        Ok(max_spectral_radius_with(lin, &ks, dt, integ)?.0 <= 1.0 + AMPLIFICATION_TOL)
+    };
+    if ks.is_empty() || omega_max == 0.0 {
+        return Ok(StepStability {
+            integrator: integ,
+            omega_max,
+            critical_dt: Some(f64::INFINITY),
+            closed_form_dt,
+        });
+    }
+    let mut lo = WEAK_PROBE / omega_max;
+    if !stable(lo)? {
+        return Ok(StepStability {
+            integrator: integ,
+            omega_max,
+            critical_dt: None,
+            closed_form_dt,
+        });
+    }
+    let mut hi = 2.0 * lo;
+    while stable(hi)? {
+        lo = hi;
+        hi *= 2.0;
+        if hi > 1e6 {
+            return Ok(StepStability {
+                integrator: integ,
+                omega_max,
+                critical_dt: Some(f64::INFINITY),
+                closed_form_dt,
+            });
+        }
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if stable(mid)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo <= 1e-12 * hi {
+            break;
+        }
+    }
+    Ok(StepStability {
+        integrator: integ,
+        omega_max,
+        critical_dt: Some(lo),
+        closed_form_dt,
+    })
+}
+
+/// Spurious growth of `integ` at step `dt` (Δx/c): the largest ln(growth per step)/Δt over the
+/// modes that do not grow in the semi-discrete system, in c/Δx (0 if none amplifies beyond
+/// [`AMPLIFICATION_TOL`]), and the κ where it is largest.
+pub fn spurious_growth_rate(
+    lin: &Linearisation,
+    kappas: &[f64],
+    integ: Integrator,
+    dt: f64,
+) -> Result<(f64, f64)> {
+    let ks = non_growing(lin, kappas)?;
+    let (r, k) = max_spectral_radius_with(lin, &ks, dt, integ)?;
+    Ok(if r > 1.0 + AMPLIFICATION_TOL {
+        (r.ln() / dt, k)
+    } else {
+        (0.0, k)
+    })
+}
+
+/// The mode system of `lin` at κ: J split into position, velocity and auxiliary rows.
+pub fn mode_system(lin: &Linearisation, kappa: f64) -> ModeSystem {
     let dofs = &lin.dofs;
     let ix: Vec<usize> = (0..dofs.len())
         .filter(|&k| dofs[k].field.kind() == FieldKind::Position)
@@ -135,7 +302,7 @@ pub fn amplification_matrix(lin: &Linearisation, kappa: f64, dt: f64) -> DMatrix
     let iq: Vec<usize> = (0..dofs.len())
         .filter(|&k| dofs[k].field.kind() == FieldKind::Auxiliary)
         .collect();
-    ModeSystem::new(lin.jacobian(kappa), ix, iv, iq).amplification(dt * dx / c)
+    ModeSystem::new(lin.jacobian(kappa), ix, iv, iq)
 }
 
 /// Spectral radius of G(κ, Δt).
