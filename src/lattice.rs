@@ -1,9 +1,10 @@
-//! Uniform Bravais lattices in D ∈ {2, 3} dimensions ([`Lattice`]), their reciprocal vectors,
+//! Uniform Bravais lattices in D ∈ {1, 2, 3} dimensions ([`Lattice`]), their reciprocal vectors,
 //! neighbour offsets within a radius, Brillouin-zone folding and the high-symmetry paths of the
 //! first Brillouin zone. Lengths in units of Δx.
 //!
 //! | lattice | primitive vectors | Δx | path |
 //! |---|---|---|---|
+//! | `chain` (1D, no CLI name) | (1) | the spacing | Γ–X |
 //! | `square` (γ) | (1, 0), (0, γ) | the x spacing | Γ–X–M–Γ |
 //! | `hex` | (1, 0), (½, √3/2) | nearest-neighbour distance | Γ–M–K–Γ |
 //! | `sc` | (1,0,0), (0,1,0), (0,0,1) | spacing = (volume per particle)^⅓ | Γ–X–M–Γ–R–X |
@@ -24,6 +25,9 @@ use std::f64::consts::PI;
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LatticeKind {
+    /// The uniform 1D chain of unit spacing (used by the closed forms; the 1D CLI has no
+    /// `--lattice`).
+    Chain,
     /// Rectangular: a1 = (1, 0), a2 = (0, γ).
     Square {
         /// Aspect ratio γ = Δy/Δx.
@@ -52,6 +56,16 @@ pub struct Lattice<const D: usize> {
 pub type Lattice2D = Lattice<2>;
 /// A 3D lattice.
 pub type Lattice3D = Lattice<3>;
+
+impl Lattice<1> {
+    /// The uniform chain of unit spacing.
+    pub fn chain() -> Self {
+        Self {
+            kind: LatticeKind::Chain,
+            a: [[1.0]],
+        }
+    }
+}
 
 impl Lattice<2> {
     /// Square (rectangular) lattice with aspect ratio γ.
@@ -171,6 +185,7 @@ impl<const D: usize> Lattice<D> {
     /// The lattice of `kind`; an error if `kind` is not a lattice of dimension D.
     pub fn of_kind(kind: LatticeKind) -> Result<Self> {
         let (dim, a3): (usize, [[f64; 3]; 3]) = match kind {
+            LatticeKind::Chain => (1, [[1.0, 0.0, 0.0], [0.0; 3], [0.0; 3]]),
             LatticeKind::Square { gamma } => {
                 crate::error::check_range("--gamma", gamma, 0.1, 10.0, true, true)?;
                 (2, [[1.0, 0.0, 0.0], [0.0, gamma, 0.0], [0.0; 3]])
@@ -218,7 +233,8 @@ impl<const D: usize> Lattice<D> {
         Self::of_kind(kind)
     }
 
-    /// Cell area (2D) or volume (3D): |det a|, the area or volume per particle.
+    /// Cell length (1D), area (2D) or volume (3D): |det a|, the length, area or volume per
+    /// particle.
     pub fn area(&self) -> f64 {
         det(&self.a).abs()
     }
@@ -227,6 +243,9 @@ impl<const D: usize> Lattice<D> {
     /// (|det a| / the largest |(D − 1)-face|): a box of n cells per direction holds a ball of
     /// radius n·spacing/2.
     pub fn plane_spacing(&self) -> f64 {
+        if D == 1 {
+            return self.area();
+        }
         if D == 2 {
             let amax = self.a.iter().map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
             return self.area() / amax;
@@ -255,6 +274,10 @@ impl<const D: usize> Lattice<D> {
     pub fn reciprocal(&self) -> [[f64; D]; D] {
         let mut b = [[0.0; D]; D];
         let det = det(&self.a);
+        if D == 1 {
+            b[0][0] = 2.0 * PI / det;
+            return b;
+        }
         if D == 2 {
             let s = 2.0 * PI / det;
             b[0][0] = s * self.a[1][1];
@@ -327,6 +350,7 @@ impl<const D: usize> Lattice<D> {
     /// The high-symmetry points of the first Brillouin zone, in path order, with labels.
     pub fn symmetry_points(&self) -> Vec<(&'static str, [f64; D])> {
         let pts: Vec<(&'static str, [f64; 3])> = match self.kind {
+            LatticeKind::Chain => vec![("Γ", [0.0, 0.0, 0.0]), ("X", [PI, 0.0, 0.0])],
             LatticeKind::Square { gamma } => vec![
                 ("Γ", [0.0, 0.0, 0.0]),
                 ("X", [PI, 0.0, 0.0]),
@@ -434,6 +458,7 @@ fn norm<const D: usize>(v: &[f64; D]) -> f64 {
 impl std::fmt::Display for LatticeKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
+            LatticeKind::Chain => write!(f, "1D chain"),
             LatticeKind::Square { gamma } if *gamma == 1.0 => write!(f, "square lattice"),
             LatticeKind::Square { gamma } => write!(f, "square lattice γ = {gamma}"),
             LatticeKind::Hexagonal => write!(f, "hexagonal lattice"),
@@ -460,6 +485,18 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn chain_offsets_reciprocal_and_fold() {
+        let c = Lattice::<1>::chain();
+        assert_eq!(c.area(), 1.0);
+        assert_eq!(c.reciprocal(), [[2.0 * PI]]);
+        let offs: Vec<i64> = c.offsets_within(2.5).iter().map(|(m, _)| m[0]).collect();
+        assert_eq!(offs, vec![-2, -1, 0, 1, 2]);
+        assert!((c.fold([1.5 * PI])[0] + 0.5 * PI).abs() < 1e-12);
+        assert_eq!(Lattice::<1>::of_kind(LatticeKind::Chain).unwrap(), c);
+        assert!(Lattice::<2>::of_kind(LatticeKind::Chain).is_err());
     }
 
     #[test]

@@ -12,9 +12,7 @@ use common::*;
 use sphstab::analysis::{Query1D, query};
 use sphstab::forms::FormKind;
 use sphstab::kernel::{self, Kernel};
-use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::classify::Kind;
-use sphstab::vonneumann::derived::{LatticeSums, classical_sum};
 
 const STRESSES: [f64; 3] = [0.001, 0.01, 0.1];
 const POINTS: usize = 256;
@@ -91,10 +89,9 @@ fn classical_follows_swegle_for_nearest_neighbour_supports_and_the_closed_form_o
                     }
                     nn += 1;
                 } else {
-                    let phi = shape_fn(ShapeFamily::Sph, k.name(), h);
                     let min_cf = grid(POINTS)
                         .iter()
-                        .map(|&q| classical_sum(LatticeSums::new(&phi, support, q), sig))
+                        .map(|&q| derived_omega2(FormKind::Classical, k.name(), h, sig, q))
                         .fold(f64::INFINITY, f64::min);
                     // Same growth tolerance as the engine: γ > 1e-6 ⇔ ω² < −1e-12.
                     let cf_unstable = min_cf < -1e-12;

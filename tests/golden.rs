@@ -13,11 +13,11 @@
 
 mod common;
 
-use common::k;
+use common::{k, material_specs};
 use serde_json::{Value, json};
 use sphstab::analysis::{Query1D, dispersion};
-use sphstab::analysis2d::{MaterialSpec, Query2D, query2d};
-use sphstab::forms::{FormKind, ObjectiveRate};
+use sphstab::analysis2d::{Query2D, query2d};
+use sphstab::forms::FormKind;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
@@ -82,23 +82,7 @@ fn bloch_2d() -> Value {
         FormKind::Cll,
         FormKind::TotalLagrangian,
     ];
-    let materials = [
-        ("hydro", MaterialSpec::Hydro),
-        (
-            "jaumann",
-            MaterialSpec::Elastic {
-                poisson: 0.3,
-                rate: ObjectiveRate::Jaumann,
-            },
-        ),
-        (
-            "truesdell",
-            MaterialSpec::Elastic {
-                poisson: 0.25,
-                rate: ObjectiveRate::Truesdell,
-            },
-        ),
-    ];
+    let materials = material_specs();
     let ks: Vec<[f64; 2]> = (1..=4)
         .flat_map(|i| {
             (0..=i).map(move |j| [PI * i as f64 / 4.0, PI * j as f64 / 4.0 - 0.1 * j as f64])

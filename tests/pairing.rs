@@ -135,7 +135,7 @@ fn wstar_of_the_wendland_kernels_is_never_negative() {
 /// The classical sum form with `sph` shapes on a hydro lattice at pre-stress σ̄ (ρ = 1 − σ̄,
 /// V = 1, K = ρ0 = 1): ρD = (ρ + 2σ̄) S1S1ᵀ − 2σ̄ S2 with S1 = Σ_R ∇W(R) sin k·R and
 /// S2 = Σ_R ∇∇W(R)(1 − cos k·R) — the derivation of analysis/ERRATA.md E1 carried to 3D
-/// (src/vonneumann/derived2d.rs gives it in 2D). Lattice sums written here from the kernel alone,
+/// (src/vonneumann/derived.rs gives it for D = 1, 2, 3). Lattice sums written here from the kernel alone,
 /// independent of the rate function and its linearisation.
 fn closed_form_d(
     k: &'static dyn Kernel,

@@ -10,7 +10,6 @@ use sphstab::forms::FormKind;
 use sphstab::kernel;
 use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::closed_form as cf;
-use sphstab::vonneumann::derived::{self, LatticeSums};
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
@@ -40,12 +39,12 @@ proptest! {
         let num = l.omega2(kap).0;
         prop_assert!(num.is_finite());
         prop_assert!(l.growth(kap).unwrap().is_finite());
-        let phi = shape_fn(if form == FormKind::Local { ShapeFamily::Sph } else { shape }, k.name(), h);
+        let phi = shape_fn(shape, k.name(), h);
         let closed = |q: f64| -> f64 {
             match form {
-                FormKind::Classical => derived::classical_sum(LatticeSums::new(&phi, r, q), sig),
-                FormKind::Nonlocal => derived::nonlocal_difference(LatticeSums::new(&phi, r, q), sig),
-                FormKind::Local => derived::local_corrected(LatticeSums::new(&phi, r, q), sig),
+                FormKind::Classical | FormKind::Nonlocal | FormKind::Local => {
+                    derived_omega2(form, k.name(), h, sig, q)
+                }
                 FormKind::TotalLagrangian => cf::b00_eq82_lagrangian_nodal(&phi, r, sig, q),
                 FormKind::LagrangianStressPoints => cf::b00_eq103_lagrangian_stress_points(&phi, r, sig, q),
                 _ => cf::b00_eq74_eulerian_nodal(&phi, r, sig, q),

@@ -6,8 +6,7 @@ use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::vonneumann::derived::{LatticeSums, classical_sum};
-use sphstab::vonneumann::derived2d::{rho_d, sums};
+use sphstab::vonneumann::derived::{Sums, omega2_1d, rho_d, sums};
 use sphstab::vonneumann::linearise2d::{Linearisation2D, base_state};
 use std::f64::consts::PI;
 
@@ -59,7 +58,7 @@ fn kgrid(lat: &Lattice2D, n: usize) -> Vec<[f64; 2]> {
     out
 }
 
-/// Closed-form D(k) (src/vonneumann/derived2d.rs) vs the engine's D(k) to 1e-8 relative, on
+/// Closed-form D(k) (src/vonneumann/derived.rs) vs the engine's D(k) to 1e-8 relative, on
 /// square and hexagonal lattices, three materials, tension and compression.
 #[test]
 fn derived_dynamical_matrices_agree_with_engine() {
@@ -170,7 +169,7 @@ fn swegle_lattice_classical_unstable_in_tension_nonlocal_and_tl_not() {
 }
 
 /// Reduction to 1D: for k = (κ, 0) the longitudinal branch of the 2D classical form (Truesdell
-/// elastic, the 1D law) is the 1D relation ω² = C̃S1² − 2σ̄(S2 − S1²) of `derived::classical_sum`,
+/// elastic, the 1D law) is the 1D relation ω² = C̃S1² − 2σ̄(S2 − S1²) of `derived::omega2_1d`,
 /// evaluated with the column sums of the 2D lattice shape (the 2D kernel summed over each
 /// lattice column: φ₁(x) = Σ_y φ(x, y)). Checked to 1e-8.
 #[test]
@@ -185,14 +184,12 @@ fn along_an_axis_the_2d_classical_form_reduces_to_the_1d_relation() {
                 let kap = PI * i as f64 / 16.0;
                 let sm = sums(&lat, ShapeFamily::Sph, p.kp, [kap, 0.0]).unwrap();
                 // column sums: S1x(κ) and S2xx(κ) are exactly the 1D sums of φ₁
-                let one_d = classical_sum(
-                    LatticeSums {
-                        s1: sm.s1[0],
-                        s2: sm.s2[0][0],
-                        m1: sm.m1[0][0],
-                    },
-                    sb,
-                );
+                let col = Sums::<1> {
+                    s1: [sm.s1[0]],
+                    s2: [[sm.s2[0][0]]],
+                    m1: [[sm.m1[0][0]]],
+                };
+                let one_d = omega2_1d(FormKind::Classical, &col, sb, 0.5).unwrap();
                 let d = lin.dynamical([kap, 0.0]);
                 assert!(d[0][1].norm() < 1e-12, "mixing at κ={kap}");
                 assert!(

@@ -1,7 +1,7 @@
 //! 3D Bloch analysis on the sc, bcc and fcc lattices: the engine ([`Linearisation3D`], the rate
 //! function linearised exactly with dual numbers on a periodic patch) against sources that do
 //! not share its code:
-//! - the hand-derived closed-form dynamical matrices of `vonneumann::derived2d` (generic over
+//! - the hand-derived closed-form dynamical matrices of `vonneumann::derived` (generic over
 //!   D; lattice sums of the kernel, no rate function);
 //! - the 1D and 2D engines along a lattice axis of sc, with the 3D kernel summed over lattice
 //!   planes / lines (a different patch, neighbour search and dimension of every sum);
@@ -13,6 +13,9 @@
 // Small-tensor algebra (3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
+use common::{k, material_specs};
 use num_complex::Complex64;
 use sphstab::analysis::Query1D;
 use sphstab::analysis2d::{MaterialSpec, Query3D, continuum_moduli};
@@ -21,17 +24,13 @@ use sphstab::kernel::{self, Kernel};
 use sphstab::lattice::{Lattice2D, Lattice3D};
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::vonneumann::derived2d::{rho_d, sums};
+use sphstab::vonneumann::derived::{rho_d, sums};
 use sphstab::vonneumann::linearise2d::{Bloch, Linearisation3D, base_state};
 use std::f64::consts::PI;
 
 /// Engine vs closed form: worst |difference| over the wave vectors of a configuration, relative
 /// to the largest |entry| of the closed-form matrix over the same wave vectors.
 const CF_TOL: f64 = 1e-10;
-
-fn k(name: &str) -> &'static dyn Kernel {
-    kernel::by_name(name).unwrap()
-}
 
 fn params(
     form: FormKind,
@@ -52,27 +51,6 @@ fn params(
     }
 }
 
-/// Hydro (K = 1), elastic Jaumann (C = 1, ν = 0.3), elastic Truesdell (C = 1, ν = 0.25).
-fn specs() -> [(&'static str, MaterialSpec); 3] {
-    [
-        ("hydro", MaterialSpec::Hydro),
-        (
-            "jaumann",
-            MaterialSpec::Elastic {
-                poisson: 0.3,
-                rate: ObjectiveRate::Jaumann,
-            },
-        ),
-        (
-            "truesdell",
-            MaterialSpec::Elastic {
-                poisson: 0.25,
-                rate: ObjectiveRate::Truesdell,
-            },
-        ),
-    ]
-}
-
 /// A 3D query (m4, h = 1.2 unless changed) on `lat` with material `spec`.
 fn query(
     form: FormKind,
@@ -90,7 +68,7 @@ fn query(
 
 /// [`specs`] as materials of the particle model.
 fn materials() -> [(&'static str, Material); 3] {
-    specs().map(|(name, spec)| {
+    material_specs().map(|(name, spec)| {
         let q = query(
             FormKind::Classical,
             ShapeFamily::Sph,
@@ -145,7 +123,7 @@ fn sum_shape(form: FormKind, shape: ShapeFamily) -> ShapeFamily {
     }
 }
 
-/// Closed-form normalised D(k) = ρD/(ρ C) of `derived2d` for the configuration of `p`.
+/// Closed-form normalised D(k) = ρD/(ρ C) of `derived` for the configuration of `p`.
 fn closed_form(p: &ModelParams2D, lat: &Lattice3D, sigma_bar: f64, kv: [f64; 3]) -> [[f64; 3]; 3] {
     let (rho, s) = base_state(&p.material, 1.0, sigma_bar).unwrap();
     let sm = sums(lat, sum_shape(p.form, p.shape), p.kp, kv).unwrap();
@@ -194,7 +172,7 @@ const FORMS: [(FormKind, ShapeFamily); 4] = [
     (FormKind::TotalLagrangian, ShapeFamily::Sph),
 ];
 
-/// (a) Engine vs the closed forms of `derived2d` (ρD = (λ'+G'+2s)S1S1ᵀ + G'|S1|²I − 2sS2 etc.,
+/// (a) Engine vs the closed forms of `derived` (ρD = (λ'+G'+2s)S1S1ᵀ + G'|S1|²I − 2sS2 etc.,
 /// evaluated from lattice sums of the kernel alone) for sc/bcc/fcc × classical, nonlocal,
 /// local (corrected), total-Lagrangian (sph) × hydro, Jaumann, Truesdell at σ̄ ∈ {±0.01, 0.3}
 /// with m4 (h = 1.2), and with wendland-c2 (h = 1.5, support 3Δx) for Truesdell at σ̄ = 0.3, at
@@ -427,7 +405,7 @@ fn directions() -> [[f64; 3]; 3] {
 /// (c) κ → 0: the branches tend to the continuum, ω²/|k|² → (S, S, P) of `continuum_moduli`
 /// (Jaumann: P = 1, S = G; Truesdell: P = 1 + σ̄, S = G + σ̄; hydro: P = 1, S = 0), exactly
 /// for shapes with a first-order consistent gradient: then M1 = I (Σ_J ∇φ_J ⊗ x_J = I) and the
-/// gradient symbol is k + O(|k|³) (closed forms of `derived2d`; `local` has no kernel-variation
+/// gradient symbol is k + O(|k|³) (closed forms of `derived`; `local` has no kernel-variation
 /// term). Tested at |k| = 1e-5 (the O(|k|²) remainder is ~1e-10) to 1e-8 for local/corrected and
 /// total-Lagrangian/mls on sc, bcc, fcc × three materials, σ̄ = 0.3, three directions, and for
 /// local/mls and total-Lagrangian/corrected on sc. The `sph` forms (classical, nonlocal,
@@ -452,7 +430,7 @@ fn long_wave_limit_is_the_continuum_for_consistent_gradients() {
     ));
     let mut worst: f64 = 0.0;
     for (form, shape, lname, lat) in cases {
-        for (mname, spec) in specs() {
+        for (mname, spec) in material_specs() {
             let q = query(form, shape, lat, spec, sb);
             let cont = continuum_moduli(&q).unwrap();
             let lin = q.linearise_at(sb).unwrap();
@@ -473,7 +451,7 @@ fn long_wave_limit_is_the_continuum_for_consistent_gradients() {
             (FormKind::Nonlocal, ShapeFamily::Sph),
             (FormKind::TotalLagrangian, ShapeFamily::Sph),
         ] {
-            let (_, spec) = specs()[2];
+            let (_, spec) = material_specs()[2];
             let q = query(form, shape, lat, spec, sb);
             let cont = continuum_moduli(&q).unwrap();
             let lin = q.linearise_at(sb).unwrap();

@@ -6,7 +6,6 @@ pub mod antiplane;
 pub mod classify;
 pub mod closed_form;
 pub mod derived;
-pub mod derived2d;
 pub mod linearise;
 pub mod linearise2d;
 pub mod timestep_bounds;

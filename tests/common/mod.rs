@@ -3,9 +3,12 @@
 
 pub mod exact;
 
-use sphstab::forms::{FormKind, ModelParams};
+use sphstab::analysis2d::MaterialSpec;
+use sphstab::forms::{FormKind, ModelParams, ObjectiveRate};
 use sphstab::kernel::{self, Kernel};
+use sphstab::lattice::Lattice;
 use sphstab::shape::{KernelParams, ShapeFamily, lattice_shape};
+use sphstab::vonneumann::derived::{Sums, omega2_1d, sums};
 use sphstab::vonneumann::linearise::{Lattice1D, Linearisation};
 use std::f64::consts::PI;
 
@@ -65,6 +68,40 @@ pub fn max_omega2(l: &Linearisation, n: usize) -> (f64, f64) {
 pub fn shape_fn(fam: ShapeFamily, kern: &str, h: f64) -> impl Fn(f64) -> [f64; 3] {
     let kp = KernelParams { kernel: k(kern), h };
     move |x| lattice_shape(fam, kp, x).unwrap()
+}
+
+/// The 1D chain sums S1, S2, M1 of the `sph` lattice shape (kernel `kern`, h), at κ.
+pub fn chain_sums(kern: &str, h: f64, kappa: f64) -> Sums<1> {
+    let kp = KernelParams { kernel: k(kern), h };
+    sums(&Lattice::chain(), ShapeFamily::Sph, kp, [kappa]).unwrap()
+}
+
+/// The derived 1D closed-form ω² of `form` (`vonneumann::derived::omega2_1d`, D = 1, sph chain
+/// sums, partition c = 0.5 as in [`params`]).
+pub fn derived_omega2(form: FormKind, kern: &str, h: f64, sigma_bar: f64, kappa: f64) -> f64 {
+    omega2_1d(form, &chain_sums(kern, h, kappa), sigma_bar, 0.5).unwrap()
+}
+
+/// The materials of the 2D and 3D Bloch checks: hydro (K = 1), elastic Jaumann (C = 1,
+/// ν = 0.3), elastic Truesdell (C = 1, ν = 0.25), with their names.
+pub fn material_specs() -> [(&'static str, MaterialSpec); 3] {
+    [
+        ("hydro", MaterialSpec::Hydro),
+        (
+            "jaumann",
+            MaterialSpec::Elastic {
+                poisson: 0.3,
+                rate: ObjectiveRate::Jaumann,
+            },
+        ),
+        (
+            "truesdell",
+            MaterialSpec::Elastic {
+                poisson: 0.25,
+                rate: ObjectiveRate::Truesdell,
+            },
+        ),
+    ]
 }
 
 /// Runs the built `sphstab` binary: (exit code, stdout, stderr).
