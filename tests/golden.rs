@@ -15,8 +15,8 @@ mod common;
 
 use common::k;
 use serde_json::{Value, json};
+use sphstab::analysis::{MaterialSpec, Query2D, query2d};
 use sphstab::analysis::{Query1D, dispersion};
-use sphstab::analysis2d::{MaterialSpec, Query2D, query2d};
 use sphstab::forms::{FormKind, ObjectiveRate};
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;

@@ -1,10 +1,10 @@
 //! Fully discrete analysis: the leapfrog step of [`crate::integrator::kdk_step`] applied to
 //! one Fourier mode of the linearised system gives the amplification matrix G(κ, Δt);
-//! its spectral radius decides time-step stability.
+//! its spectral radius decides time-step stability. The critical-Δt search is one generic code
+//! path ([`Modes`]) for the 1D chain (modes κΔx) and the D-dimensional lattice (wave vectors k).
 
-use super::linearise::{Linearisation, eigen};
+use super::linearise::eigen;
 use crate::error::Result;
-use crate::forms::FieldKind;
 use crate::integrator::{Scratch, SecondOrderSystem, kdk_step};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -80,63 +80,79 @@ impl SecondOrderSystem<Complex64> for ModeSystem {
     }
 }
 
-/// Amplification matrix G(κ, Δt) of one leapfrog step; `dt` in Δx/c.
-pub fn amplification_matrix(lin: &Linearisation, kappa: f64, dt: f64) -> DMatrix<Complex64> {
-    let (dx, c) = lin.units();
-    let dofs = &lin.dofs;
-    let ix: Vec<usize> = (0..dofs.len())
-        .filter(|&k| dofs[k].field.kind() == FieldKind::Position)
-        .collect();
-    let iv: Vec<usize> = (0..dofs.len())
-        .filter(|&k| dofs[k].field.kind() == FieldKind::Velocity)
-        .collect();
-    let iq: Vec<usize> = (0..dofs.len())
-        .filter(|&k| dofs[k].field.kind() == FieldKind::Auxiliary)
-        .collect();
-    ModeSystem::new(lin.jacobian(kappa), ix, iv, iq).amplification(dt * dx / c)
+/// What the fully discrete analysis needs of a linearisation whose modes are indexed by `K`:
+/// κΔx for the 1D chain ([`super::linearise::Linearisation`]), the wave vector for
+/// [`super::linearise::Bloch`].
+pub trait Modes {
+    /// Mode index.
+    type K: Copy;
+    /// Whether velocities enter the accelerations (artificial viscosity).
+    fn is_dissipative(&self) -> bool;
+    /// Largest Re ω²Δx²/c² of the mechanical branches at k.
+    fn omega2_top(&self, k: Self::K) -> f64;
+    /// Amplification matrix G(k, Δt) of one leapfrog step; `dt` in Δx/c.
+    fn amplification(&self, k: Self::K, dt: f64) -> DMatrix<Complex64>;
 }
 
-/// Spectral radius of G(κ, Δt).
-pub fn spectral_radius(lin: &Linearisation, kappa: f64, dt: f64) -> Result<f64> {
-    let ev = eigen(amplification_matrix(lin, kappa, dt))?;
+/// Amplification matrix G(k, Δt) of one leapfrog step; `dt` in Δx/c.
+pub fn amplification_matrix<L: Modes>(lin: &L, k: L::K, dt: f64) -> DMatrix<Complex64> {
+    lin.amplification(k, dt)
+}
+
+/// Spectral radius of G(k, Δt).
+pub fn spectral_radius<L: Modes>(lin: &L, k: L::K, dt: f64) -> Result<f64> {
+    let ev = eigen(lin.amplification(k, dt))?;
     Ok(ev.iter().map(|l| l.norm()).fold(0.0, f64::max))
 }
 
-/// Largest spectral radius over the κ grid.
-pub fn max_spectral_radius(lin: &Linearisation, kappas: &[f64], dt: f64) -> Result<(f64, f64)> {
-    let mut best = (0.0, 0.0);
-    for &k in kappas {
-        let r = spectral_radius(lin, k, dt)?;
-        if r > best.0 {
-            best = (r, k);
-        }
-    }
-    Ok(best)
+/// Spectral radius of G(k, Δt) at every mode of `ks`.
+pub fn spectral_radii<L: Modes>(lin: &L, ks: &[L::K], dt: f64) -> Result<Vec<f64>> {
+    ks.iter().map(|&k| spectral_radius(lin, k, dt)).collect()
 }
 
-/// Critical time step (Δx/c). Non-dissipative systems: the leapfrog limit 2/ω_max
-/// (\[B00\] eq 120 with ξ = 0; tests check it against the amplification matrices). Dissipative
-/// systems: the largest Δt with max_κ |λ| ≤ 1 + tol, by bisection.
-pub fn critical_dt(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
-    if !lin.is_dissipative() {
-        let wmax = kappas
-            .iter()
-            .map(|&k| lin.omega2(k).0)
-            .fold(0.0, f64::max)
-            .sqrt();
-        return Ok(if wmax > 0.0 {
-            2.0 / wmax
-        } else {
-            f64::INFINITY
-        });
+/// The leapfrog limit 2/ω_max (\[B00\] eq 120 with ξ = 0) for the largest ω² (normalised);
+/// infinite when ω_max = 0.
+pub fn leapfrog_limit(omega2_max: f64) -> f64 {
+    let wmax = omega2_max.sqrt();
+    if wmax > 0.0 {
+        2.0 / wmax
+    } else {
+        f64::INFINITY
     }
-    critical_dt_bisection(lin, kappas)
 }
 
-/// Critical time step by bisection on the spectral radius of the amplification matrices.
-pub fn critical_dt_bisection(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
+/// Critical time step (Δx/c) over the modes `ks`. Non-dissipative systems: the leapfrog limit
+/// 2/ω_max ([`leapfrog_limit`]; tests check it against the amplification matrices). Dissipative
+/// systems: the largest Δt with max_k |λ| ≤ 1 + tol, by bisection.
+pub fn critical_dt<L: Modes>(lin: &L, ks: &[L::K]) -> Result<f64> {
+    let w2 = if lin.is_dissipative() {
+        0.0
+    } else {
+        ks.iter().map(|&k| lin.omega2_top(k)).fold(0.0, f64::max)
+    };
+    critical_dt_given(lin, ks, w2)
+}
+
+/// [`critical_dt`] when the largest ω² over `ks` is already known (`omega2_max`, unused for
+/// dissipative systems).
+pub fn critical_dt_given<L: Modes>(lin: &L, ks: &[L::K], omega2_max: f64) -> Result<f64> {
+    if lin.is_dissipative() {
+        critical_dt_bisection(lin, ks)
+    } else {
+        Ok(leapfrog_limit(omega2_max))
+    }
+}
+
+/// Critical time step by bisection on the spectral radius of the amplification matrices: Δt is
+/// stable when |λ| ≤ 1 + [`AMPLIFICATION_TOL`] at every mode of `ks`.
+pub fn critical_dt_bisection<L: Modes>(lin: &L, ks: &[L::K]) -> Result<f64> {
     let stable = |dt: f64| -> Result<bool> {
-        Ok(max_spectral_radius(lin, kappas, dt)?.0 <= 1.0 + AMPLIFICATION_TOL)
+        for &k in ks {
+            if spectral_radius(lin, k, dt)? > 1.0 + AMPLIFICATION_TOL {
+                return Ok(false);
+            }
+        }
+        Ok(true)
     };
     let mut lo = 0.0;
     let mut hi = 1.0;

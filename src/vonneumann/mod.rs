@@ -8,6 +8,8 @@ pub mod closed_form;
 pub mod derived;
 pub mod derived2d;
 pub mod linearise;
-pub mod linearise2d;
 pub mod timestep_bounds;
 pub mod transform;
+
+/// The former path of [`linearise::bloch`] (kept for callers not yet moved).
+pub use linearise::bloch as linearise2d;
