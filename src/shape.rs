@@ -6,7 +6,7 @@
 //! systems) and volumes `V_J`; the result is `φ_J(x)` and `∇φ_J(x)` (nodes held fixed). Every
 //! routine is generic over [`Scalar`] so that the von Neumann engine can differentiate through
 //! it exactly (moment matrices included). [`eval`] is a thin 1D wrapper with scalar (rather
-//! than 1-array) positions, for the 1D-only [B00] forms.
+//! than 1-array) positions, for the 1D-only \[B00\] forms.
 //!
 //! | family | definition | reference |
 //! |---|---|---|

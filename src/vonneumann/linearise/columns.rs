@@ -2,7 +2,8 @@
 //! about its rest state (dual numbers), their Bloch projection, the rest-structure check, the
 //! mechanical reduction and the leapfrog amplification matrix of one mode. The 1D chain
 //! ([`super::Linearisation`]) and the D-dimensional lattice ([`super::Bloch`]) are front ends that
-//! say how their periodic system is built ([`Linearisable`]) and what a phase k·r is.
+//! say how their periodic system is built (the crate-internal `Linearisable` trait) and what a
+//! phase k·r is.
 //!
 //! A perturbation of one degree of freedom b of cell 0 gives, through one evaluation of the rate
 //! function, the column `A_ab(i) = ∂ż_{a,i}/∂z_{b,0}` for every cell i. The per-mode Jacobian block
