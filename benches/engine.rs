@@ -3,8 +3,8 @@
 //! block of `sphstab throughput` (its defaults). `cargo bench` runs them.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use sphstab::analysis::{MaterialSpec, Query2D, growth_map};
 use sphstab::analysis::{Query1D, dispersion};
-use sphstab::analysis2d::{MaterialSpec, Query2D, growth_map};
 use sphstab::atlas::AtlasConfig;
 use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D};
 use sphstab::kernel;
@@ -41,7 +41,7 @@ fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("slow");
     g.sample_size(10);
     g.bench_function("growth map 2D, 128x128 (classical m4 hydro)", |b| {
-        b.iter(|| growth_map(&q2, 128, sphstab::analysis2d::Plane::Xy).unwrap())
+        b.iter(|| growth_map(&q2, 128, sphstab::analysis::Plane::Xy).unwrap())
     });
 
     let p = ModelParams2D {

@@ -189,7 +189,7 @@ impl Integrator {
     /// The largest ωΔt for which the scheme is stable on the undamped oscillator x'' = −ω²x
     /// (eigenvalues ±iω on the imaginary axis), from its stability polynomial; `None` where no
     /// Δt > 0 is stable (weakly unstable schemes) or where the limit has no closed form here
-    /// (`pec`, `verlet-euler`: found numerically). For `kdk` this is [B00] eq 120 with ξ = 0.
+    /// (`pec`, `verlet-euler`: found numerically). For `kdk` this is \[B00\] eq 120 with ξ = 0.
     pub fn imaginary_axis_limit(self) -> Option<f64> {
         match self {
             Self::Kdk

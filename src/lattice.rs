@@ -430,6 +430,18 @@ impl<const D: usize> Lattice<D> {
     }
 }
 
+/// The D indices (each in 0..n, the last running fastest) of entry `idx` of an n^D grid: the
+/// one enumeration of the periodic patch, the sampled zone and the standing modes of a box.
+pub fn grid_index<const D: usize>(idx: usize, n: usize) -> [usize; D] {
+    let mut c = [0usize; D];
+    let mut rest = idx;
+    for a in (0..D).rev() {
+        c[a] = rest % n;
+        rest /= n;
+    }
+    c
+}
+
 /// Determinant of a D × D matrix, D ≤ 3.
 pub fn det<const D: usize>(m: &[[f64; D]; D]) -> f64 {
     match D {

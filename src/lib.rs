@@ -8,7 +8,8 @@
 //! ## The architecture rule
 //! Each form is defined once, as the rate function of its semi-discrete particle system
 //! ([`forms::Model1D::rate`]). A solver integrates it with [`integrator::kdk_step`]; the numeric
-//! von Neumann engine ([`vonneumann::linearise::Linearisation`]) linearises *the same function*
+//! von Neumann engine ([`vonneumann::linearise`]: the 1D chain and the D-dimensional
+//! [`vonneumann::linearise::Bloch`] front ends of one core) linearises *the same function*
 //! exactly (forward-mode [`scalar::Dual`] numbers) about the uniformly pre-stressed periodic
 //! lattice and projects it onto Fourier modes; the amplification matrix is the same leapfrog
 //! step applied to one mode ([`vonneumann::amplification`]). The papers' closed forms
@@ -37,7 +38,7 @@
 //! | [`forms`] | the rate functions (2D: allocation-free evaluation with [`forms::RateWorkspace`]) |
 //! | [`integrator`] | kick–drift–kick leapfrog |
 //! | [`vonneumann`] | linearisation, amplification, classification, closed forms, kernel transforms |
-//! | [`analysis`] | `query`, `dispersion`, `timestep` |
+//! | [`analysis`] | `query`, `dispersion`, `timestep`, maps, box prediction (1D chain, 2D/3D zone) |
 //! | [`solver`] | the reference solver (1D, 2D), the Swegle test, [`solver::throughput`] |
 //! | [`pairing`] | the 3D pairing study: growth under pressure vs neighbour number, kernel W* sign |
 //! | [`tradeoff`], [`study`] | the speed/accuracy trade-off study; config and report plumbing of the `analysis/` studies |
@@ -47,7 +48,6 @@
 //! \[B98] Belytschko, Krongauz, Dolbow, Gerlach 1998; [T\] thesis on total-Lagrangian SPH.
 
 pub mod analysis;
-pub mod analysis2d;
 pub mod atlas;
 pub mod budget;
 pub mod error;

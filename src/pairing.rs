@@ -24,14 +24,14 @@ pub mod wstar;
 
 pub use report::{figure_svg, figure_title, table};
 
-use crate::analysis2d::{MaterialSpec, Query, max_grid};
+use crate::analysis::{MaterialSpec, Query, max_grid};
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel::{self, Kernel};
 use crate::lattice::Lattice3D;
 use crate::shape::ShapeFamily;
 use crate::vonneumann::classify::GROWTH_TOL;
-use crate::vonneumann::linearise2d::Bloch;
+use crate::vonneumann::linearise::Bloch;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -96,7 +96,7 @@ fn default_stresses() -> Vec<f64> {
     vec![-0.01, -0.1]
 }
 fn default_grid() -> usize {
-    crate::analysis2d::default_grid(3)
+    crate::analysis::default_grid(3)
 }
 
 impl Default for PairingConfig {
@@ -257,7 +257,7 @@ pub fn plan(cfg: &PairingConfig) -> Result<Plan> {
             false,
         )?;
     }
-    crate::analysis2d::check_count("--grid", cfg.grid, 2, max_grid(3))?;
+    crate::analysis::check_count("--grid", cfg.grid, 2, max_grid(3))?;
     let plan = Plan {
         kernels,
         lattices,

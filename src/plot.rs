@@ -145,7 +145,7 @@ pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
             dashed: true,
         },
         Curve {
-            label: format!("{} (numeric engine)", r.header.form),
+            label: format!("{} (numeric engine)", r.header.setup.form),
             x: xs,
             y: r.omega2.clone(),
             dashed: false,

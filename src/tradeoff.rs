@@ -18,14 +18,14 @@
 //! MLS support that does not cover enough neighbours) is reported with its error, not dropped.
 
 use crate::analysis::Query1D;
-use crate::analysis2d::{MaterialSpec, Query2D, critical_dt_2d};
+use crate::analysis::{MaterialSpec, Query2D};
 use crate::error::{Error, Result};
 use crate::forms::{FormKind, Model1D, Model2D};
 use crate::kernel::{self, Kernel};
 use crate::lattice::Lattice2D;
 use crate::solver::throughput::MemoryProbe;
 use crate::solver::{BoundaryDensity, Run1D, Run2D};
-use crate::vonneumann::amplification::critical_dt;
+use crate::vonneumann::amplification::{critical_dt, critical_dt_bisection};
 use crate::vonneumann::classify::GROWTH_TOL;
 use crate::vonneumann::linearise::Linearisation;
 use rayon::prelude::*;
@@ -349,7 +349,7 @@ fn analyse(dim: u8, form: FormKind, k: &'static dyn Kernel, h: f64, row: &mut Ro
         row.critical_dt = if g0 {
             None
         } else {
-            Some(critical_dt_2d(&lin0, &ks)?)
+            Some(critical_dt_bisection(&lin0, &ks)?)
         };
         row.max_stable_tension = Some(if g0 { 0.0 } else { max_stable(0.95, grows)? });
         row.stable_in_compression = Some(!grows(-0.01)?);

@@ -135,7 +135,7 @@ fn two_d_results_are_scale_free() {
     use sphstab::forms::{Material2D, ModelParams2D};
     use sphstab::lattice::Lattice2D;
     use sphstab::shape::KernelParams;
-    use sphstab::vonneumann::linearise2d::Linearisation2D;
+    use sphstab::vonneumann::linearise::Linearisation2D;
     let lat = Lattice2D::square(1.0).unwrap();
     let mk = |dx: f64| {
         let p = ModelParams2D {

@@ -16,7 +16,7 @@ mod common;
 use common::{k, material_specs};
 use serde_json::{Value, json};
 use sphstab::analysis::{Query1D, dispersion};
-use sphstab::analysis2d::{Query2D, query2d};
+use sphstab::analysis::{Query2D, query2d};
 use sphstab::forms::FormKind;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;

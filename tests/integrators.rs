@@ -321,40 +321,4 @@ fn cli_names_are_the_documented_ones() {
     }
 }
 
-#[test]
-#[ignore = "exploration"]
-fn explore_step_stability() {
-    use sphstab::forms::{ArtificialViscosity, FormKind};
-    use sphstab::shape::ShapeFamily;
-    use sphstab::vonneumann::amplification::{spurious_growth_rate, step_stability};
-    use sphstab::vonneumann::linearise::{Lattice1D, Linearisation};
-    mod_common_free();
-    for (form, shape, sig, av) in [
-        (FormKind::Classical, ShapeFamily::Sph, -0.05, None),
-        (FormKind::Nonlocal, ShapeFamily::Sph, 0.0, None),
-        (FormKind::TotalLagrangian, ShapeFamily::Mls, 0.0, None),
-        (FormKind::Classical, ShapeFamily::Sph, -0.05, Some(1.0)),
-    ] {
-        let mut p = common::params(form, "m4", shape, 1.3, sig);
-        p.av = av.map(|alpha| ArtificialViscosity {
-            alpha,
-            beta: 0.0,
-            sound_speed: 1.0,
-            approaching_only: false,
-        });
-        let l = Linearisation::new(p, Lattice1D::default()).unwrap();
-        let ks = common::grid(256);
-        for integ in Integrator::all(40) {
-            let s = step_stability(&l, &ks, integ).unwrap();
-            let sp = spurious_growth_rate(&l, &ks, integ, 0.5).unwrap();
-            eprintln!(
-                "{form:?} σ̄={sig} av={av:?} {integ}: ω_max {:.4} critical {:?} closed {:?} spurious(0.5) {:.3e} at κ {:.3}",
-                s.omega_max, s.critical_dt, s.closed_form_dt, sp.0, sp.1
-            );
-        }
-    }
-}
-
-fn mod_common_free() {}
-
 mod common;

@@ -8,7 +8,7 @@ use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::solver::swegle::{SwegleConfig, run_swegle};
 use sphstab::solver::{BoundaryDensity, Run2D};
-use sphstab::vonneumann::linearise2d::{Linearisation2D, base_state};
+use sphstab::vonneumann::linearise::{Linearisation2D, base_state};
 use std::f64::consts::PI;
 
 /// Classical m4, h = 1.2, f = 0.99: measured growth over the infinite-lattice rate rises with

@@ -17,7 +17,7 @@ use sphstab::solver::swegle::{
 };
 use sphstab::solver::{BoundaryDensity, Run3D};
 use sphstab::vonneumann::classify::GROWTH_TOL;
-use sphstab::vonneumann::linearise2d::base_state;
+use sphstab::vonneumann::linearise::base_state;
 
 /// A 9³ box (3³ free particles: 81 free degrees of freedom, dense operator), m4 h = 1.2Δx,
 /// density ratio 0.9 (σ̄ = 0.1 tension), run to `t_end` (t = 1 ≈ 4.95 Δx/c).

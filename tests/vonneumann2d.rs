@@ -7,7 +7,7 @@ use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::derived::{Sums, omega2_1d, rho_d, sums};
-use sphstab::vonneumann::linearise2d::{Linearisation2D, base_state};
+use sphstab::vonneumann::linearise::{Linearisation2D, base_state};
 use std::f64::consts::PI;
 
 fn params(
@@ -207,7 +207,7 @@ fn along_an_axis_the_2d_classical_form_reduces_to_the_1d_relation() {
 /// infinite-lattice maximum and converges to it as the box grows (21 → 41 → 81).
 #[test]
 fn finite_box_prediction_converges_to_the_infinite_lattice() {
-    use sphstab::analysis2d::box_prediction;
+    use sphstab::analysis::box_prediction;
     let lat = Lattice2D::square(1.0).unwrap();
     let hydro = Material2D::Hydro { bulk: 1.0 };
     let lin = Linearisation2D::new(
@@ -281,7 +281,7 @@ fn neo_hookean_linearises_to_hooke() {
 /// material the extra repulsion cannot stabilise it — and growth rises again (0.167 at ε = 0.3).
 #[test]
 fn artificial_stress_trades_longitudinal_for_transverse_growth() {
-    use sphstab::analysis2d::{MaterialSpec, Query2D, query2d};
+    use sphstab::analysis::{MaterialSpec, Query2D, query2d};
     let mut rates = Vec::new();
     for eps in [0.0, 0.1, 0.2, 0.3] {
         let mut q = Query2D::new(

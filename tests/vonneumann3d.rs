@@ -5,7 +5,7 @@
 //!   D; lattice sums of the kernel, no rate function);
 //! - the 1D and 2D engines along a lattice axis of sc, with the 3D kernel summed over lattice
 //!   planes / lines (a different patch, neighbour search and dimension of every sum);
-//! - the continuum wave speeds of `analysis2d::continuum_moduli` as κ → 0, and invariances
+//! - the continuum wave speeds of `analysis::continuum_moduli` as κ → 0, and invariances
 //!   (Δx scaling, extreme stress and h/Δx).
 //!
 //! Units: Δx = (volume per particle)^⅓ = 1, ρ0 = 1, C = 1; normalised D = ω²Δx²/c².
@@ -18,14 +18,14 @@ mod common;
 use common::{k, material_specs};
 use num_complex::Complex64;
 use sphstab::analysis::Query1D;
-use sphstab::analysis2d::{MaterialSpec, Query3D, continuum_moduli};
+use sphstab::analysis::{MaterialSpec, Query3D, continuum_moduli};
 use sphstab::forms::{FormKind, Material, ModelParams2D, ObjectiveRate};
 use sphstab::kernel::{self, Kernel};
 use sphstab::lattice::{Lattice2D, Lattice3D};
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::derived::{rho_d, sums};
-use sphstab::vonneumann::linearise2d::{Bloch, Linearisation3D, base_state};
+use sphstab::vonneumann::linearise::{Bloch, Linearisation3D, base_state};
 use std::f64::consts::PI;
 
 /// Engine vs closed form: worst |difference| over the wave vectors of a configuration, relative
@@ -614,7 +614,7 @@ fn smoothing_length_extremes_work() {
 /// bcc. The regression of a defect: at P = (1, 1, 1)π/2^⅓ D is triply degenerate by symmetry
 /// (≈ 3.985e-7 I, equal to the closed form) with rounding noise ~1e-19 in its off-diagonal and
 /// imaginary parts; that failed the old purely relative Hermitian test of
-/// `linearise2d::branches3`, the complex-Schur route of D/‖D‖ (≈ I + 1e-12 noise) did not
+/// `linearise::branches3`, the complex-Schur route of D/‖D‖ (≈ I + 1e-12 noise) did not
 /// converge and all three ω² came back NaN, which `query --dim 3` dropped silently (now also an
 /// error there).
 #[test]

@@ -304,13 +304,8 @@ impl<const D: usize> Run<D> {
             lens,
             ws: RefCell::new(&mut self.bufs.ws),
         };
-        self.stepper.step(
-            &sys,
-            z.x.as_flattened_mut(),
-            z.v.as_flattened_mut(),
-            q,
-            dt,
-        );
+        self.stepper
+            .step(&sys, z.x.as_flattened_mut(), z.v.as_flattened_mut(), q, dt);
         let (rho, sigma, tau) = split_aux(q, lens);
         if self.layout.rho {
             z.rho.copy_from_slice(rho);

@@ -10,14 +10,14 @@
 use super::box_operator::{MAX_DENSE_DOFS, box_growth};
 use super::diagnostics::{GrowthFit, growth_fit};
 use super::run2d::{BoundaryDensity, Run};
-use crate::analysis2d::box_prediction;
+use crate::analysis::box_prediction;
 use crate::error::{Error, Result, check_range};
 use crate::forms::{FormKind, Material2D, Model, ModelParams2D, State, State2D, State3D};
 use crate::kernel::Kernel;
 use crate::lattice::{Lattice, LatticeKind};
 use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
-use crate::vonneumann::linearise2d::Bloch;
+use crate::vonneumann::linearise::Bloch;
 use serde::Serialize;
 use std::f64::consts::PI;
 

@@ -1,11 +1,11 @@
 //! Fully discrete analysis: the leapfrog step of [`crate::integrator::kdk_step`] applied to
 //! one Fourier mode of the linearised system gives the amplification matrix G(κ, Δt);
-//! its spectral radius decides time-step stability.
+//! its spectral radius decides time-step stability. The critical-Δt search is one generic code
+//! path ([`Modes`]) for the 1D chain (modes κΔx) and the D-dimensional lattice (wave vectors k).
 
-use super::linearise::{Linearisation, eigen};
-use crate::error::Result;
 use super::classify::GROWTH_TOL;
-use crate::forms::FieldKind;
+use super::linearise::eigen;
+use crate::error::Result;
 use crate::integrator::{Integrator, SecondOrderSystem, Stepper};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -123,229 +123,86 @@ impl SecondOrderSystem<Complex64> for ModeSystem {
     }
 }
 
-/// Amplification matrix G(κ, Δt) of one leapfrog step; `dt` in Δx/c.
-pub fn amplification_matrix(lin: &Linearisation, kappa: f64, dt: f64) -> DMatrix<Complex64> {
-    amplification_matrix_with(lin, kappa, dt, Integrator::Kdk)
-}
-
-/// Amplification matrix of one cycle of `integ` ([`ModeSystem::amplification_with`]); `dt`
-/// in Δx/c.
-pub fn amplification_matrix_with(
-    lin: &Linearisation,
-    kappa: f64,
-    dt: f64,
-    integ: Integrator,
-) -> DMatrix<Complex64> {
-    let (dx, c) = lin.units();
-    mode_system(lin, kappa).amplification_with(integ, dt * dx / c)
-}
-
-/// Growth per step of `integ`: the spectral radius of one cycle's amplification matrix to the
-/// power 1/cycle; `dt` in Δx/c.
-pub fn spectral_radius_with(
-    lin: &Linearisation,
-    kappa: f64,
-    dt: f64,
-    integ: Integrator,
-) -> Result<f64> {
-    let ev = eigen(amplification_matrix_with(lin, kappa, dt, integ))?;
-    let r = ev.iter().map(|l| l.norm()).fold(0.0, f64::max);
-    Ok(r.powf(1.0 / integ.cycle() as f64))
-}
-
-/// What an integrator does to the modes of a linearisation (units Δx/c, c/Δx).
-#[derive(Clone, Copy, Debug)]
-pub struct StepStability {
-    /// The scheme.
-    pub integrator: Integrator,
-    /// Largest |s| over the modes that do not grow in the semi-discrete system (ω_max for a
-    /// non-dissipative one), c/Δx.
-    pub omega_max: f64,
-    /// The largest Δt with growth per step ≤ 1 + [`AMPLIFICATION_TOL`] on every such mode, by
-    /// bisection; `None` when the scheme amplifies already at Δt = [`WEAK_PROBE`]/ω_max (a weak
-    /// instability), ∞ when no Δt up to 1e6 amplifies.
-    pub critical_dt: Option<f64>,
-    /// The closed form [`Integrator::imaginary_axis_limit`]/ω_max, for non-dissipative systems.
-    pub closed_form_dt: Option<f64>,
-}
-
-/// ωΔt at which a weak instability is looked for: |λ| − 1 is ≈ y²/2 there for `euler` and the
-/// lagged velocity, y⁴/8 = 1.25e-5 for RK2, far above [`AMPLIFICATION_TOL`].
-pub const WEAK_PROBE: f64 = 0.1;
-
-/// The wave numbers of `kappas` whose semi-discrete modes do not grow (growth ≤
-/// [`GROWTH_TOL`]): the time-step analysis concerns these; growing modes are spatial
-/// instabilities, reported as such.
-fn non_growing(lin: &Linearisation, kappas: &[f64]) -> Result<Vec<f64>> {
-    let mut out = Vec::with_capacity(kappas.len());
-    for &k in kappas {
-        if lin.growth(k)? <= GROWTH_TOL {
-            out.push(k);
-        }
+/// What the fully discrete analysis needs of a linearisation whose modes are indexed by `K`:
+/// κΔx for the 1D chain ([`super::linearise::Linearisation`]), the wave vector for
+/// [`super::linearise::Bloch`].
+pub trait Modes {
+    /// Mode index.
+    type K: Copy;
+    /// Whether velocities enter the accelerations (artificial viscosity).
+    fn is_dissipative(&self) -> bool;
+    /// Largest Re ω²Δx²/c² of the mechanical branches at k.
+    fn omega2_top(&self, k: Self::K) -> f64;
+    /// Amplification matrix of one cycle of `integ` at k ([`ModeSystem::amplification_with`]);
+    /// `dt` in Δx/c.
+    fn amplification_with(&self, k: Self::K, dt: f64, integ: Integrator) -> DMatrix<Complex64>;
+    /// Amplification matrix G(k, Δt) of one leapfrog step; `dt` in Δx/c.
+    fn amplification(&self, k: Self::K, dt: f64) -> DMatrix<Complex64> {
+        self.amplification_with(k, dt, Integrator::Kdk)
     }
-    Ok(out)
+    /// Eigenvalues s of the semi-discrete J(k), in c/Δx.
+    fn eigenvalues(&self, k: Self::K) -> Result<Vec<Complex64>>;
 }
 
-/// The largest growth per step of `integ` over `kappas` at `dt` (Δx/c), and where.
-pub fn max_spectral_radius_with(
-    lin: &Linearisation,
-    kappas: &[f64],
-    dt: f64,
-    integ: Integrator,
-) -> Result<(f64, f64)> {
-    let mut best = (0.0, 0.0);
-    for &k in kappas {
-        let r = spectral_radius_with(lin, k, dt, integ)?;
-        if r > best.0 {
-            best = (r, k);
-        }
-    }
-    Ok(best)
+/// Amplification matrix G(k, Δt) of one leapfrog step; `dt` in Δx/c.
+pub fn amplification_matrix<L: Modes>(lin: &L, k: L::K, dt: f64) -> DMatrix<Complex64> {
+    lin.amplification(k, dt)
 }
 
-/// The time-step stability of `integ` on the non-growing modes of `kappas` ([`StepStability`]).
-pub fn step_stability(
-    lin: &Linearisation,
-    kappas: &[f64],
-    integ: Integrator,
-) -> Result<StepStability> {
-    let ks = non_growing(lin, kappas)?;
-    let mut omega_max: f64 = 0.0;
-    for &k in &ks {
-        let m = lin.eigenvalues(k)?.iter().map(|s| s.norm()).fold(0.0, f64::max);
-        omega_max = omega_max.max(m);
-    }
-    let closed_form_dt = if lin.is_dissipative() || omega_max == 0.0 {
-        None
-    } else {
-        integ.imaginary_axis_limit().map(|y| y / omega_max)
-    };
-    let stable = |dt: f64| -> Result<bool> {
-        Ok(max_spectral_radius_with(lin, &ks, dt, integ)?.0 <= 1.0 + AMPLIFICATION_TOL)
-    };
-    if ks.is_empty() || omega_max == 0.0 {
-        return Ok(StepStability {
-            integrator: integ,
-            omega_max,
-            critical_dt: Some(f64::INFINITY),
-            closed_form_dt,
-        });
-    }
-    let mut lo = WEAK_PROBE / omega_max;
-    if !stable(lo)? {
-        return Ok(StepStability {
-            integrator: integ,
-            omega_max,
-            critical_dt: None,
-            closed_form_dt,
-        });
-    }
-    let mut hi = 2.0 * lo;
-    while stable(hi)? {
-        lo = hi;
-        hi *= 2.0;
-        if hi > 1e6 {
-            return Ok(StepStability {
-                integrator: integ,
-                omega_max,
-                critical_dt: Some(f64::INFINITY),
-                closed_form_dt,
-            });
-        }
-    }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if stable(mid)? {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo <= 1e-12 * hi {
-            break;
-        }
-    }
-    Ok(StepStability {
-        integrator: integ,
-        omega_max,
-        critical_dt: Some(lo),
-        closed_form_dt,
-    })
-}
-
-/// Spurious growth of `integ` at step `dt` (Δx/c): the largest ln(growth per step)/Δt over the
-/// modes that do not grow in the semi-discrete system, in c/Δx (0 if none amplifies beyond
-/// [`AMPLIFICATION_TOL`]), and the κ where it is largest.
-pub fn spurious_growth_rate(
-    lin: &Linearisation,
-    kappas: &[f64],
-    integ: Integrator,
-    dt: f64,
-) -> Result<(f64, f64)> {
-    let ks = non_growing(lin, kappas)?;
-    let (r, k) = max_spectral_radius_with(lin, &ks, dt, integ)?;
-    Ok(if r > 1.0 + AMPLIFICATION_TOL {
-        (r.ln() / dt, k)
-    } else {
-        (0.0, k)
-    })
-}
-
-/// The mode system of `lin` at κ: J split into position, velocity and auxiliary rows.
-pub fn mode_system(lin: &Linearisation, kappa: f64) -> ModeSystem {
-    let dofs = &lin.dofs;
-    let ix: Vec<usize> = (0..dofs.len())
-        .filter(|&k| dofs[k].field.kind() == FieldKind::Position)
-        .collect();
-    let iv: Vec<usize> = (0..dofs.len())
-        .filter(|&k| dofs[k].field.kind() == FieldKind::Velocity)
-        .collect();
-    let iq: Vec<usize> = (0..dofs.len())
-        .filter(|&k| dofs[k].field.kind() == FieldKind::Auxiliary)
-        .collect();
-    ModeSystem::new(lin.jacobian(kappa), ix, iv, iq)
-}
-
-/// Spectral radius of G(κ, Δt).
-pub fn spectral_radius(lin: &Linearisation, kappa: f64, dt: f64) -> Result<f64> {
-    let ev = eigen(amplification_matrix(lin, kappa, dt))?;
+/// Spectral radius of G(k, Δt).
+pub fn spectral_radius<L: Modes>(lin: &L, k: L::K, dt: f64) -> Result<f64> {
+    let ev = eigen(lin.amplification(k, dt))?;
     Ok(ev.iter().map(|l| l.norm()).fold(0.0, f64::max))
 }
 
-/// Largest spectral radius over the κ grid.
-pub fn max_spectral_radius(lin: &Linearisation, kappas: &[f64], dt: f64) -> Result<(f64, f64)> {
-    let mut best = (0.0, 0.0);
-    for &k in kappas {
-        let r = spectral_radius(lin, k, dt)?;
-        if r > best.0 {
-            best = (r, k);
-        }
-    }
-    Ok(best)
+/// Spectral radius of G(k, Δt) at every mode of `ks`.
+pub fn spectral_radii<L: Modes>(lin: &L, ks: &[L::K], dt: f64) -> Result<Vec<f64>> {
+    ks.iter().map(|&k| spectral_radius(lin, k, dt)).collect()
 }
 
-/// Critical time step (Δx/c). Non-dissipative systems: the leapfrog limit 2/ω_max
-/// (\[B00\] eq 120 with ξ = 0; tests check it against the amplification matrices). Dissipative
-/// systems: the largest Δt with max_κ |λ| ≤ 1 + tol, by bisection.
-pub fn critical_dt(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
-    if !lin.is_dissipative() {
-        let wmax = kappas
-            .iter()
-            .map(|&k| lin.omega2(k).0)
-            .fold(0.0, f64::max)
-            .sqrt();
-        return Ok(if wmax > 0.0 {
-            2.0 / wmax
-        } else {
-            f64::INFINITY
-        });
+/// The leapfrog limit 2/ω_max (\[B00\] eq 120 with ξ = 0) for the largest ω² (normalised);
+/// infinite when ω_max = 0.
+pub fn leapfrog_limit(omega2_max: f64) -> f64 {
+    let wmax = omega2_max.sqrt();
+    if wmax > 0.0 {
+        2.0 / wmax
+    } else {
+        f64::INFINITY
     }
-    critical_dt_bisection(lin, kappas)
 }
 
-/// Critical time step by bisection on the spectral radius of the amplification matrices.
-pub fn critical_dt_bisection(lin: &Linearisation, kappas: &[f64]) -> Result<f64> {
+/// Critical time step (Δx/c) over the modes `ks`. Non-dissipative systems: the leapfrog limit
+/// 2/ω_max ([`leapfrog_limit`]; tests check it against the amplification matrices). Dissipative
+/// systems: the largest Δt with max_k |λ| ≤ 1 + tol, by bisection.
+pub fn critical_dt<L: Modes>(lin: &L, ks: &[L::K]) -> Result<f64> {
+    let w2 = if lin.is_dissipative() {
+        0.0
+    } else {
+        ks.iter().map(|&k| lin.omega2_top(k)).fold(0.0, f64::max)
+    };
+    critical_dt_given(lin, ks, w2)
+}
+
+/// [`critical_dt`] when the largest ω² over `ks` is already known (`omega2_max`, unused for
+/// dissipative systems).
+pub fn critical_dt_given<L: Modes>(lin: &L, ks: &[L::K], omega2_max: f64) -> Result<f64> {
+    if lin.is_dissipative() {
+        critical_dt_bisection(lin, ks)
+    } else {
+        Ok(leapfrog_limit(omega2_max))
+    }
+}
+
+/// Critical time step by bisection on the spectral radius of the amplification matrices: Δt is
+/// stable when |λ| ≤ 1 + [`AMPLIFICATION_TOL`] at every mode of `ks`.
+pub fn critical_dt_bisection<L: Modes>(lin: &L, ks: &[L::K]) -> Result<f64> {
     let stable = |dt: f64| -> Result<bool> {
-        Ok(max_spectral_radius(lin, kappas, dt)?.0 <= 1.0 + AMPLIFICATION_TOL)
+        for &k in ks {
+            if spectral_radius(lin, k, dt)? > 1.0 + AMPLIFICATION_TOL {
+                return Ok(false);
+            }
+        }
+        Ok(true)
     };
     let mut lo = 0.0;
     let mut hi = 1.0;
@@ -368,4 +225,128 @@ pub fn critical_dt_bisection(lin: &Linearisation, kappas: &[f64]) -> Result<f64>
         }
     }
     Ok(lo)
+}
+
+/// Growth per step of `integ` at k: the spectral radius of one cycle's amplification matrix to
+/// the power 1/cycle; `dt` in Δx/c.
+pub fn spectral_radius_with<L: Modes>(lin: &L, k: L::K, dt: f64, integ: Integrator) -> Result<f64> {
+    let ev = eigen(lin.amplification_with(k, dt, integ))?;
+    let r = ev.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    Ok(r.powf(1.0 / integ.cycle() as f64))
+}
+
+/// The largest growth per step of `integ` over `ks` at `dt` (Δx/c), and where.
+pub fn max_spectral_radius_with<L: Modes>(
+    lin: &L,
+    ks: &[L::K],
+    dt: f64,
+    integ: Integrator,
+) -> Result<Option<(f64, L::K)>> {
+    let mut best: Option<(f64, L::K)> = None;
+    for &k in ks {
+        let r = spectral_radius_with(lin, k, dt, integ)?;
+        if best.is_none_or(|b| r > b.0) {
+            best = Some((r, k));
+        }
+    }
+    Ok(best)
+}
+
+/// What an integrator does to the modes of a linearisation (units Δx/c, c/Δx).
+#[derive(Clone, Copy, Debug)]
+pub struct StepStability {
+    /// The scheme.
+    pub integrator: Integrator,
+    /// Largest |s| over the modes that do not grow in the semi-discrete system (ω_max for a
+    /// non-dissipative one), c/Δx.
+    pub omega_max: f64,
+    /// The largest Δt with growth per step ≤ 1 + [`AMPLIFICATION_TOL`] on every such mode, by
+    /// bisection; `None` when the scheme amplifies already at ω_max Δt = [`WEAK_PROBE`] (a weak
+    /// instability, below every Δt), ∞ when no Δt up to 1e6 amplifies.
+    pub critical_dt: Option<f64>,
+    /// The closed form [`Integrator::imaginary_axis_limit`]/ω_max, for non-dissipative systems.
+    pub closed_form_dt: Option<f64>,
+}
+
+/// ω_max Δt at which a weak instability is looked for: there |λ| − 1 is ≈ y²/2 for `euler`
+/// and the lagged velocity, y⁴/8 = 1.25e-5 for RK2 — far above [`AMPLIFICATION_TOL`].
+pub const WEAK_PROBE: f64 = 0.1;
+
+/// The modes of `ks` that do not grow in the semi-discrete system (max Re s ≤ [`GROWTH_TOL`]):
+/// the time-step analysis concerns these; growing modes are spatial instabilities, reported as
+/// such.
+fn non_growing<L: Modes>(lin: &L, ks: &[L::K]) -> Result<(Vec<L::K>, f64)> {
+    let mut out = Vec::with_capacity(ks.len());
+    let mut omega_max: f64 = 0.0;
+    for &k in ks {
+        let ev = lin.eigenvalues(k)?;
+        if ev.iter().all(|s| s.re <= GROWTH_TOL) {
+            out.push(k);
+            omega_max = ev.iter().map(|s| s.norm()).fold(omega_max, f64::max);
+        }
+    }
+    Ok((out, omega_max))
+}
+
+/// The time-step stability of `integ` on the non-growing modes of `ks` ([`StepStability`]).
+pub fn step_stability<L: Modes>(lin: &L, ks: &[L::K], integ: Integrator) -> Result<StepStability> {
+    let (ks, omega_max) = non_growing(lin, ks)?;
+    let closed_form_dt = if lin.is_dissipative() || omega_max == 0.0 {
+        None
+    } else {
+        integ.imaginary_axis_limit().map(|y| y / omega_max)
+    };
+    let result = |critical_dt| StepStability {
+        integrator: integ,
+        omega_max,
+        critical_dt,
+        closed_form_dt,
+    };
+    let stable = |dt: f64| -> Result<bool> {
+        Ok(max_spectral_radius_with(lin, &ks, dt, integ)?
+            .is_none_or(|(r, _)| r <= 1.0 + AMPLIFICATION_TOL))
+    };
+    if ks.is_empty() || omega_max == 0.0 {
+        return Ok(result(Some(f64::INFINITY)));
+    }
+    let mut lo = WEAK_PROBE / omega_max;
+    if !stable(lo)? {
+        return Ok(result(None));
+    }
+    let mut hi = 2.0 * lo;
+    while stable(hi)? {
+        lo = hi;
+        hi *= 2.0;
+        if hi > 1e6 {
+            return Ok(result(Some(f64::INFINITY)));
+        }
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if stable(mid)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo <= 1e-12 * hi {
+            break;
+        }
+    }
+    Ok(result(Some(lo)))
+}
+
+/// Spurious growth of `integ` at step `dt` (Δx/c): the largest ln(growth per step)/Δt over the
+/// modes that do not grow in the semi-discrete system, in c/Δx (0 if none amplifies beyond
+/// [`AMPLIFICATION_TOL`]), and the mode where it is largest.
+pub fn spurious_growth_rate<L: Modes>(
+    lin: &L,
+    ks: &[L::K],
+    integ: Integrator,
+    dt: f64,
+) -> Result<(f64, Option<L::K>)> {
+    let (ks, _) = non_growing(lin, ks)?;
+    Ok(match max_spectral_radius_with(lin, &ks, dt, integ)? {
+        Some((r, k)) if r > 1.0 + AMPLIFICATION_TOL => (r.ln() / dt, Some(k)),
+        best => (0.0, best.map(|b| b.1)),
+    })
 }

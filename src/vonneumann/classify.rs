@@ -12,6 +12,7 @@
 //! acoustic value C̄κ² at that κ, so that the acoustic zero at κ → 0 of a fine grid is not
 //! reported as one.
 
+use crate::error::Result;
 use serde::Serialize;
 
 /// Growth rates (c/Δx) at or below this are not growth.
@@ -92,4 +93,24 @@ pub fn branch(kind: Kind, kappas: &[f64], rate: &[f64], (a, b): (usize, usize)) 
         kappa_at_max: km,
         pole_at: None,
     }
+}
+
+/// The kind of a growing branch (table above), in every dimension: `material` when the continuum
+/// itself is unstable; otherwise `indefinite` if σ̄ = 0 or the branch also grows at zero stress
+/// (`growth_at_zero_stress`, evaluated only for σ̄ ≠ 0), else `tensile` / `compressive` by the
+/// sign of σ̄.
+pub fn growth_kind(
+    material: bool,
+    stress: f64,
+    growth_at_zero_stress: impl FnOnce() -> Result<f64>,
+) -> Result<Kind> {
+    Ok(if material {
+        Kind::Material
+    } else if stress == 0.0 || growth_at_zero_stress()? > GROWTH_TOL {
+        Kind::Indefinite
+    } else if stress > 0.0 {
+        Kind::Tensile
+    } else {
+        Kind::Compressive
+    })
 }

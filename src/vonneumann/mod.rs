@@ -7,6 +7,5 @@ pub mod classify;
 pub mod closed_form;
 pub mod derived;
 pub mod linearise;
-pub mod linearise2d;
 pub mod timestep_bounds;
 pub mod transform;

@@ -3,7 +3,7 @@
 
 pub mod exact;
 
-use sphstab::analysis2d::MaterialSpec;
+use sphstab::analysis::MaterialSpec;
 use sphstab::forms::{FormKind, ModelParams, ObjectiveRate};
 use sphstab::kernel::{self, Kernel};
 use sphstab::lattice::Lattice;

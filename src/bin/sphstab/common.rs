@@ -94,8 +94,8 @@ impl Config {
     }
 
     /// Builds and validates the query in D ∈ {2, 3} dimensions.
-    pub fn query_nd<const D: usize>(&self) -> Result<sphstab::analysis2d::Query<D>> {
-        use sphstab::analysis2d::{MaterialSpec, Query};
+    pub fn query_nd<const D: usize>(&self) -> Result<sphstab::analysis::Query<D>> {
+        use sphstab::analysis::{MaterialSpec, Query};
         use sphstab::forms::ObjectiveRate;
         let q1 = self.query(2)?;
         let mut q = Query::<D>::new(q1.form, q1.kernel, q1.h_over_dx, q1.stress);
@@ -105,7 +105,7 @@ impl Config {
         q.c_partition = q1.c_partition;
         q.av = q1.av;
         q.dt = q1.dt;
-        q.grid = self.grid.unwrap_or(sphstab::analysis2d::default_grid(D));
+        q.grid = self.grid.unwrap_or(sphstab::analysis::default_grid(D));
         q.art_stress = art_stress(self.art_eps, self.art_n)?;
         let lattice = self
             .lattice

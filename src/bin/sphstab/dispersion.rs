@@ -61,7 +61,7 @@ pub fn run(a: Args) -> Result<()> {
 fn run_nd<const D: usize>(a: Args) -> Result<()> {
     use sphstab::plot::{Curve, lines_svg};
     let q = a.cfg.query_nd::<D>()?;
-    let r = sphstab::analysis2d::dispersion2d(&q, a.points)?;
+    let r = sphstab::analysis::dispersion2d(&q, a.points)?;
     if let Some(path) = &a.plot {
         let col = |i: usize, v: &Vec<Vec<f64>>| v.iter().map(|b| b[i]).collect::<Vec<_>>();
         let mut curves = vec![

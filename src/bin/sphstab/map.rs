@@ -44,7 +44,7 @@ pub fn run(a: Args) -> Result<()> {
 }
 
 fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config) -> Result<()> {
-    use sphstab::analysis2d::Plane;
+    use sphstab::analysis::Plane;
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
@@ -54,7 +54,7 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config) -> Result<()> {
     };
     let q = cfg.query_nd::<D>()?;
     let t = std::time::Instant::now();
-    let m = sphstab::analysis2d::growth_map(&q, a.n, plane)?;
+    let m = sphstab::analysis::growth_map(&q, a.n, plane)?;
     let (xl, yl) = if D == 3 {
         let name = a.plane.as_deref().unwrap_or("xy");
         (

@@ -120,11 +120,11 @@ pub fn fmt_k(k: &[f64]) -> String {
 fn run_nd<const D: usize>(a: Args) -> Result<()> {
     let q = a.cfg.query_nd::<D>()?;
     if let Some(n) = a.box_free {
-        sphstab::analysis2d::check_count("--box", n, 1, sphstab::analysis2d::max_box(D))?;
+        sphstab::analysis::check_count("--box", n, 1, sphstab::analysis::max_box(D))?;
     }
-    let r = sphstab::analysis2d::query_nd(&q)?;
+    let r = sphstab::analysis::query_nd(&q)?;
     let boxp = match a.box_free {
-        Some(n) => Some(sphstab::analysis2d::box_prediction(
+        Some(n) => Some(sphstab::analysis::box_prediction(
             &q.linearise_at(q.stress)?,
             n,
         )?),
@@ -148,17 +148,8 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
         );
     }
     println!(
-        "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}, {}, {} (nearest neighbour {:.4}Δx), first zone sampled {}^{D}",
-        r.form,
-        r.kernel,
-        r.shape,
-        r.h_over_dx,
-        r.support_over_dx,
-        r.stress,
-        r.material,
-        r.lattice,
-        r.nearest_neighbour_over_dx,
-        r.grid
+        "{}, {}, {} (nearest neighbour {:.4}Δx), first zone sampled {}^{D}",
+        r.setup, r.material, r.lattice, r.nearest_neighbour_over_dx, r.grid
     );
     let kinds2: Vec<String> = r
         .instabilities
@@ -194,7 +185,7 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
     match r.critical_dt {
         Some(dt) => println!(
             "critical leapfrog Δt = {dt:.6} Δx/c (CFL c Δt/h = {:.6})",
-            dt / r.h_over_dx
+            dt / r.setup.h_over_dx
         ),
         None => println!("critical Δt: not computed (the semi-discrete system grows)"),
     }

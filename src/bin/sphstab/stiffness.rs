@@ -60,7 +60,7 @@ pub fn run(a: Args) -> Result<()> {
         }
         (p, _) => p.unwrap_or(32),
     };
-    sphstab::analysis2d::check_count("--points", points, 2, 1_000_000)?;
+    sphstab::analysis::check_count("--points", points, 2, 1_000_000)?;
     let lat = Lattice2D::by_name(&a.lattice, a.gamma.unwrap_or(1.0))?;
     let q = Quadrature::by_name(&a.quadrature)?;
     let fam = ShapeFamily::by_name(&a.shape)?;

@@ -66,16 +66,19 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
     let q = a.cfg.query_nd::<D>()?;
     let lin = q.linearise_at(q.stress)?;
     let ks = q.kgrid();
-    let r = sphstab::analysis2d::query_nd(&q)?;
+    let r = sphstab::analysis::query_nd(&q)?;
     let bis = if r.critical_dt.is_some() {
-        Some(sphstab::analysis2d::critical_dt_2d(&lin, &ks)?)
+        Some(sphstab::vonneumann::amplification::critical_dt_bisection(
+            &lin, &ks,
+        )?)
     } else {
         None
     };
     let v = serde_json::json!({
-        "dim": D, "form": r.form, "kernel": r.kernel, "h_over_dx": r.h_over_dx, "support_over_dx": r.support_over_dx,
-        "stress": r.stress, "critical_dt": bis, "critical_dt_from_omega_max": r.critical_dt,
-        "critical_cfl": bis.map(|d| d / r.h_over_dx),
+        "dim": D, "form": r.setup.form, "kernel": r.setup.kernel, "h_over_dx": r.setup.h_over_dx,
+        "support_over_dx": r.setup.support_over_dx, "stress": r.setup.stress, "critical_dt": bis,
+        "critical_dt_from_omega_max": r.critical_dt,
+        "critical_cfl": bis.map(|d| d / r.setup.h_over_dx),
     });
     if a.json {
         println!("{}", serde_json::to_string_pretty(&v)?);
@@ -83,13 +86,13 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
         match bis {
             Some(dt) => println!(
                 "{} / {} h = {}Δx σ̄ = {} ({D}D, {}): critical leapfrog Δt = {dt:.9} Δx/c (bisection on the amplification matrices), 2/ω_max = {:.9}, CFL c Δt/h = {:.9}",
-                r.form,
-                r.kernel,
-                r.h_over_dx,
-                r.stress,
+                r.setup.form,
+                r.setup.kernel,
+                r.setup.h_over_dx,
+                r.setup.stress,
                 r.lattice,
                 r.critical_dt.unwrap_or(f64::NAN),
-                dt / r.h_over_dx
+                dt / r.setup.h_over_dx
             ),
             None => println!(
                 "no critical Δt: the semi-discrete system already grows (see `sphstab query --dim {D}`)"

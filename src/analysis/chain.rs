@@ -1,107 +1,21 @@
-//! High-level 1D questions: is a configuration stable (`query`), its dispersion curve
-//! (`dispersion`), and its critical time step (`timestep`). Inputs are validated here so the
-//! library and the CLI give the same errors.
+//! The 1D front end: is a configuration stable (`query`), its dispersion curve
+//! (`dispersion`), and its critical time step (`timestep`), over κΔx ∈ (0, π] of the chain
+//! engine ([`Linearisation`]; every 1D form).
 
+use super::common::{Setup, check_common, check_count, linearised_av};
 use crate::error::{Error, Result, check_range};
-use crate::forms::{ArtificialViscosity, FormKind, ModelParams};
+use crate::forms::{FormKind, ModelParams};
 use crate::kernel::Kernel;
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::vonneumann::amplification::{
-    AMPLIFICATION_TOL, critical_dt, critical_dt_bisection, spectral_radius,
+    AMPLIFICATION_TOL, critical_dt_bisection, critical_dt_given, leapfrog_limit, spectral_radii,
 };
-use crate::vonneumann::classify::{GROWTH_TOL, Instability, Kind, ZERO_OMEGA2_TOL, branch, runs};
+use crate::vonneumann::classify::{
+    GROWTH_TOL, Instability, Kind, ZERO_OMEGA2_TOL, branch, growth_kind, runs,
+};
 use crate::vonneumann::linearise::{Lattice1D, Linearisation};
 use serde::Serialize;
 use std::f64::consts::PI;
-
-/// Allowed range of h/Δx.
-pub const H_RANGE: (f64, f64) = (0.05, 50.0);
-/// Allowed range of σ̄.
-pub const STRESS_RANGE: (f64, f64) = (-10.0, 10.0);
-
-/// The names under which the common parameters reach the user: CLI flags or scene fields.
-#[derive(Clone, Copy, Debug)]
-pub struct ParamNames {
-    /// h/Δx.
-    pub h: &'static str,
-    /// σ̄.
-    pub stress: &'static str,
-    /// Partition coefficient.
-    pub c: &'static str,
-    /// Viscosity α.
-    pub av_alpha: &'static str,
-    /// Viscosity β.
-    pub av_beta: &'static str,
-    /// Δt.
-    pub dt: &'static str,
-}
-
-impl ParamNames {
-    /// The CLI flags.
-    pub const CLI: ParamNames = ParamNames {
-        h: "--h",
-        stress: "--stress",
-        c: "--c",
-        av_alpha: "--av-alpha",
-        av_beta: "--av-beta",
-        dt: "--dt",
-    };
-}
-
-/// Validates the parameters shared by every question and run (one path for CLI flags, scene
-/// files, configs and the library API), naming them as the CLI does.
-pub fn check_common(
-    kernel: &'static dyn Kernel,
-    h: f64,
-    stress: f64,
-    c: f64,
-    av: Option<(f64, f64)>,
-    dt: Option<f64>,
-) -> Result<()> {
-    check_common_named(&ParamNames::CLI, kernel, h, stress, c, av, dt)
-}
-
-/// [`check_common`] with the names of the caller (e.g. scene fields).
-pub fn check_common_named(
-    names: &ParamNames,
-    kernel: &'static dyn Kernel,
-    h: f64,
-    stress: f64,
-    c: f64,
-    av: Option<(f64, f64)>,
-    dt: Option<f64>,
-) -> Result<()> {
-    check_range(names.h, h, H_RANGE.0, H_RANGE.1, true, true)?;
-    check_range(
-        names.stress,
-        stress,
-        STRESS_RANGE.0,
-        STRESS_RANGE.1,
-        true,
-        true,
-    )?;
-    check_range(names.c, c, 0.0, 1.0, true, true)?;
-    if let Some((a, b)) = av {
-        check_range(names.av_alpha, a, 0.0, 100.0, true, true)?;
-        check_range(names.av_beta, b, 0.0, 100.0, true, true)?;
-    }
-    if let Some(dt) = dt {
-        check_range(names.dt, dt, 0.0, 1e6, false, true)?;
-    }
-    if kernel.zeta() * h <= 1.0 {
-        return Err(Error::OutOfRange {
-            name: names.h,
-            value: h,
-            range: format!(
-                "the support ζh must exceed Δx so that particles have neighbours: h/Δx > {} for {} (ζ = {})",
-                1.0 / kernel.zeta(),
-                kernel.name(),
-                kernel.zeta()
-            ),
-        });
-    }
-    Ok(())
-}
 
 /// A 1D stability question.
 #[derive(Clone, Copy, Debug)]
@@ -159,13 +73,7 @@ impl Query1D {
             self.dt,
         )?;
         check_range("--alpha-s", self.alpha_s, 0.0, 100.0, true, true)?;
-        if self.points < 2 || self.points > 10_000_000 {
-            return Err(Error::OutOfRange {
-                name: "--points",
-                value: self.points as f64,
-                range: "must be an integer in [2, 10000000]".into(),
-            });
-        }
+        check_count("--points", self.points, 2, 10_000_000)?;
         check_range(
             "lattice dx",
             self.lattice.dx,
@@ -179,7 +87,14 @@ impl Query1D {
 
     /// Support radius R/Δx.
     pub fn support_over_dx(&self) -> f64 {
-        self.kernel.zeta() * self.h_over_dx
+        Setup::new(
+            self.form,
+            self.kernel,
+            self.shape,
+            self.h_over_dx,
+            self.stress,
+        )
+        .support_over_dx
     }
 
     /// Model parameters in physical units of the lattice.
@@ -198,12 +113,7 @@ impl Query1D {
             sigma0: stress * lat.modulus,
             c_partition: self.c_partition,
             alpha_s: self.alpha_s,
-            av: self.av.map(|(alpha, beta)| ArtificialViscosity {
-                alpha,
-                beta,
-                sound_speed: c,
-                approaching_only: false,
-            }),
+            av: linearised_av(self.av, c),
             dx: lat.dx,
         }
     }
@@ -222,21 +132,12 @@ impl Query1D {
     }
 }
 
-/// Header common to every report.
+/// Header common to every 1D report: the [`Setup`] and the 1D form parameters.
 #[derive(Clone, Debug, Serialize)]
 pub struct Header {
-    /// Form name.
-    pub form: &'static str,
-    /// Kernel name.
-    pub kernel: &'static str,
-    /// Shape family name.
-    pub shape: &'static str,
-    /// h/Δx.
-    pub h_over_dx: f64,
-    /// R/Δx (Belytschko's D_mx).
-    pub support_over_dx: f64,
-    /// σ̄.
-    pub stress: f64,
+    /// Form, kernel, shape, h, R, σ̄.
+    #[serde(flatten)]
+    pub setup: Setup,
     /// Partition coefficient c (mixed forms).
     pub c_partition: f64,
     /// α_s (least squares).
@@ -246,23 +147,14 @@ pub struct Header {
 impl std::fmt::Display for Header {
     /// One line: form / kernel / shape, h and R in Δx, σ̄.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}",
-            self.form, self.kernel, self.shape, self.h_over_dx, self.support_over_dx, self.stress
-        )
+        self.setup.fmt(f)
     }
 }
 
 impl Header {
     fn of(q: &Query1D) -> Self {
         Self {
-            form: q.form.name(),
-            kernel: q.kernel.name(),
-            shape: q.shape.name(),
-            h_over_dx: q.h_over_dx,
-            support_over_dx: q.support_over_dx(),
-            stress: q.stress,
+            setup: Setup::new(q.form, q.kernel, q.shape, q.h_over_dx, q.stress),
             c_partition: q.c_partition,
             alpha_s: q.alpha_s,
         }
@@ -355,29 +247,18 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
     let growing: Vec<bool> = g.iter().map(|&x| x > GROWTH_TOL).collect();
     let mut inst = Vec::new();
     let cbar = 1.0 + q.stress;
-    let runs_g = runs(&growing);
-    let lin0 = if !runs_g.is_empty() && cbar > 0.0 && q.stress != 0.0 {
-        Some(Linearisation::new(q.params(0.0), q.lattice)?)
-    } else {
-        None
-    };
     let scale = w2.iter().fold(0.0f64, |m, &x| m.max(x.abs()));
-    for r in runs_g {
+    // the zero-stress linearisation, built once when a growing branch needs it
+    let mut lin0 = None;
+    for r in runs(&growing) {
         let b = branch(Kind::Material, &kappas, &g, r);
-        let kind = if cbar <= 0.0 {
-            Kind::Material
-        } else if let Some(l0) = &lin0 {
-            let g0 = l0.growth(b.kappa_at_max)?;
-            if g0 > GROWTH_TOL {
-                Kind::Indefinite
-            } else if q.stress > 0.0 {
-                Kind::Tensile
-            } else {
-                Kind::Compressive
-            }
-        } else {
-            Kind::Indefinite
-        };
+        let kind = growth_kind(cbar <= 0.0, q.stress, || {
+            let l0 = match &mut lin0 {
+                Some(l) => l,
+                slot @ None => slot.insert(Linearisation::new(q.params(0.0), q.lattice)?),
+            };
+            l0.growth(b.kappa_at_max)
+        })?;
         // a pole: ω² changes sign between neighbours through ±∞ (both sides large), not
         // through 0; the first one at or before the branch
         let pole_at = (r.0.max(1)..=r.1).find_map(|i| {
@@ -413,7 +294,7 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
     }
     let semi_stable = !growing.iter().any(|&x| x);
     let (cdt, cfl) = if semi_stable {
-        let dt = critical_dt(&lin, &kappas)?;
+        let dt = critical_dt_given(&lin, &kappas, w2.iter().fold(0.0, |m, &x| m.max(x)))?;
         (Some(dt), Some(dt / q.h_over_dx))
     } else {
         (None, None)
@@ -421,10 +302,7 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
     let mut max_amp = None;
     let mut ts_unstable = false;
     if let Some(dt) = q.dt {
-        let mut rho = Vec::with_capacity(kappas.len());
-        for &k in &kappas {
-            rho.push(spectral_radius(&lin, k, dt)?);
-        }
+        let rho = spectral_radii(&lin, &kappas, dt)?;
         max_amp = Some(rho.iter().fold(0.0f64, |m, &x| m.max(x)));
         let flags: Vec<bool> = rho
             .iter()
@@ -481,7 +359,8 @@ pub fn timestep(q: &Query1D) -> Result<TimestepReport> {
     let lin = q.linearise()?;
     let kappas = q.kappas();
     let (w2, g) = curve(&lin, &kappas)?;
-    let wmax = w2.iter().fold(0.0f64, |m, &x| m.max(x)).sqrt();
+    let w2max = w2.iter().fold(0.0f64, |m, &x| m.max(x));
+    let wmax = w2max.sqrt();
     let grows = g.iter().any(|&x| x > GROWTH_TOL);
     let cdt = if grows {
         None
@@ -491,7 +370,7 @@ pub fn timestep(q: &Query1D) -> Result<TimestepReport> {
     let from_w = if lin.is_dissipative() || grows || wmax == 0.0 {
         None
     } else {
-        Some(2.0 / wmax)
+        Some(leapfrog_limit(w2max))
     };
     Ok(TimestepReport {
         header: Header::of(q),

@@ -1,8 +1,8 @@
-//! The numeric route in D ∈ {2, 3} dimensions: the rate function linearised exactly (dual
-//! numbers) about the uniformly, isotropically pre-stressed periodic lattice and projected onto
-//! Bloch waves exp(i k·X): per wave vector the Jacobian block J(k) of the full per-particle
-//! state, the D × D dynamical matrix D(k) = −(J_vx + J_vq J_qv) of the mechanical branches,
-//! growth rates and polarisations.
+//! The D-dimensional front end (D ∈ {2, 3}; the code is generic in D): the rate function of a
+//! [`Model<D>`] linearised by the shared core ([`super::columns`]) about the uniformly,
+//! isotropically pre-stressed periodic lattice and projected onto Bloch waves exp(i k·X): per wave
+//! vector the Jacobian block J(k) of the full per-particle state, the D × D dynamical matrix
+//! D(k) = −(J_vx + J_vq J_qv) of the mechanical branches, growth rates and polarisations.
 //!
 //! The periodic patch: 2D, n × n primitive cells with n·(plane spacing) ≥ 4R + 5 spacings;
 //! 3D, m³ conventional cubes (orthogonal, so the cell list applies) with side m·a ≥ 2R_dep + 2a,
@@ -14,11 +14,15 @@
 // Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::linearise::{bloch_sum, check_rest, eigen, zero_sums};
+use super::columns::{Columns, Linearisable, eigen};
 use crate::error::{Error, Result};
-use crate::forms::{Comp, FieldKind, FormKind, Material, Model, ModelParams2D, State};
-use crate::lattice::Lattice;
+use crate::forms::{
+    Comp, FieldKind, FormKind, Material, Model, ModelParams2D, RateWorkspace, State,
+};
+use crate::integrator::Integrator;
+use crate::lattice::{Lattice, grid_index};
 use crate::scalar::{Dual, Scalar};
+use crate::vonneumann::amplification::{Modes, spectral_radius};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -27,11 +31,8 @@ use num_complex::Complex64;
 pub struct Bloch<const D: usize> {
     /// Components per particle.
     pub comps: Vec<Comp>,
-    cols: Vec<Vec<([f64; D], Vec<f64>)>>,
-    zero_sum: Vec<Vec<bool>>,
-    ix: [usize; D],
-    iv: [usize; D],
-    iq: Vec<usize>,
+    /// Jacobian columns per relative particle position (units of Δx).
+    core: Columns<[f64; D]>,
     /// Lattice (units of Δx).
     pub lattice: Lattice<D>,
     omega2_scale: f64,
@@ -109,12 +110,7 @@ fn patch<const D: usize>(
     check_patch_budget(&p, lat, dx, m.pow(D as u32) * basis.len())?;
     let mut x = Vec::with_capacity(m.pow(D as u32) * basis.len());
     for idx in 0..m.pow(D as u32) {
-        let mut c = [0usize; D];
-        let mut rest = idx;
-        for a in (0..D).rev() {
-            c[a] = rest % m;
-            rest /= m;
-        }
+        let c = grid_index::<D>(idx, m);
         for b in &basis {
             let mut q = [0.0; D];
             for a in 0..D {
@@ -181,82 +177,34 @@ impl<const D: usize> Bloch<D> {
         }
         let (rho, s0) = base_state(&p.material, p.rho0, sigma_bar)?;
         let (model, offs) = patch(p, lat, dx, rho, s0)?;
-        let base = model.rest_state(rho);
         let comps = p.form.comps(D, &p.material);
-        let nd = comps.len();
-        let mut cols = Vec::with_capacity(nd);
-        let mut out = State::<Dual, D>::default();
-        let mut ws = crate::forms::RateWorkspace::<Dual, D>::new();
-        for &b in &comps {
-            let mut z: State<Dual, D> = base.map(Dual::cst);
-            let mut t = z.get(b, 0);
-            t.d = 1.0;
-            z.set(b, 0, t);
-            model.rate_with(&z, &mut out, &mut ws)?;
-            let mut col: Vec<([f64; D], Vec<f64>)> = Vec::new();
-            for pidx in 0..base.x.len() {
-                let v: Vec<f64> = comps.iter().map(|&a| out.get(a, pidx).d).collect();
-                if v.iter().any(|x| !x.is_finite()) {
-                    return Err(Error::NonFinite("rate-function Jacobian"));
-                }
-                if v.iter().any(|&x| x != 0.0) {
-                    col.push((offs[pidx], v));
-                }
-            }
-            cols.push(col);
-        }
-        let zero_sum = zero_sums(&cols, nd);
-        let find = |c: Comp| {
-            comps
-                .iter()
-                .position(|&x| x == c)
-                .ok_or(Error::NonFinite("layout"))
-        };
-        let mut ix = [0; D];
-        let mut iv = [0; D];
-        for a in 0..D {
-            ix[a] = find(Comp::X(a))?;
-            iv[a] = find(Comp::V(a))?;
-        }
-        let iq: Vec<usize> = (0..nd)
-            .filter(|&k| comps[k].kind() == FieldKind::Auxiliary)
-            .collect();
-        let c2 = p.material.modulus() / p.rho0;
-        let lin = Self {
+        let mut sys = Patch {
+            base: model.rest_state(rho),
+            model,
+            offs,
             comps,
-            cols,
-            zero_sum,
-            ix,
-            iv,
-            iq,
+            out: State::default(),
+            ws: RateWorkspace::new(),
+        };
+        let core = Columns::of(&mut sys)?;
+        let c2 = p.material.modulus() / p.rho0;
+        Ok(Self {
+            comps: sys.comps,
+            core,
             lattice: *lat,
             omega2_scale: dx * dx / c2,
             time_scale: dx / c2.sqrt(),
-        };
-        lin.check_rest_structure()?;
-        Ok(lin)
-    }
-
-    fn check_rest_structure(&self) -> Result<()> {
-        check_rest(
-            &self.cols,
-            |a| self.iq.contains(&a),
-            |b| self.iv.contains(&b),
-        )
+        })
     }
 
     /// Whether velocities enter the accelerations (artificial viscosity).
     pub fn is_dissipative(&self) -> bool {
-        self.iv.iter().any(|&b| {
-            self.cols[b]
-                .iter()
-                .any(|(_, c)| self.iv.iter().any(|&a| c[a] != 0.0))
-        })
+        self.core.is_dissipative()
     }
 
     /// J(k) (physical units; k in units of 1/Δx).
     pub fn jacobian(&self, k: [f64; D]) -> DMatrix<Complex64> {
-        bloch_sum(&self.cols, &self.zero_sum, |r: &[f64; D]| {
+        self.core.jacobian(|r: &[f64; D]| {
             let mut t = k[0] * r[0];
             for a in 1..D {
                 t += k[a] * r[a];
@@ -271,11 +219,7 @@ impl<const D: usize> Bloch<D> {
         let mut d = [[Complex64::new(0.0, 0.0); D]; D];
         for a in 0..D {
             for b in 0..D {
-                let mut v = -j[(self.iv[a], self.ix[b])];
-                for &q in &self.iq {
-                    v -= j[(self.iv[a], q)] * j[(q, self.iv[b])];
-                }
-                d[a][b] = v * self.omega2_scale;
+                d[a][b] = self.core.stiffness(&j, a, b) * self.omega2_scale;
             }
         }
         d
@@ -318,26 +262,77 @@ impl<const D: usize> Bloch<D> {
 
     /// Amplification matrix of one leapfrog step Δt (in Δx/c) for wave vector k.
     pub fn amplification(&self, k: [f64; D], dt: f64) -> DMatrix<Complex64> {
-        let ms = super::amplification::ModeSystem::new(
-            self.jacobian(k),
-            self.ix.to_vec(),
-            self.iv.to_vec(),
-            self.iq.clone(),
-        );
-        ms.amplification(dt * self.time_scale)
+        self.amplification_with(k, dt, Integrator::Kdk)
+    }
+
+    /// Amplification matrix of one cycle of `integ` at k; `dt` in Δx/c.
+    pub fn amplification_with(
+        &self,
+        k: [f64; D],
+        dt: f64,
+        integ: Integrator,
+    ) -> DMatrix<Complex64> {
+        self.core
+            .amplification(self.jacobian(k), dt * self.time_scale, integ)
     }
 
     /// Spectral radius of the leapfrog amplification matrix at k.
     pub fn spectral_radius(&self, k: [f64; D], dt: f64) -> Result<f64> {
-        Ok(eigen(self.amplification(k, dt))?
-            .iter()
-            .map(|l| l.norm())
-            .fold(0.0, f64::max))
+        spectral_radius(self, k, dt)
     }
 
     /// Eigenvalues s of J(k), normalised to c/Δx.
     pub fn eigenvalues(&self, k: [f64; D]) -> Result<Vec<Complex64>> {
         eigen(self.jacobian(k) * Complex64::new(self.time_scale, 0.0))
+    }
+}
+
+impl<const D: usize> Modes for Bloch<D> {
+    type K = [f64; D];
+    fn is_dissipative(&self) -> bool {
+        self.core.is_dissipative()
+    }
+    fn omega2_top(&self, k: [f64; D]) -> f64 {
+        self.branches(k)[D - 1].0.re
+    }
+    fn amplification_with(&self, k: [f64; D], dt: f64, integ: Integrator) -> DMatrix<Complex64> {
+        Bloch::amplification_with(self, k, dt, integ)
+    }
+    fn eigenvalues(&self, k: [f64; D]) -> Result<Vec<Complex64>> {
+        Bloch::eigenvalues(self, k)
+    }
+}
+
+/// The periodic patch being differentiated.
+struct Patch<const D: usize> {
+    model: Model<D>,
+    base: State<f64, D>,
+    offs: Vec<[f64; D]>,
+    comps: Vec<Comp>,
+    out: State<Dual, D>,
+    ws: RateWorkspace<Dual, D>,
+}
+
+impl<const D: usize> Linearisable for Patch<D> {
+    type Offset = [f64; D];
+    fn kinds(&self) -> Vec<FieldKind> {
+        self.comps.iter().map(|c| c.kind()).collect()
+    }
+    fn cells(&self) -> usize {
+        self.base.x.len()
+    }
+    fn offset(&self, i: usize) -> [f64; D] {
+        self.offs[i]
+    }
+    fn seeded_rate(&mut self, b: usize) -> Result<()> {
+        let mut z: State<Dual, D> = self.base.map(Dual::cst);
+        let mut t = z.get(self.comps[b], 0);
+        t.d = 1.0;
+        z.set(self.comps[b], 0, t);
+        self.model.rate_with(&z, &mut self.out, &mut self.ws)
+    }
+    fn tangent(&self, a: usize, i: usize) -> f64 {
+        self.out.get(self.comps[a], i).d
     }
 }
 

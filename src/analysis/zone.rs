@@ -1,21 +1,22 @@
-//! Questions in 2D and 3D (`--dim 2|3`): stability over the Brillouin zone, dispersion along
-//! the high-symmetry path, critical time step, growth-rate maps (3D: a plane through the zone),
-//! and the finite-box prediction — one generic code path for both dimensions ([`Query`]).
+//! The D-dimensional front end (`--dim 2|3`, one generic code path, [`Query`]): stability over
+//! the Brillouin zone of a lattice with the polarisation of the fastest mode, dispersion along the
+//! high-symmetry path and the critical time step. Growth-rate maps and the finite-box prediction
+//! are in [`super::maps`].
 
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
+use super::common::{Setup, check_common, check_count, linearised_av};
 use crate::error::{Error, Result};
-use crate::forms::{ArtificialViscosity, FormKind, Material, ModelParams2D, ObjectiveRate};
+use crate::forms::{FormKind, Material, ModelParams2D, ObjectiveRate};
 use crate::kernel::Kernel;
-use crate::lattice::{Lattice, LatticeKind};
+use crate::lattice::{Lattice, LatticeKind, grid_index};
 use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
-use crate::vonneumann::amplification::AMPLIFICATION_TOL;
-use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL};
-use crate::vonneumann::linearise2d::Bloch;
+use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt_given, spectral_radii};
+use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL, growth_kind};
+use crate::vonneumann::linearise::Bloch;
 use serde::Serialize;
-use std::f64::consts::PI;
 
 /// Material choice of a 2D or 3D query.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -117,7 +118,7 @@ impl<const D: usize> Query<D> {
 
     /// Validates the inputs.
     pub fn validate(&self) -> Result<()> {
-        crate::analysis::check_common(
+        check_common(
             self.kernel,
             self.h_over_dx,
             self.stress,
@@ -175,12 +176,7 @@ impl<const D: usize> Query<D> {
             material: self.material()?,
             rho0: 1.0,
             c_partition: self.c_partition,
-            av: self.av.map(|(alpha, beta)| ArtificialViscosity {
-                alpha,
-                beta,
-                sound_speed: 1.0,
-                approaching_only: false,
-            }),
+            av: linearised_av(self.av, 1.0),
             art_stress: self
                 .art_stress
                 .map(|(eps, n)| crate::forms::ArtificialStress {
@@ -205,12 +201,7 @@ impl<const D: usize> Query<D> {
         let count = n.pow(D as u32);
         let mut out = Vec::with_capacity(count);
         for idx in 1..count {
-            let mut f = [0.0; D];
-            let mut rest = idx;
-            for a in (0..D).rev() {
-                f[a] = (rest % n) as f64 / n as f64;
-                rest /= n;
-            }
+            let f = grid_index::<D>(idx, n).map(|i| i as f64 / n as f64);
             let mut k = [0.0; D];
             for c in 0..D {
                 let mut v = f[0] * b[0][c];
@@ -295,18 +286,9 @@ pub struct Instability2D {
 pub struct QueryReport2D {
     /// 2 or 3.
     pub dim: u8,
-    /// Form name.
-    pub form: &'static str,
-    /// Kernel name.
-    pub kernel: &'static str,
-    /// Shape family.
-    pub shape: &'static str,
-    /// h/Δx.
-    pub h_over_dx: f64,
-    /// R/Δx.
-    pub support_over_dx: f64,
-    /// σ̄.
-    pub stress: f64,
+    /// Form, kernel, shape, h, R, σ̄.
+    #[serde(flatten)]
+    pub setup: Setup,
     /// Material.
     pub material: MaterialSpec,
     /// Lattice.
@@ -403,20 +385,9 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
         gmax = grow[imax];
         kmax = Some(ks[imax].to_vec());
         pmax = Some(polarisation(pol[imax], ks[imax]));
-        let kind = if cp <= 0.0 || cs < 0.0 {
-            Kind::Material
-        } else if q.stress == 0.0 {
-            Kind::Indefinite
-        } else {
-            let l0 = q.linearise_at(0.0)?;
-            if l0.growth(ks[imax])?.0 > GROWTH_TOL {
-                Kind::Indefinite
-            } else if q.stress > 0.0 {
-                Kind::Tensile
-            } else {
-                Kind::Compressive
-            }
-        };
+        let kind = growth_kind(cp <= 0.0 || cs < 0.0, q.stress, || {
+            Ok(q.linearise_at(0.0)?.growth(ks[imax])?.0)
+        })?;
         inst.push(Instability2D {
             kind,
             growth_rate: gmax,
@@ -442,23 +413,17 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
         });
     }
     let semi_stable = growing.is_empty();
-    let cdt = if !semi_stable {
-        None
-    } else if lin.is_dissipative() {
-        Some(critical_dt_2d(&lin, &ks)?)
+    let cdt = if semi_stable {
+        Some(critical_dt_given(&lin, &ks, w2max)?)
     } else {
-        Some(if w2max > 0.0 {
-            2.0 / w2max.sqrt()
-        } else {
-            f64::INFINITY
-        })
+        None
     };
     let mut max_amp = None;
     let mut ts = false;
     if let Some(dt) = q.dt {
         let mut best = (0.0f64, [0.0; D], 0usize);
-        for (i, &k) in ks.iter().enumerate() {
-            let r = lin.spectral_radius(k, dt)?;
+        let rho = spectral_radii(&lin, &ks, dt)?;
+        for (i, (&k, &r)) in ks.iter().zip(&rho).enumerate() {
             if r > 1.0 + AMPLIFICATION_TOL && grow[i] <= GROWTH_TOL {
                 best.2 += 1;
             }
@@ -479,12 +444,7 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
     }
     Ok(QueryReport2D {
         dim: D as u8,
-        form: q.form.name(),
-        kernel: q.kernel.name(),
-        shape: q.shape.name(),
-        h_over_dx: q.h_over_dx,
-        support_over_dx: q.kernel.zeta() * q.h_over_dx,
-        stress: q.stress,
+        setup: Setup::new(q.form, q.kernel, q.shape, q.h_over_dx, q.stress),
         material: q.material,
         lattice: q.lattice.kind,
         nearest_neighbour_over_dx: nearest_neighbour(&q.lattice),
@@ -500,35 +460,6 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
         dt: q.dt,
         max_amplification: max_amp,
     })
-}
-
-/// Critical Δt by bisection on the amplification matrices over the sampled zone.
-pub fn critical_dt_2d<const D: usize>(lin: &Bloch<D>, ks: &[[f64; D]]) -> Result<f64> {
-    let stable = |dt: f64| -> Result<bool> {
-        for &k in ks {
-            if lin.spectral_radius(k, dt)? > 1.0 + AMPLIFICATION_TOL {
-                return Ok(false);
-            }
-        }
-        Ok(true)
-    };
-    let (mut lo, mut hi) = (0.0, 1.0);
-    while stable(hi)? {
-        lo = hi;
-        hi *= 2.0;
-        if hi > 1e6 {
-            return Ok(f64::INFINITY);
-        }
-    }
-    for _ in 0..50 {
-        let mid = 0.5 * (lo + hi);
-        if stable(mid)? {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Ok(lo)
 }
 
 /// Dispersion along the high-symmetry path.
@@ -559,32 +490,8 @@ pub struct Dispersion2D {
 /// Largest `--grid` (wave vectors per reciprocal direction): 1024² wave vectors take ~8 s for
 /// the elastic classical form on this project's 2-core machine (512²: 2.0 s, measured).
 pub const MAX_GRID: usize = 1024;
-/// Largest `map --n` (same cost per wave vector as `--grid`).
-pub const MAX_MAP_N: usize = 1024;
-/// Largest `--box` (free particles per side): 1000² standing modes take ~4 s.
-pub const MAX_BOX: usize = 1000;
-/// Largest `--box` in 3D: 100³ = 1e6 standing modes (the 2D bound's count).
-pub const MAX_BOX_3D: usize = 100;
-
-/// Largest `--box` in dimension `dim`.
-pub const fn max_box(dim: usize) -> usize {
-    if dim == 3 { MAX_BOX_3D } else { MAX_BOX }
-}
 /// Largest `dispersion --dim 2 --points` (per path segment).
 pub const MAX_PATH_POINTS: usize = 100_000;
-
-/// `Err(OutOfRange)` unless `lo ≤ n ≤ hi`.
-pub fn check_count(name: &'static str, n: usize, lo: usize, hi: usize) -> Result<()> {
-    if (lo..=hi).contains(&n) {
-        Ok(())
-    } else {
-        Err(Error::OutOfRange {
-            name,
-            value: n as f64,
-            range: format!("must be an integer in [{lo}, {hi}]"),
-        })
-    }
-}
 
 /// Dispersion along the high-symmetry path of the lattice ([`Lattice::symmetry_points`]), `n`
 /// points per segment.
@@ -635,121 +542,6 @@ pub fn dispersion2d<const D: usize>(q: &Query<D>, n: usize) -> Result<Dispersion
         out.omega2_continuum.push(cont);
     }
     Ok(out)
-}
-
-/// Growth-rate map over the zone: (κx, κy) grid and γ; in 3D over a plane ([`Plane`]).
-#[derive(Clone, Debug, Serialize)]
-pub struct GrowthMap {
-    /// κxΔx values (3D: the first in-plane coordinate).
-    pub kx: Vec<f64>,
-    /// κyΔx values (3D: the second in-plane coordinate).
-    pub ky: Vec<f64>,
-    /// γ at (kx\[i\], ky\[j\]), indexed `growth[i][j]` (c/Δx).
-    pub growth: Vec<Vec<f64>>,
-    /// Largest ω² (for the critical Δt).
-    pub omega2_max: f64,
-    /// 3D: the plane (in-plane unit vectors e_u, e_v; k = kx e_u + ky e_v); null in 2D.
-    pub plane: Option<[[f64; 3]; 2]>,
-}
-
-/// A plane through Γ of the 3D zone for `map --dim 3 --plane`: k = u e_u + v e_v.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Plane {
-    /// k_z = 0: e_u = x̂, e_v = ŷ.
-    Xy,
-    /// k_y = 0: e_u = x̂, e_v = ẑ.
-    Xz,
-    /// k_x = 0: e_u = ŷ, e_v = ẑ.
-    Yz,
-    /// The (1, −1, 0) mirror plane: e_u = (x̂ + ŷ)/√2, e_v = ẑ (contains Γ–M–R of sc).
-    Diagonal,
-}
-
-impl Plane {
-    /// All planes with their CLI names.
-    pub const ALL: [(Plane, &'static str); 4] = [
-        (Plane::Xy, "xy"),
-        (Plane::Xz, "xz"),
-        (Plane::Yz, "yz"),
-        (Plane::Diagonal, "diagonal"),
-    ];
-
-    /// By CLI name.
-    pub fn by_name(name: &str) -> Result<Self> {
-        crate::error::lookup("plane", &Self::ALL, name)
-    }
-
-    /// The in-plane unit vectors (e_u, e_v).
-    pub fn basis(self) -> [[f64; 3]; 2] {
-        let r = std::f64::consts::FRAC_1_SQRT_2;
-        match self {
-            Plane::Xy => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-            Plane::Xz => [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
-            Plane::Yz => [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            Plane::Diagonal => [[r, r, 0.0], [0.0, 0.0, 1.0]],
-        }
-    }
-}
-
-/// Growth over the square [−π, π]² (n × n) of wave vectors: (κx, κy) in 2D, (u, v) on `plane`
-/// in 3D (ignored in 2D), any lattice.
-pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Result<GrowthMap> {
-    check_count("--n", n, 2, MAX_MAP_N)?;
-    let lin = q.linearise_at(q.stress)?;
-    let ax: Vec<f64> = (0..n)
-        .map(|i| -PI + 2.0 * PI * (i as f64 + 0.5) / n as f64)
-        .collect();
-    let e = plane.basis();
-    let at = |u: f64, v: f64| {
-        let mut k = [0.0; D];
-        if D == 2 {
-            k[0] = u;
-            k[1] = v;
-        } else {
-            for c in 0..D {
-                k[c] = u * e[0][c] + v * e[1][c];
-            }
-        }
-        k
-    };
-    let mut g = vec![vec![0.0; n]; n];
-    let mut w2: f64 = 0.0;
-    for (i, &kx) in ax.iter().enumerate() {
-        for (j, &ky) in ax.iter().enumerate() {
-            let k = at(kx, ky);
-            g[i][j] = lin.growth(k)?.0;
-            w2 = w2.max(lin.branches(k)[D - 1].0.re);
-        }
-    }
-    Ok(GrowthMap {
-        kx: ax.clone(),
-        ky: ax,
-        growth: g,
-        omega2_max: w2,
-        plane: (D == 3).then_some(e),
-    })
-}
-
-/// The growth rate a box of n_free^D free particles between fixed boundary layers can show:
-/// standing modes sin(mπi/(n+1)) admit k = (m_1, …, m_D)π/(n+1), m_a = 1..n; the largest growth
-/// over those wave vectors, and where.
-pub fn box_prediction<const D: usize>(lin: &Bloch<D>, n_free: usize) -> Result<(f64, [f64; D])> {
-    check_count("--box", n_free, 1, max_box(D))?;
-    let mut best = (0.0, [0.0; D]);
-    let d = PI / (n_free as f64 + 1.0);
-    for idx in 0..n_free.pow(D as u32) {
-        let mut k = [0.0; D];
-        let mut rest = idx;
-        for a in (0..D).rev() {
-            k[a] = ((rest % n_free) + 1) as f64 * d;
-            rest /= n_free;
-        }
-        let g = lin.growth(k)?.0;
-        if g > best.0 {
-            best = (g, k);
-        }
-    }
-    Ok(best)
 }
 
 impl std::fmt::Display for MaterialSpec {

@@ -1,0 +1,170 @@
+//! What every question shares, in every dimension: validation of the common parameters (one
+//! path for CLI flags, scene files, configs and the library API), integer counts, the
+//! configuration line every report starts with, and the linearised artificial viscosity.
+
+use crate::error::{Error, Result, check_range};
+use crate::forms::{ArtificialViscosity, FormKind};
+use crate::kernel::Kernel;
+use crate::shape::ShapeFamily;
+use serde::Serialize;
+
+/// Allowed range of h/Δx.
+pub const H_RANGE: (f64, f64) = (0.05, 50.0);
+/// Allowed range of σ̄.
+pub const STRESS_RANGE: (f64, f64) = (-10.0, 10.0);
+
+/// The names under which the common parameters reach the user: CLI flags or scene fields.
+#[derive(Clone, Copy, Debug)]
+pub struct ParamNames {
+    /// h/Δx.
+    pub h: &'static str,
+    /// σ̄.
+    pub stress: &'static str,
+    /// Partition coefficient.
+    pub c: &'static str,
+    /// Viscosity α.
+    pub av_alpha: &'static str,
+    /// Viscosity β.
+    pub av_beta: &'static str,
+    /// Δt.
+    pub dt: &'static str,
+}
+
+impl ParamNames {
+    /// The CLI flags.
+    pub const CLI: ParamNames = ParamNames {
+        h: "--h",
+        stress: "--stress",
+        c: "--c",
+        av_alpha: "--av-alpha",
+        av_beta: "--av-beta",
+        dt: "--dt",
+    };
+}
+
+/// Validates the parameters shared by every question and run (one path for CLI flags, scene
+/// files, configs and the library API), naming them as the CLI does.
+pub fn check_common(
+    kernel: &'static dyn Kernel,
+    h: f64,
+    stress: f64,
+    c: f64,
+    av: Option<(f64, f64)>,
+    dt: Option<f64>,
+) -> Result<()> {
+    check_common_named(&ParamNames::CLI, kernel, h, stress, c, av, dt)
+}
+
+/// [`check_common`] with the names of the caller (e.g. scene fields).
+pub fn check_common_named(
+    names: &ParamNames,
+    kernel: &'static dyn Kernel,
+    h: f64,
+    stress: f64,
+    c: f64,
+    av: Option<(f64, f64)>,
+    dt: Option<f64>,
+) -> Result<()> {
+    check_range(names.h, h, H_RANGE.0, H_RANGE.1, true, true)?;
+    check_range(
+        names.stress,
+        stress,
+        STRESS_RANGE.0,
+        STRESS_RANGE.1,
+        true,
+        true,
+    )?;
+    check_range(names.c, c, 0.0, 1.0, true, true)?;
+    if let Some((a, b)) = av {
+        check_range(names.av_alpha, a, 0.0, 100.0, true, true)?;
+        check_range(names.av_beta, b, 0.0, 100.0, true, true)?;
+    }
+    if let Some(dt) = dt {
+        check_range(names.dt, dt, 0.0, 1e6, false, true)?;
+    }
+    if kernel.zeta() * h <= 1.0 {
+        return Err(Error::OutOfRange {
+            name: names.h,
+            value: h,
+            range: format!(
+                "the support ζh must exceed Δx so that particles have neighbours: h/Δx > {} for {} (ζ = {})",
+                1.0 / kernel.zeta(),
+                kernel.name(),
+                kernel.zeta()
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// `Err(OutOfRange)` unless `lo ≤ n ≤ hi`.
+pub fn check_count(name: &'static str, n: usize, lo: usize, hi: usize) -> Result<()> {
+    if (lo..=hi).contains(&n) {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange {
+            name,
+            value: n as f64,
+            range: format!("must be an integer in [{lo}, {hi}]"),
+        })
+    }
+}
+
+/// The configuration every report starts with: form, kernel, shape family, h and R (SPEC §1:
+/// every output prints both) and σ̄.
+#[derive(Clone, Debug, Serialize)]
+pub struct Setup {
+    /// Form name.
+    pub form: &'static str,
+    /// Kernel name.
+    pub kernel: &'static str,
+    /// Shape family name.
+    pub shape: &'static str,
+    /// h/Δx.
+    pub h_over_dx: f64,
+    /// R/Δx (Belytschko's D_mx).
+    pub support_over_dx: f64,
+    /// σ̄.
+    pub stress: f64,
+}
+
+impl Setup {
+    /// The setup of a question.
+    pub fn new(
+        form: FormKind,
+        kernel: &'static dyn Kernel,
+        shape: ShapeFamily,
+        h_over_dx: f64,
+        stress: f64,
+    ) -> Self {
+        Self {
+            form: form.name(),
+            kernel: kernel.name(),
+            shape: shape.name(),
+            h_over_dx,
+            support_over_dx: kernel.zeta() * h_over_dx,
+            stress,
+        }
+    }
+}
+
+impl std::fmt::Display for Setup {
+    /// One line: form / kernel / shape, h and R in Δx, σ̄.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}",
+            self.form, self.kernel, self.shape, self.h_over_dx, self.support_over_dx, self.stress
+        )
+    }
+}
+
+/// Monaghan viscosity (α, β) as the analysis linearises it: on all pairs, sound speed `c`.
+pub fn linearised_av(av: Option<(f64, f64)>, c: f64) -> Option<ArtificialViscosity> {
+    av.map(|(alpha, beta)| ArtificialViscosity {
+        alpha,
+        beta,
+        sound_speed: c,
+        approaching_only: false,
+    })
+}

@@ -1,0 +1,13 @@
+//! The numeric route: linearise a form's rate function about the uniformly pre-stressed periodic
+//! lattice and project onto Fourier (Bloch) modes. One core ([`columns`]: dual-number Jacobian
+//! columns, Bloch sum, rest-structure check, mechanical reduction, amplification of one mode) and
+//! two front ends: [`chain`] (1D, every 1D form incl. stress points and consistent mass) and
+//! [`bloch`] (any D on a lattice: polarisations, lattices, planes).
+
+pub mod bloch;
+pub mod chain;
+pub mod columns;
+
+pub use bloch::{Bloch, Linearisation2D, Linearisation3D, base_state, check_patch_budget};
+pub use chain::{Dof, Lattice1D, Linearisation, has_consistent_mass};
+pub use columns::{REST_RATE_TOL, ZERO_SUM_TOL, eigen};
