@@ -321,4 +321,95 @@ fn cli_names_are_the_documented_ones() {
     }
 }
 
+/// `timestep --integrator I --json` (issue 12 acceptance) for every integrator, 1D nonlocal m4
+/// h = 1.3: the critical Δt of the leapfrog family equals 2/ω_max and that of rk4 2√2/ω_max
+/// (closed forms of their stability regions on the imaginary axis); the weakly unstable ones
+/// report no critical Δt and a spurious growth equal, at ω_max Δt = y, to the closed forms
+/// ln√(1 + y²)/Δt (euler, lagged velocity: the acoustic mode's |λ|² = 1 + y²) and
+/// ln√(1 + y⁴/4)/Δt (rk2, epec).
+#[test]
+fn timestep_cli_per_integrator() {
+    let mut worst: f64 = 0.0;
+    for name in INTEGRATOR_NAMES {
+        let (code, out, err) = common::sphstab(&[
+            "timestep",
+            "--form",
+            "nonlocal",
+            "--kernel",
+            "m4",
+            "--h",
+            "1.3",
+            "--integrator",
+            name,
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{name}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["integrator"], name);
+        let w = v["omega_max"].as_f64().unwrap();
+        assert!(w > 0.5 && w < 1.0, "{name}: ω_max {w}");
+        let dt = v["spurious_growth_dt"].as_f64().unwrap();
+        assert!((dt * w - 1.0).abs() < 1e-12, "default Δt is 1/ω_max");
+        let rate = v["spurious_growth_rate"].as_f64().unwrap();
+        let crit = v["critical_dt"].as_f64();
+        let y: f64 = 1.0;
+        match name {
+            "kdk" | "dkd" | "symplectic-euler-vx" | "symplectic-euler-xv" | "rk4" => {
+                let limit = if name == "rk4" {
+                    2.0 * 2f64.sqrt()
+                } else {
+                    2.0
+                };
+                let c = crit.unwrap_or_else(|| panic!("{name}: no critical Δt"));
+                let d = (c * w / limit - 1.0).abs();
+                // a double root at the leapfrog limit is resolved to √ε; rk4's simple root better
+                assert!(d < 1e-7, "{name}: ω_max Δt_crit = {} vs {limit}", c * w);
+                assert_eq!(v["weak_instability"], false);
+                assert_eq!(rate, 0.0, "{name}");
+                worst = worst.max(d);
+            }
+            "euler" | "verlet-lagged" | "rk2-midpoint" | "rk2-heun" | "epec" => {
+                assert!(crit.is_none(), "{name}: {crit:?}");
+                assert_eq!(v["weak_instability"], true);
+                let want = if name == "euler" || name == "verlet-lagged" {
+                    (1.0 + y * y).sqrt().ln() / dt
+                } else {
+                    (1.0 + y.powi(4) / 4.0).sqrt().ln() / dt
+                };
+                let d = (rate / want - 1.0).abs();
+                assert!(d < 1e-9, "{name}: spurious growth {rate} vs {want}");
+                worst = worst.max(d);
+            }
+            _ => {
+                // pec, verlet-euler: weakly unstable too, no closed form
+                assert!(crit.is_none() && rate > 0.0, "{name}: {crit:?} {rate}");
+            }
+        }
+        eprintln!("{name}: critical Δt {crit:?}, spurious growth at Δt = 1/ω_max {rate:.6e} c/Δx");
+    }
+    eprintln!(
+        "timestep per integrator: worst relative difference from the closed forms {worst:.1e}"
+    );
+    for (args, flag) in [
+        (&["timestep", "--integrator", "nosuch"][..], "integrator"),
+        (
+            &[
+                "timestep",
+                "--integrator",
+                "verlet-euler",
+                "--euler-every",
+                "0",
+            ],
+            "--euler-every",
+        ),
+        (&["timestep", "--euler-every", "-3"], "--euler-every"),
+        (&["timestep", "--integrator", "rk4", "--dt", "-1"], "--dt"),
+    ] {
+        let (code, _, err) = common::sphstab(args);
+        assert_eq!(code, 2, "{args:?}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(err.contains(flag), "{args:?}: {err}");
+    }
+}
+
 mod common;

@@ -334,7 +334,7 @@ fn inapplicable_flags_are_errors() {
             "--gamma",
         ),
         (&["query", "--dim", "2", "--art-n", "4"], "--art-n"),
-        (&["timestep", "--dt", "1"], "--dt"),
+        (&["timestep", "--dt", "0"], "--dt"),
         (&["map", "--dim", "1"], "--dim"),
         (&["simulate", "thesis-wave", "--t-end", "1"], "--t-end"),
         (&["query", "--lattice", "hex"], "--lattice"),

@@ -2,13 +2,14 @@
 //! (`dispersion`), and its critical time step (`timestep`), over κΔx ∈ (0, π] of the chain
 //! engine ([`Linearisation`]; every 1D form).
 
-use super::common::{Setup, check_common, check_count, linearised_av};
+use super::common::{IntegratorReport, Setup, check_common, check_count, linearised_av};
 use crate::error::{Error, Result, check_range};
 use crate::forms::{FormKind, ModelParams};
+use crate::integrator::Integrator;
 use crate::kernel::Kernel;
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::vonneumann::amplification::{
-    AMPLIFICATION_TOL, critical_dt_bisection, critical_dt_given, leapfrog_limit, spectral_radii,
+    AMPLIFICATION_TOL, critical_dt_given, leapfrog_limit, spectral_radii,
 };
 use crate::vonneumann::classify::{
     GROWTH_TOL, Instability, Kind, ZERO_OMEGA2_TOL, branch, growth_kind, runs,
@@ -209,14 +210,12 @@ pub struct TimestepReport {
     /// Configuration.
     #[serde(flatten)]
     pub header: Header,
-    /// Critical Δt (Δx/c) from the amplification matrices (null if the semi-discrete system grows).
-    pub critical_dt: Option<f64>,
     /// 2/ω_max, the leapfrog limit \[B00 eq 120, ξ = 0\] (non-dissipative systems).
     pub critical_dt_from_omega_max: Option<f64>,
-    /// c Δt_crit / h.
-    pub critical_cfl: Option<f64>,
-    /// max ω Δx/c.
-    pub omega_max: f64,
+    /// The integrator's critical Δt, CFL number, weak instability and spurious growth
+    /// (`critical_dt` is null if the semi-discrete system grows).
+    #[serde(flatten)]
+    pub step: IntegratorReport,
 }
 
 /// Growth rates and ω² on the grid.
@@ -356,27 +355,28 @@ pub fn dispersion(q: &Query1D) -> Result<DispersionReport> {
 
 /// The critical time step.
 pub fn timestep(q: &Query1D) -> Result<TimestepReport> {
+    timestep_with(q, Integrator::Kdk, None)
+}
+
+/// The critical time step of `integ` (and its spurious growth at `dt`, default 1/ω_max) over
+/// the κ grid of `q`.
+pub fn timestep_with(q: &Query1D, integ: Integrator, dt: Option<f64>) -> Result<TimestepReport> {
     let lin = q.linearise()?;
     let kappas = q.kappas();
     let (w2, g) = curve(&lin, &kappas)?;
     let w2max = w2.iter().fold(0.0f64, |m, &x| m.max(x));
-    let wmax = w2max.sqrt();
     let grows = g.iter().any(|&x| x > GROWTH_TOL);
-    let cdt = if grows {
-        None
-    } else {
-        Some(critical_dt_bisection(&lin, &kappas)?)
-    };
-    let from_w = if lin.is_dissipative() || grows || wmax == 0.0 {
+    let from_w = if lin.is_dissipative() || grows || w2max == 0.0 {
         None
     } else {
         Some(leapfrog_limit(w2max))
     };
+    if let Some(d) = dt {
+        check_range("--dt", d, 0.0, 1e6, false, true)?;
+    }
     Ok(TimestepReport {
         header: Header::of(q),
-        critical_dt: cdt,
         critical_dt_from_omega_max: from_w,
-        critical_cfl: cdt.map(|d| d / q.h_over_dx),
-        omega_max: wmax,
+        step: IntegratorReport::of(&lin, &kappas, integ, dt, q.h_over_dx, grows)?,
     })
 }

@@ -168,3 +168,73 @@ pub fn linearised_av(av: Option<(f64, f64)>, c: f64) -> Option<ArtificialViscosi
         approaching_only: false,
     })
 }
+
+/// What a time integrator does to a configuration's modes ([`crate::integrator`],
+/// [`crate::vonneumann::amplification::step_stability`]): the part of a `timestep` report that
+/// depends on the integrator, in every dimension. Units Δx/c and c/Δx.
+#[derive(Clone, Debug, Serialize)]
+pub struct IntegratorReport {
+    /// CLI name of the integrator.
+    pub integrator: &'static str,
+    /// N_s of `verlet-euler` (null for the others).
+    pub euler_every: Option<usize>,
+    /// Largest |s| over the modes that do not grow in the semi-discrete system (ω_max).
+    pub omega_max: f64,
+    /// Largest Δt with growth per step ≤ 1 + 1e-7 on every non-growing mode, by bisection on the
+    /// amplification matrices; null when the integrator amplifies at every Δt (weak
+    /// instability) or the semi-discrete system grows.
+    pub critical_dt: Option<f64>,
+    /// The integrator's stability limit on the imaginary axis over ω_max (2/ω_max for the
+    /// leapfrog family, 2√2/ω_max for rk4), for non-dissipative systems; null where there is no
+    /// closed form.
+    pub critical_dt_closed_form: Option<f64>,
+    /// c Δt_crit / h.
+    pub critical_cfl: Option<f64>,
+    /// Whether the integrator amplifies non-growing modes at every Δt (|λ| > 1 + 1e-7 already at
+    /// ω_max Δt = 0.1): the weak instability, kind `integrator`.
+    pub weak_instability: bool,
+    /// Growth per unit time the integrator adds at `spurious_growth_dt` (max over the
+    /// non-growing modes of ln|λ|/Δt; 0 if none amplifies).
+    pub spurious_growth_rate: f64,
+    /// The Δt of `spurious_growth_rate`: `--dt` if given, else 1/ω_max (half the leapfrog limit).
+    pub spurious_growth_dt: f64,
+}
+
+impl IntegratorReport {
+    /// The report of `integ` on `lin` over the modes `ks`; `dt` is where the spurious growth is
+    /// evaluated (default 1/ω_max); `h_over_dx` gives the CFL number. `grows`: the
+    /// semi-discrete system has growing modes (then no critical Δt is reported).
+    pub fn of<L: crate::vonneumann::amplification::Modes>(
+        lin: &L,
+        ks: &[L::K],
+        integ: crate::integrator::Integrator,
+        dt: Option<f64>,
+        h_over_dx: f64,
+        grows: bool,
+    ) -> Result<Self> {
+        use crate::vonneumann::amplification::{spurious_growth_rate, step_stability};
+        let st = step_stability(lin, ks, integ)?;
+        let weak = st.weak;
+        let critical_dt = if grows { None } else { st.critical_dt };
+        let at = dt.unwrap_or(if st.omega_max > 0.0 {
+            1.0 / st.omega_max
+        } else {
+            1.0
+        });
+        let (rate, _) = spurious_growth_rate(lin, ks, integ, at)?;
+        Ok(Self {
+            integrator: integ.name(),
+            euler_every: match integ {
+                crate::integrator::Integrator::VerletEuler { every } => Some(every),
+                _ => None,
+            },
+            omega_max: st.omega_max,
+            critical_dt,
+            critical_dt_closed_form: st.closed_form_dt,
+            critical_cfl: critical_dt.filter(|d| d.is_finite()).map(|d| d / h_over_dx),
+            weak_instability: weak,
+            spurious_growth_rate: rate,
+            spurious_growth_dt: at,
+        })
+    }
+}

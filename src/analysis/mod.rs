@@ -12,10 +12,11 @@ pub mod zone;
 
 pub use chain::{
     DispersionReport, Header, Query1D, QueryReport, TimestepReport, dispersion, query, timestep,
+    timestep_with,
 };
 pub use common::{
-    H_RANGE, ParamNames, STRESS_RANGE, Setup, check_common, check_common_named, check_count,
-    linearised_av,
+    H_RANGE, IntegratorReport, ParamNames, STRESS_RANGE, Setup, check_common, check_common_named,
+    check_count, linearised_av,
 };
 pub use maps::{
     GrowthMap, MAX_BOX, MAX_BOX_3D, MAX_MAP_N, Plane, box_prediction, growth_map, max_box,

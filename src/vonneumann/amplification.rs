@@ -266,6 +266,8 @@ pub struct StepStability {
     pub critical_dt: Option<f64>,
     /// The closed form [`Integrator::imaginary_axis_limit`]/ω_max, for non-dissipative systems.
     pub closed_form_dt: Option<f64>,
+    /// Whether the scheme amplifies a non-growing mode at every Δt (the weak instability).
+    pub weak: bool,
 }
 
 /// ω_max Δt at which a weak instability is looked for: there |λ| − 1 is ≈ y²/2 for `euler`
@@ -274,7 +276,8 @@ pub const WEAK_PROBE: f64 = 0.1;
 
 /// The modes of `ks` that do not grow in the semi-discrete system (max Re s ≤ [`GROWTH_TOL`]):
 /// the time-step analysis concerns these; growing modes are spatial instabilities, reported as
-/// such.
+/// such. Also ω_max: the largest |s| over every eigenvalue with Re s ≤ [`GROWTH_TOL`] at every
+/// mode (the oscillating branches of a mode whose other branch grows included).
 fn non_growing<L: Modes>(lin: &L, ks: &[L::K]) -> Result<(Vec<L::K>, f64)> {
     let mut out = Vec::with_capacity(ks.len());
     let mut omega_max: f64 = 0.0;
@@ -282,8 +285,12 @@ fn non_growing<L: Modes>(lin: &L, ks: &[L::K]) -> Result<(Vec<L::K>, f64)> {
         let ev = lin.eigenvalues(k)?;
         if ev.iter().all(|s| s.re <= GROWTH_TOL) {
             out.push(k);
-            omega_max = ev.iter().map(|s| s.norm()).fold(omega_max, f64::max);
         }
+        omega_max = ev
+            .iter()
+            .filter(|s| s.re <= GROWTH_TOL)
+            .map(|s| s.norm())
+            .fold(omega_max, f64::max);
     }
     Ok((out, omega_max))
 }
@@ -296,22 +303,30 @@ pub fn step_stability<L: Modes>(lin: &L, ks: &[L::K], integ: Integrator) -> Resu
     } else {
         integ.imaginary_axis_limit().map(|y| y / omega_max)
     };
-    let result = |critical_dt| StepStability {
+    let result = |critical_dt: Option<f64>| StepStability {
         integrator: integ,
         omega_max,
         critical_dt,
         closed_form_dt,
+        weak: false,
     };
     let stable = |dt: f64| -> Result<bool> {
         Ok(max_spectral_radius_with(lin, &ks, dt, integ)?
             .is_none_or(|(r, _)| r <= 1.0 + AMPLIFICATION_TOL))
     };
-    if ks.is_empty() || omega_max == 0.0 {
+    if omega_max == 0.0 {
         return Ok(result(Some(f64::INFINITY)));
+    }
+    if ks.is_empty() {
+        // every mode has a growing branch: no time-step question is left to answer
+        return Ok(result(None));
     }
     let mut lo = WEAK_PROBE / omega_max;
     if !stable(lo)? {
-        return Ok(result(None));
+        return Ok(StepStability {
+            weak: true,
+            ..result(None)
+        });
     }
     let mut hi = 2.0 * lo;
     while stable(hi)? {

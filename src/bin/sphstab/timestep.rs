@@ -2,6 +2,8 @@
 
 use crate::common::Config;
 use anyhow::Result;
+use sphstab::analysis::IntegratorReport;
+use sphstab::integrator::Integrator;
 
 /// Flags of `timestep`.
 #[derive(clap::Args, Debug)]
@@ -11,18 +13,53 @@ pub struct Args {
     /// 1D: κ points in (0, π], in [2, 10000000] (2D uses --grid).
     #[arg(long)]
     points: Option<usize>,
+    /// Time integrator: kdk (default), dkd, verlet-lagged, symplectic-euler-vx,
+    /// symplectic-euler-xv, pec, epec, verlet-euler, rk2-midpoint, rk2-heun, rk4, euler.
+    #[arg(long, default_value = "kdk")]
+    integrator: String,
+    /// N_s of verlet-euler: an Euler step every N_s steps, in [1, 1000000].
+    #[arg(long = "euler-every", default_value_t = sphstab::integrator::DEFAULT_EULER_EVERY, allow_hyphen_values = true)]
+    euler_every: usize,
     /// Print one JSON document instead of text.
     #[arg(long)]
     json: bool,
 }
 
-pub fn run(a: Args) -> Result<()> {
-    if a.cfg.dt.is_some() {
-        return Err(crate::query::not_in(
-            "--dt",
-            "timestep (it computes the critical Δt; check a given Δt with `query --dt`)",
-        ));
+fn integrator(a: &Args) -> Result<Integrator> {
+    Ok(Integrator::from_name(&a.integrator, a.euler_every)?)
+}
+
+/// The integrator part of the text output.
+fn print_step(s: &IntegratorReport) {
+    let name = match s.euler_every {
+        Some(n) => format!("{} (N_s = {n})", s.integrator),
+        None => s.integrator.to_string(),
+    };
+    let closed = s
+        .critical_dt_closed_form
+        .map(|v| format!("{v:.9}"))
+        .unwrap_or_else(|| "n/a".into());
+    match s.critical_dt {
+        Some(dt) if dt.is_finite() => println!(
+            "critical Δt ({name}) = {dt:.9} Δx/c (bisection on the amplification matrices); closed form {closed}; CFL c Δt/h = {:.9}",
+            s.critical_cfl.unwrap_or(f64::NAN)
+        ),
+        Some(_) => println!("critical Δt ({name}): none (no Δt up to 1e6 amplifies)"),
+        None if s.weak_instability => println!(
+            "critical Δt ({name}): none — weak instability (integrator): it amplifies every non-growing mode at any Δt"
+        ),
+        None => {
+            println!("no critical Δt: the semi-discrete system already grows (see `sphstab query`)")
+        }
     }
+    println!(
+        "spurious growth ({name}) at Δt = {:.6} Δx/c: {:.6e} c/Δx",
+        s.spurious_growth_dt, s.spurious_growth_rate
+    );
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let integ = integrator(&a)?;
     let dim = a.cfg.dim()?;
     if dim > 1 {
         if a.points.is_some() {
@@ -32,72 +69,63 @@ pub fn run(a: Args) -> Result<()> {
             ));
         }
         return if dim == 3 {
-            run_nd::<3>(a)
+            run_nd::<3>(a, integ)
         } else {
-            run_nd::<2>(a)
+            run_nd::<2>(a, integ)
         };
     }
     a.cfg.reject_2d_flags()?;
     let q = a.cfg.query(a.points.unwrap_or(512))?;
-    let r = sphstab::analysis::timestep(&q)?;
+    let r = sphstab::analysis::timestep_with(&q, integ, a.cfg.dt)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
     println!("{}", r.header);
-    println!("ω_max = {:.9} c/Δx", r.omega_max);
-    match r.critical_dt {
-        Some(dt) => println!(
-            "critical leapfrog Δt = {:.9} Δx/c (bisection on the amplification matrices); 2/ω_max = {}; CFL c Δt/h = {:.9}",
-            dt,
-            r.critical_dt_from_omega_max
-                .map(|v| format!("{v:.9}"))
-                .unwrap_or_else(|| "n/a".into()),
-            r.critical_cfl.unwrap_or(f64::NAN)
-        ),
-        None => {
-            println!("no critical Δt: the semi-discrete system already grows (see `sphstab query`)")
-        }
+    println!("ω_max = {:.9} c/Δx", r.step.omega_max);
+    if let Some(v) = r.critical_dt_from_omega_max {
+        println!("leapfrog limit 2/ω_max = {v:.9} Δx/c");
     }
+    print_step(&r.step);
     Ok(())
 }
 
-fn run_nd<const D: usize>(a: Args) -> Result<()> {
+fn run_nd<const D: usize>(a: Args, integ: Integrator) -> Result<()> {
     let q = a.cfg.query_nd::<D>()?;
     let lin = q.linearise_at(q.stress)?;
     let ks = q.kgrid();
     let r = sphstab::analysis::query_nd(&q)?;
-    let bis = if r.critical_dt.is_some() {
-        Some(sphstab::vonneumann::amplification::critical_dt_bisection(
-            &lin, &ks,
-        )?)
-    } else {
-        None
-    };
-    let v = serde_json::json!({
+    if let Some(d) = a.cfg.dt {
+        sphstab::error::check_range("--dt", d, 0.0, 1e6, false, true)?;
+    }
+    let grows = r.critical_dt.is_none();
+    let step = IntegratorReport::of(&lin, &ks, integ, a.cfg.dt, r.setup.h_over_dx, grows)?;
+    let mut v = serde_json::json!({
         "dim": D, "form": r.setup.form, "kernel": r.setup.kernel, "h_over_dx": r.setup.h_over_dx,
-        "support_over_dx": r.setup.support_over_dx, "stress": r.setup.stress, "critical_dt": bis,
+        "support_over_dx": r.setup.support_over_dx, "stress": r.setup.stress,
         "critical_dt_from_omega_max": r.critical_dt,
-        "critical_cfl": bis.map(|d| d / r.setup.h_over_dx),
     });
+    if let (Some(m), serde_json::Value::Object(s)) =
+        (v.as_object_mut(), serde_json::to_value(&step)?)
+    {
+        m.extend(s);
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
-        match bis {
-            Some(dt) => println!(
-                "{} / {} h = {}Δx σ̄ = {} ({D}D, {}): critical leapfrog Δt = {dt:.9} Δx/c (bisection on the amplification matrices), 2/ω_max = {:.9}, CFL c Δt/h = {:.9}",
-                r.setup.form,
-                r.setup.kernel,
-                r.setup.h_over_dx,
-                r.setup.stress,
-                r.lattice,
-                r.critical_dt.unwrap_or(f64::NAN),
-                dt / r.setup.h_over_dx
-            ),
-            None => println!(
-                "no critical Δt: the semi-discrete system already grows (see `sphstab query --dim {D}`)"
-            ),
-        }
+        println!(
+            "{} / {} h = {}Δx σ̄ = {} ({D}D, {}): ω_max = {:.9} c/Δx, leapfrog limit 2/ω_max = {}",
+            r.setup.form,
+            r.setup.kernel,
+            r.setup.h_over_dx,
+            r.setup.stress,
+            r.lattice,
+            step.omega_max,
+            r.critical_dt
+                .map(|v| format!("{v:.9}"))
+                .unwrap_or_else(|| "n/a".into()),
+        );
+        print_step(&step);
     }
     Ok(())
 }
