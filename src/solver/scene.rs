@@ -108,6 +108,12 @@ pub struct Scene1D {
     /// Δt in Δx/c.
     #[serde(default = "cfl_default")]
     pub cfl: f64,
+    /// Time integrator ([`crate::integrator::INTEGRATOR_NAMES`]; null: `kdk`).
+    #[serde(default)]
+    pub integrator: Option<String>,
+    /// N_s of `verlet-euler` (null: 40).
+    #[serde(default)]
+    pub euler_every: Option<usize>,
     /// Analytic solution for the error norm.
     #[serde(default)]
     pub analytic: Option<Analytic>,
@@ -195,6 +201,8 @@ pub struct SceneReport {
     pub name: String,
     /// Form.
     pub form: &'static str,
+    /// Time integrator (CLI name).
+    pub integrator: &'static str,
     /// Time reached.
     pub t: f64,
     /// Steps.
@@ -332,6 +340,23 @@ impl Scene1D {
         }
     }
 
+    /// The scene's time integrator (`integrator`, `euler_every`; default `kdk`, N_s = 40).
+    pub fn integrator(&self) -> Result<crate::integrator::Integrator> {
+        use crate::integrator::{DEFAULT_EULER_EVERY, Integrator};
+        let every = self.euler_every.unwrap_or(DEFAULT_EULER_EVERY);
+        Integrator::from_name(self.integrator.as_deref().unwrap_or("kdk"), every).map_err(|e| {
+            let field = if matches!(e, Error::UnknownName { .. }) {
+                "integrator"
+            } else {
+                "euler_every"
+            };
+            Error::Config {
+                file: format!("scene `{}`", self.name),
+                msg: format!("field `{field}`: {e}"),
+            }
+        })
+    }
+
     /// Builds and runs the scene, calling `progress` with the fraction done.
     pub fn run(&self, mut progress: impl FnMut(f64)) -> Result<SceneReport> {
         let (form, k, shape) = self.validate()?;
@@ -395,6 +420,8 @@ impl Scene1D {
         let v_init = z.v.clone();
         let free: Vec<bool> = prescribed.iter().map(|p| p.is_none()).collect();
         let mut run = Run1D::new(model, z, prescribed.clone())?;
+        let integ = self.integrator()?;
+        run.set_integrator(integ);
         let dt = self.cfl * dx / c;
         let steps = (self.t_end / dt).ceil() as usize;
         let dt = self.t_end / steps as f64;
@@ -459,6 +486,7 @@ impl Scene1D {
         Ok(SceneReport {
             name: self.name.clone(),
             form: form.name(),
+            integrator: integ.name(),
             t: run.t,
             steps: run.steps,
             velocity_error_l2: error,

@@ -97,6 +97,8 @@ pub struct SwegleConfig {
     /// Extend `t_end` so that a mode growing at the box prediction can rise from the kick to the
     /// top of the fit window (1.5 ln(window top / kick) / γ_box), never shortening it.
     pub until_window: bool,
+    /// Time integrator (default `kdk`; [`crate::integrator`]).
+    pub integrator: crate::integrator::Integrator,
 }
 
 impl SwegleConfig {
@@ -128,6 +130,7 @@ impl SwegleConfig {
             c_partition: 0.5,
             until_window: false,
             art_stress: None,
+            integrator: crate::integrator::Integrator::Kdk,
         }
     }
 
@@ -348,6 +351,8 @@ pub struct SwegleReport {
     /// The run stopped early because it diverged (first non-finite value or a runaway); the
     /// measurements cover the steps before it. The binary exits with status 3 then.
     pub diverged: Option<Diverged>,
+    /// Time integrator (CLI name).
+    pub integrator: &'static str,
     /// Form.
     pub form: &'static str,
     /// Kernel.
@@ -442,6 +447,7 @@ where
     FinalState: From<State<f64, D>>,
 {
     let mut run = cfg.build::<D>()?;
+    run.set_integrator(cfg.integrator);
     let c = cfg.sound_speed();
     let unit = c / cfg.dx; // c/Δx: normalisation of rates
     // predictions
@@ -587,6 +593,7 @@ where
     let stride = (t.len() / 400).max(1);
     Ok(SwegleReport {
         diverged,
+        integrator: cfg.integrator.name(),
         form: cfg.form.name(),
         kernel: cfg.kernel.name(),
         h_over_dx: cfg.h_over_dx,

@@ -273,3 +273,29 @@ pub fn art_stress(eps: Option<f64>, n: Option<i32>) -> Result<Option<(f64, i32)>
         (None, None) => Ok(None),
     }
 }
+
+/// `--integrator` and `--euler-every`, shared by `timestep`, `swegle` and `simulate`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct IntegratorArgs {
+    /// Time integrator: kdk (default), dkd, verlet-lagged, symplectic-euler-vx,
+    /// symplectic-euler-xv, pec, epec, verlet-euler, rk2-midpoint, rk2-heun, rk4, euler.
+    #[arg(long, default_value = "kdk")]
+    pub integrator: String,
+    /// N_s of verlet-euler: an Euler step every N_s steps, in [1, 1000000].
+    #[arg(
+        long = "euler-every",
+        default_value_t = sphstab::integrator::DEFAULT_EULER_EVERY,
+        allow_hyphen_values = true
+    )]
+    pub euler_every: usize,
+}
+
+impl IntegratorArgs {
+    /// The integrator named by the flags.
+    pub fn integrator(&self) -> anyhow::Result<sphstab::integrator::Integrator> {
+        Ok(sphstab::integrator::Integrator::from_name(
+            &self.integrator,
+            self.euler_every,
+        )?)
+    }
+}

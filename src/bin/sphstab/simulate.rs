@@ -17,6 +17,14 @@ pub struct Args {
     /// Override the scene's end time (s).
     #[arg(long = "t-end", allow_hyphen_values = true)]
     t_end: Option<f64>,
+    /// Time integrator (overrides the scene's `integrator`; default kdk): kdk, dkd, verlet-lagged,
+    /// symplectic-euler-vx, symplectic-euler-xv, pec, epec, verlet-euler, rk2-midpoint, rk2-heun,
+    /// rk4, euler.
+    #[arg(long)]
+    integrator: Option<String>,
+    /// N_s of verlet-euler (overrides the scene's `euler_every`; default 40), in [1, 1000000].
+    #[arg(long = "euler-every", allow_hyphen_values = true)]
+    euler_every: Option<usize>,
     /// JSON summary on stdout.
     #[arg(long)]
     json: bool,
@@ -34,6 +42,12 @@ pub fn run(a: Args) -> Result<()> {
         if let Some(t) = a.t_end {
             args.extend(["--t-end".into(), t.to_string()]);
         }
+        if let Some(i) = &a.integrator {
+            args.extend(["--integrator".into(), i.clone()]);
+        }
+        if let Some(n) = a.euler_every {
+            args.extend(["--euler-every".into(), n.to_string()]);
+        }
         if a.json {
             args.push("--json".into());
         }
@@ -47,9 +61,10 @@ pub fn run(a: Args) -> Result<()> {
         return crate::swegle::run(parsed);
     }
     if a.scene == "thesis-wave" {
-        if a.t_end.is_some() || a.out.is_some() {
+        if a.t_end.is_some() || a.out.is_some() || a.integrator.is_some() || a.euler_every.is_some()
+        {
             return Err(crate::query::not_in(
-                "--t-end/--out",
+                "--t-end/--out/--integrator/--euler-every",
                 "the thesis-wave scene (its four runs end when the pulse has crossed the interface)",
             ));
         }
@@ -97,6 +112,17 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(t) = a.t_end {
         sphstab::error::check_range("--t-end", t, 0.0, f64::INFINITY, false, false)?;
         scene.t_end = t;
+    }
+    if a.integrator.is_some() || a.euler_every.is_some() {
+        // validate the flags under their own names before they reach the scene
+        let name = a.integrator.clone().or(scene.integrator.clone());
+        let every = a.euler_every.or(scene.euler_every);
+        sphstab::integrator::Integrator::from_name(
+            name.as_deref().unwrap_or("kdk"),
+            every.unwrap_or(sphstab::integrator::DEFAULT_EULER_EVERY),
+        )?;
+        scene.integrator = name;
+        scene.euler_every = every;
     }
     let pb = crate::progress::bar(crate::progress::wanted(a.json));
     let r = scene.run(|f| crate::progress::set(&pb, f))?;

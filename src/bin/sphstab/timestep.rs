@@ -1,6 +1,6 @@
 //! `sphstab timestep`.
 
-use crate::common::Config;
+use crate::common::{Config, IntegratorArgs};
 use anyhow::Result;
 use sphstab::analysis::IntegratorReport;
 use sphstab::integrator::Integrator;
@@ -13,20 +13,11 @@ pub struct Args {
     /// 1D: κ points in (0, π], in [2, 10000000] (2D uses --grid).
     #[arg(long)]
     points: Option<usize>,
-    /// Time integrator: kdk (default), dkd, verlet-lagged, symplectic-euler-vx,
-    /// symplectic-euler-xv, pec, epec, verlet-euler, rk2-midpoint, rk2-heun, rk4, euler.
-    #[arg(long, default_value = "kdk")]
-    integrator: String,
-    /// N_s of verlet-euler: an Euler step every N_s steps, in [1, 1000000].
-    #[arg(long = "euler-every", default_value_t = sphstab::integrator::DEFAULT_EULER_EVERY, allow_hyphen_values = true)]
-    euler_every: usize,
+    #[command(flatten)]
+    integ: IntegratorArgs,
     /// Print one JSON document instead of text.
     #[arg(long)]
     json: bool,
-}
-
-fn integrator(a: &Args) -> Result<Integrator> {
-    Ok(Integrator::from_name(&a.integrator, a.euler_every)?)
 }
 
 /// The integrator part of the text output.
@@ -59,7 +50,7 @@ fn print_step(s: &IntegratorReport) {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let integ = integrator(&a)?;
+    let integ = a.integ.integrator()?;
     let dim = a.cfg.dim()?;
     if dim > 1 {
         if a.points.is_some() {
