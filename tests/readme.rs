@@ -23,8 +23,9 @@ fn copy_dir(from: &Path, to: &Path) {
 }
 
 /// The shell lines of the README's ```sh blocks (comments kept: bash ignores them), each with
-/// the error line the README shows right below it (`# error: …`), if any: such a command must
-/// fail with exactly that message.
+/// the error line the README shows right below it (`# error: …`, exit status 2; `# exit 3,
+/// error: …` for a run that diverges), if any: such a command must fail with exactly that
+/// message.
 fn readme_commands() -> Vec<(String, Option<String>)> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("README.md")).unwrap();
@@ -42,6 +43,11 @@ fn readme_commands() -> Vec<(String, Option<String>)> {
         if let Some(e) = l.strip_prefix("# error:") {
             if let Some(last) = out.last_mut() {
                 last.1 = Some(format!("error:{e}"));
+            }
+        } else if let Some(e) = l.strip_prefix("# exit 3, error:") {
+            // a run that diverges (exit status 3), with its message
+            if let Some(last) = out.last_mut() {
+                last.1 = Some(format!("3 error:{e}"));
             }
         } else if !l.starts_with('#') {
             out.push((l.to_string(), None));
@@ -86,7 +92,11 @@ fn readme_commands_run_verbatim_in_order() {
                 out.status.code()
             ),
             Some(e) => {
-                assert_eq!(out.status.code(), Some(2), "{cmd}: {err}");
+                let (code, e) = match e.strip_prefix("3 ") {
+                    Some(rest) => (3, rest),
+                    None => (2, e.as_str()),
+                };
+                assert_eq!(out.status.code(), Some(code), "{cmd}: {err}");
                 assert_eq!(err.trim_end(), e, "{cmd}: the README shows another message");
             }
         }
