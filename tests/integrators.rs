@@ -732,4 +732,65 @@ fn simulate_and_swegle_take_the_integrator() {
     }
 }
 
+/// `query --integrator I --dt Δt` (1D and 2D): the fully discrete check uses the chosen
+/// scheme — a weakly unstable one is reported as kind `integrator` with the same spurious growth
+/// as `timestep --integrator I --dt Δt`, and the critical Δt is the scheme's (rk4: 2√2/ω_max).
+#[test]
+fn query_takes_the_integrator() {
+    let json = |args: &[&str]| -> serde_json::Value {
+        let (code, out, err) = common::sphstab(args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        serde_json::from_str(&out).unwrap()
+    };
+    for dim in ["1", "2"] {
+        let base = ["--dim", dim, "--form", "nonlocal", "--h", "1.3", "--json"];
+        let q: Vec<&str> = ["query", "--integrator", "euler", "--dt", "0.3"]
+            .into_iter()
+            .chain(base)
+            .collect();
+        let v = json(&q);
+        assert_eq!(v["integrator"], "euler");
+        assert_eq!(v["stable"], false);
+        let kinds: Vec<&str> = v["instabilities"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|i| i["kind"].as_str().unwrap())
+            .collect();
+        assert!(kinds.contains(&"integrator"), "{kinds:?}");
+        let t: Vec<&str> = ["timestep", "--integrator", "euler", "--dt", "0.3"]
+            .into_iter()
+            .chain(base)
+            .collect();
+        let w = json(&t);
+        let (a, b) = (
+            v["spurious_growth_rate"].as_f64().unwrap(),
+            w["spurious_growth_rate"].as_f64().unwrap(),
+        );
+        assert!(
+            a > 0.0 && (a / b - 1.0).abs() < 1e-12,
+            "{dim}D: query {a} vs timestep {b}"
+        );
+        let q4: Vec<&str> = ["query", "--integrator", "rk4"]
+            .into_iter()
+            .chain(base)
+            .collect();
+        let v4 = json(&q4);
+        let t4: Vec<&str> = ["timestep", "--integrator", "rk4"]
+            .into_iter()
+            .chain(base)
+            .collect();
+        let w4 = json(&t4);
+        assert_eq!(v4["critical_dt"], w4["critical_dt"], "{dim}D");
+        let ratio = w4["critical_dt"].as_f64().unwrap() * w4["omega_max"].as_f64().unwrap();
+        assert!(
+            (ratio / (2.0 * 2f64.sqrt()) - 1.0).abs() < 1e-7,
+            "{dim}D: {ratio}"
+        );
+        eprintln!(
+            "{dim}D: euler at Δt = 0.3: spurious growth {a:.6e} c/Δx; rk4 ω_max Δt_crit = {ratio:.9}"
+        );
+    }
+}
+
 mod common;

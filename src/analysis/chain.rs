@@ -9,7 +9,7 @@ use crate::integrator::Integrator;
 use crate::kernel::Kernel;
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::vonneumann::amplification::{
-    AMPLIFICATION_TOL, critical_dt_given, leapfrog_limit, spectral_radii,
+    AMPLIFICATION_TOL, critical_dt_given, leapfrog_limit, spectral_radius_with, step_stability,
 };
 use crate::vonneumann::classify::{
     GROWTH_TOL, Instability, Kind, ZERO_OMEGA2_TOL, branch, growth_kind, runs,
@@ -39,6 +39,8 @@ pub struct Query1D {
     pub av: Option<(f64, f64)>,
     /// Time step Δt in Δx/c for the fully discrete check.
     pub dt: Option<f64>,
+    /// Time integrator of the fully discrete check and the critical Δt (default `kdk`).
+    pub integrator: Integrator,
     /// Number of κ points in (0, π].
     pub points: usize,
     /// Physical lattice (results in normalised units do not depend on it).
@@ -58,6 +60,7 @@ impl Query1D {
             alpha_s: 0.0,
             av: None,
             dt: None,
+            integrator: Integrator::Kdk,
             points: 512,
             lattice: Lattice1D::default(),
         }
@@ -186,6 +189,11 @@ pub struct QueryReport {
     pub dt: Option<f64>,
     /// Largest |λ| at that Δt.
     pub max_amplification: Option<f64>,
+    /// Time integrator of `critical_dt` and of the check at `dt`.
+    pub integrator: &'static str,
+    /// Growth per unit time (c/Δx) the integrator adds to the non-growing modes at `dt`
+    /// (max ln|λ|/Δt; 0 if none, or no `dt`).
+    pub spurious_growth_rate: f64,
 }
 
 /// Dispersion curve.
@@ -292,16 +300,26 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
         inst.push(branch(Kind::RankDeficiency, &kappas, &zeros, r));
     }
     let semi_stable = !growing.iter().any(|&x| x);
-    let (cdt, cfl) = if semi_stable {
-        let dt = critical_dt_given(&lin, &kappas, w2.iter().fold(0.0, |m, &x| m.max(x)))?;
-        (Some(dt), Some(dt / q.h_over_dx))
+    let integ = q.integrator;
+    // the integrator's verdict (kdk: the leapfrog limit or bisection, as always)
+    let (cdt, weak) = if integ == Integrator::Kdk {
+        let d = semi_stable
+            .then(|| critical_dt_given(&lin, &kappas, w2.iter().fold(0.0, |m, &x| m.max(x))))
+            .transpose()?;
+        (d, false)
     } else {
-        (None, None)
+        let st = step_stability(&lin, &kappas, integ)?;
+        (st.critical_dt.filter(|_| semi_stable), st.weak)
     };
+    let cfl = cdt.map(|d| d / q.h_over_dx);
     let mut max_amp = None;
     let mut ts_unstable = false;
+    let mut spurious = 0.0f64;
     if let Some(dt) = q.dt {
-        let rho = spectral_radii(&lin, &kappas, dt)?;
+        let rho: Vec<f64> = kappas
+            .iter()
+            .map(|&k| spectral_radius_with(&lin, k, dt, integ))
+            .collect::<Result<_>>()?;
         max_amp = Some(rho.iter().fold(0.0f64, |m, &x| m.max(x)));
         let flags: Vec<bool> = rho
             .iter()
@@ -311,7 +329,14 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
         let rate: Vec<f64> = rho.iter().map(|r| r.ln().max(0.0) / dt).collect();
         for r in runs(&flags) {
             ts_unstable = true;
-            inst.push(branch(Kind::TimeStep, &kappas, &rate, r));
+            let kind = if weak {
+                Kind::Integrator
+            } else {
+                Kind::TimeStep
+            };
+            let b = branch(kind, &kappas, &rate, r);
+            spurious = spurious.max(b.growth_rate);
+            inst.push(b);
         }
     }
     // the largest growth over every row, time-step rows (growth per unit time ln|λ|/Δt) included,
@@ -335,6 +360,8 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
         critical_cfl: cfl,
         dt: q.dt,
         max_amplification: max_amp,
+        integrator: integ.name(),
+        spurious_growth_rate: spurious,
     })
 }
 

@@ -13,7 +13,7 @@ use crate::kernel::Kernel;
 use crate::lattice::{Lattice, LatticeKind, grid_index};
 use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
-use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt_given, spectral_radii};
+use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt_given};
 use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL, growth_kind};
 use crate::vonneumann::linearise::Bloch;
 use serde::Serialize;
@@ -61,6 +61,8 @@ pub struct Query<const D: usize> {
     pub av: Option<(f64, f64)>,
     /// Leapfrog Δt (Δx/c) to check.
     pub dt: Option<f64>,
+    /// Time integrator of the fully discrete check and the critical Δt (default `kdk`).
+    pub integrator: crate::integrator::Integrator,
     /// Artificial stress (ε, n) of the classical form.
     pub art_stress: Option<(f64, i32)>,
     /// Wave vectors per reciprocal-lattice direction (the zone is sampled n^D).
@@ -111,6 +113,7 @@ impl<const D: usize> Query<D> {
             },
             av: None,
             dt: None,
+            integrator: crate::integrator::Integrator::Kdk,
             art_stress: None,
             grid: default_grid(D),
         }
@@ -318,6 +321,11 @@ pub struct QueryReport2D {
     pub dt: Option<f64>,
     /// Largest |λ| at Δt.
     pub max_amplification: Option<f64>,
+    /// Time integrator of `critical_dt` and of the check at `dt`.
+    pub integrator: &'static str,
+    /// Growth per unit time (c/Δx) the integrator adds to the non-growing modes at `dt`
+    /// (ln|λ|/Δt at the worst one; 0 if none, or no `dt`).
+    pub spurious_growth_rate: f64,
 }
 
 /// Continuum branches (ω²/|k|² in units of c²) of the material at stress s: (P, S).
@@ -413,16 +421,27 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
         });
     }
     let semi_stable = growing.is_empty();
-    let cdt = if semi_stable {
-        Some(critical_dt_given(&lin, &ks, w2max)?)
+    let integ = q.integrator;
+    let (cdt, weak) = if integ == crate::integrator::Integrator::Kdk {
+        (
+            semi_stable
+                .then(|| critical_dt_given(&lin, &ks, w2max))
+                .transpose()?,
+            false,
+        )
     } else {
-        None
+        let st = crate::vonneumann::amplification::step_stability(&lin, &ks, integ)?;
+        (st.critical_dt.filter(|_| semi_stable), st.weak)
     };
     let mut max_amp = None;
     let mut ts = false;
+    let mut spurious_rate = 0.0;
     if let Some(dt) = q.dt {
         let mut best = (0.0f64, [0.0; D], 0usize);
-        let rho = spectral_radii(&lin, &ks, dt)?;
+        let rho: Vec<f64> = ks
+            .iter()
+            .map(|&k| crate::vonneumann::amplification::spectral_radius_with(&lin, k, dt, integ))
+            .collect::<Result<_>>()?;
         for (i, (&k, &r)) in ks.iter().zip(&rho).enumerate() {
             if r > 1.0 + AMPLIFICATION_TOL && grow[i] <= GROWTH_TOL {
                 best.2 += 1;
@@ -434,8 +453,13 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
         max_amp = Some(best.0);
         if best.2 > 0 {
             ts = true;
+            spurious_rate = best.0.ln() / dt;
             inst.push(Instability2D {
-                kind: Kind::TimeStep,
+                kind: if weak {
+                    Kind::Integrator
+                } else {
+                    Kind::TimeStep
+                },
                 growth_rate: best.0.ln() / dt,
                 kappa_at_max: best.1.to_vec(),
                 zone_fraction: best.2 as f64 / ks.len() as f64,
@@ -458,6 +482,8 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
         critical_dt: cdt,
         critical_cfl: cdt.map(|d| d / q.h_over_dx),
         dt: q.dt,
+        integrator: integ.name(),
+        spurious_growth_rate: spurious_rate,
         max_amplification: max_amp,
     })
 }

@@ -36,6 +36,8 @@ pub enum Kind {
     Material,
     /// Time step too large for the integrator.
     TimeStep,
+    /// The integrator amplifies at every Δt (weak instability: RK2, Euler, lagged velocity …).
+    Integrator,
 }
 
 /// One unstable or marginal branch.

@@ -8,6 +8,8 @@ use anyhow::Result;
 pub struct Args {
     #[command(flatten)]
     cfg: Config,
+    #[command(flatten)]
+    integ: crate::common::IntegratorArgs,
     /// 1D: number of κ points in (0, π], in [2, 10000000] (default 512).
     #[arg(long)]
     points: Option<usize>,
@@ -39,7 +41,8 @@ pub fn run(a: Args) -> Result<()> {
     if a.box_free.is_some() {
         return Err(not_in("--box", "--dim 1 (it predicts a 2D or 3D box)"));
     }
-    let q = a.cfg.query(a.points.unwrap_or(512))?;
+    let mut q = a.cfg.query(a.points.unwrap_or(512))?;
+    q.integrator = a.integ.integrator()?;
     let r = sphstab::analysis::query(&q)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
@@ -97,10 +100,11 @@ pub fn run(a: Args) -> Result<()> {
         }
     }
     match (r.critical_dt, r.critical_cfl) {
-        (Some(dt), Some(cfl)) => {
-            println!("critical leapfrog Δt = {dt:.6} Δx/c  (CFL c Δt/h = {cfl:.6})")
-        }
-        _ => println!("critical Δt: not computed (the semi-discrete system grows)"),
+        (Some(dt), Some(cfl)) => println!(
+            "critical {} Δt = {dt:.6} Δx/c  (CFL c Δt/h = {cfl:.6})",
+            integrator_words(r.integrator)
+        ),
+        _ => println!("{}", no_critical(r.integrator)),
     }
     if let (Some(dt), Some(a)) = (r.dt, r.max_amplification) {
         println!("at Δt = {dt} Δx/c: max |λ| = {a:.9}");
@@ -118,7 +122,8 @@ pub fn fmt_k(k: &[f64]) -> String {
 }
 
 fn run_nd<const D: usize>(a: Args) -> Result<()> {
-    let q = a.cfg.query_nd::<D>()?;
+    let mut q = a.cfg.query_nd::<D>()?;
+    q.integrator = a.integ.integrator()?;
     if let Some(n) = a.box_free {
         sphstab::analysis::check_count("--box", n, 1, sphstab::analysis::max_box(D))?;
     }
@@ -184,10 +189,11 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
     }
     match r.critical_dt {
         Some(dt) => println!(
-            "critical leapfrog Δt = {dt:.6} Δx/c (CFL c Δt/h = {:.6})",
+            "critical {} Δt = {dt:.6} Δx/c (CFL c Δt/h = {:.6})",
+            integrator_words(r.integrator),
             dt / r.setup.h_over_dx
         ),
-        None => println!("critical Δt: not computed (the semi-discrete system grows)"),
+        None => println!("{}", no_critical(r.integrator)),
     }
     if let (Some(dt), Some(m)) = (r.dt, r.max_amplification) {
         println!("at Δt = {dt} Δx/c: max |λ| = {m:.9}");
@@ -206,4 +212,20 @@ pub fn kind_name(k: sphstab::vonneumann::classify::Kind) -> String {
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))
         .unwrap_or_default()
+}
+
+/// "leapfrog" for the default kick–drift–kick, else the integrator's name.
+fn integrator_words(name: &str) -> &str {
+    if name == "kdk" { "leapfrog" } else { name }
+}
+
+/// The line printed when there is no critical Δt.
+fn no_critical(integrator: &str) -> String {
+    if integrator == "kdk" {
+        "critical Δt: not computed (the semi-discrete system grows)".into()
+    } else {
+        format!(
+            "critical {integrator} Δt: none (the semi-discrete system grows, or {integrator} amplifies at every Δt: see `timestep --integrator {integrator}`)"
+        )
+    }
 }
