@@ -204,8 +204,12 @@ pub fn critical_dt_bisection<L: Modes>(lin: &L, ks: &[L::K]) -> Result<f64> {
         }
         Ok(true)
     };
-    let mut lo = 0.0;
-    let mut hi = 1.0;
+    largest_stable(0.0, 1.0, stable)
+}
+
+/// The largest Δt with `stable(Δt)`, given that `lo` is stable (or 0): doubling from `hi` until
+/// unstable (∞ past 1e6), then bisection to a relative gap of 1e-12 (at most 60 halvings).
+fn largest_stable(mut lo: f64, mut hi: f64, stable: impl Fn(f64) -> Result<bool>) -> Result<f64> {
     while stable(hi)? {
         lo = hi;
         hi *= 2.0;
@@ -321,33 +325,14 @@ pub fn step_stability<L: Modes>(lin: &L, ks: &[L::K], integ: Integrator) -> Resu
         // every mode has a growing branch: no time-step question is left to answer
         return Ok(result(None));
     }
-    let mut lo = WEAK_PROBE / omega_max;
+    let lo = WEAK_PROBE / omega_max;
     if !stable(lo)? {
         return Ok(StepStability {
             weak: true,
             ..result(None)
         });
     }
-    let mut hi = 2.0 * lo;
-    while stable(hi)? {
-        lo = hi;
-        hi *= 2.0;
-        if hi > 1e6 {
-            return Ok(result(Some(f64::INFINITY)));
-        }
-    }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if stable(mid)? {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo <= 1e-12 * hi {
-            break;
-        }
-    }
-    Ok(result(Some(lo)))
+    Ok(result(Some(largest_stable(lo, 2.0 * lo, stable)?)))
 }
 
 /// Spurious growth of `integ` at step `dt` (Δx/c): the largest ln(growth per step)/Δt over the
