@@ -403,6 +403,16 @@ fn timestep_cli_per_integrator() {
             "--euler-every",
         ),
         (&["timestep", "--euler-every", "-3"], "--euler-every"),
+        (
+            &[
+                "timestep",
+                "--integrator",
+                "verlet-euler",
+                "--euler-every",
+                "1001",
+            ],
+            "--euler-every",
+        ),
         (&["timestep", "--integrator", "rk4", "--dt", "-1"], "--dt"),
     ] {
         let (code, _, err) = common::sphstab(args);

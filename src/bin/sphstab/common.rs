@@ -281,7 +281,7 @@ pub struct IntegratorArgs {
     /// symplectic-euler-xv, pec, epec, verlet-euler, rk2-midpoint, rk2-heun, rk4, euler.
     #[arg(long, default_value = "kdk")]
     pub integrator: String,
-    /// N_s of verlet-euler: an Euler step every N_s steps, in [1, 1000000].
+    /// N_s of verlet-euler: an Euler step every N_s steps, in [1, 1000].
     #[arg(
         long = "euler-every",
         default_value_t = sphstab::integrator::DEFAULT_EULER_EVERY,

@@ -22,7 +22,7 @@ pub struct Args {
     /// rk4, euler.
     #[arg(long)]
     integrator: Option<String>,
-    /// N_s of verlet-euler (overrides the scene's `euler_every`; default 40), in [1, 1000000].
+    /// N_s of verlet-euler (overrides the scene's `euler_every`; default 40), in [1, 1000].
     #[arg(long = "euler-every", allow_hyphen_values = true)]
     euler_every: Option<usize>,
     /// JSON summary on stdout.
