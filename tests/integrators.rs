@@ -804,3 +804,100 @@ fn query_takes_the_integrator() {
 }
 
 mod common;
+
+/// `verlet-euler` with viscosity: the N_s-step cycle is highly non-normal (nalgebra's Schur
+/// iteration stalled on it before eigenvalues fell back to faer), and for N_s = 1000 its entries
+/// overflow. The growth per step from the scaled power E·V^(N_s−1)
+/// (`ModeSystem::growth_per_step`) equals the spectral radius of the directly formed cycle to
+/// 1e-9 where that is finite; at N_s = 100 and Δt = 0.05 Δx/c (below the N_s = 40 limit
+/// 0.0659) the analysis predicts growth, and the solver, seeded with the cycle's dominant
+/// eigenvector, grows at that rate (1e-3). The CLI answers for N_s up to 1000 in 1D and 2D.
+#[test]
+fn verlet_euler_with_viscosity_long_cycles() {
+    use sphstab::forms::{ArtificialViscosity, FormKind};
+    use sphstab::shape::ShapeFamily;
+    use sphstab::vonneumann::amplification::{Modes, spectral_radius_with};
+    use sphstab::vonneumann::linearise::{Lattice1D, Linearisation};
+    let mut p = common::params(FormKind::Nonlocal, "m4", ShapeFamily::Sph, 1.3, 0.01);
+    p.av = Some(ArtificialViscosity {
+        alpha: 1.0,
+        beta: 0.0,
+        sound_speed: 1.0,
+        approaching_only: false,
+    });
+    let lin = Linearisation::new(p, Lattice1D::default()).unwrap();
+    let mut worst: f64 = 0.0;
+    for every in [1, 2, 40, 100] {
+        let integ = Integrator::VerletEuler { every };
+        for dt in [0.02, 0.05, 0.3] {
+            for m in [3, 13, 31] {
+                let k = 2.0 * std::f64::consts::PI * m as f64 / 64.0;
+                let direct = eigen(lin.amplification_with(k, dt, integ))
+                    .unwrap()
+                    .iter()
+                    .map(|l| l.norm())
+                    .fold(0.0, f64::max);
+                if !direct.is_finite() || direct > 1e300 {
+                    continue;
+                }
+                let direct = direct.powf(1.0 / every as f64);
+                let scaled = spectral_radius_with(&lin, k, dt, integ).unwrap();
+                let d = (scaled / direct - 1.0).abs();
+                assert!(
+                    d < 1e-9,
+                    "N_s = {every}, Δt = {dt}, m = {m}: {scaled} vs {direct}"
+                );
+                worst = worst.max(d);
+            }
+        }
+    }
+    eprintln!("verlet-euler growth per step, scaled power vs direct cycle: worst {worst:.1e}");
+    let integ = Integrator::VerletEuler { every: 100 };
+    let radius = |m: usize| {
+        let k = 2.0 * std::f64::consts::PI * m as f64 / 64.0;
+        spectral_radius_with(&lin, k, 0.05, integ).unwrap()
+    };
+    let m = (1..32)
+        .max_by(|&a, &b| radius(a).partial_cmp(&radius(b)).unwrap())
+        .unwrap();
+    let (pred, meas, _) = seeded_mode_run(integ, 1.0, 0.05, 64, m, 4);
+    let d = (meas / pred - 1.0).abs();
+    eprintln!(
+        "verlet-euler N_s = 100, Δt = 0.05, fastest chain mode m = {m}: growth per step predicted {pred:.9}, measured {meas:.9} ({d:.1e})"
+    );
+    assert!(pred > 1.0 + 1e-7 && d < 1e-3, "{meas} vs {pred}");
+    for args in [
+        &[
+            "timestep",
+            "--form",
+            "nonlocal",
+            "--av-alpha",
+            "1",
+            "--integrator",
+            "verlet-euler",
+            "--euler-every",
+            "1000",
+            "--json",
+        ][..],
+        &[
+            "timestep",
+            "--dim",
+            "2",
+            "--form",
+            "nonlocal",
+            "--av-alpha",
+            "1",
+            "--integrator",
+            "verlet-euler",
+            "--grid",
+            "16",
+            "--json",
+        ][..],
+    ] {
+        let (code, out, err) = common::sphstab(args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let r = j["spurious_growth_rate"].as_f64().unwrap();
+        assert!(r.is_finite() && r > 0.0, "{args:?}: {out}");
+    }
+}

@@ -54,6 +54,62 @@ impl ModeSystem {
     /// in the order of the state's indices). Its spectral radius to the power 1/cycle is the
     /// growth per step.
     pub fn amplification_with(&self, integ: Integrator, dt: f64) -> DMatrix<Complex64> {
+        self.steps_matrix(integ, dt, 0, integ.cycle())
+    }
+
+    /// The growth per step of `integ` at `dt`: the spectral radius of one cycle's amplification
+    /// to the power 1/cycle. For `verlet-euler` the cycle is E·V^(N_s−1) (N_s − 1 Verlet steps V,
+    /// then the Euler step E): the power is taken by repeated squaring with the scale kept apart
+    /// as a logarithm, so that a cycle whose entries would overflow (growth per step 2 over 1000
+    /// steps) or whose eigenvalues span hundreds of decades still gives a finite answer.
+    pub fn growth_per_step(&self, integ: Integrator, dt: f64) -> Result<f64> {
+        let n = integ.cycle();
+        if n == 1 {
+            let ev = eigen(self.steps_matrix(integ, dt, 0, 1))?;
+            return Ok(ev.iter().map(|l| l.norm()).fold(0.0, f64::max));
+        }
+        // (matrix, ln of its scale): the product is m·e^{ln_s}
+        let normalise = |m: DMatrix<Complex64>, ln_s: f64| -> (DMatrix<Complex64>, f64) {
+            let top = m.iter().map(|z| z.norm()).fold(0.0, f64::max);
+            if top > 0.0 && top.is_finite() {
+                (m.map(|z| z / top), ln_s + top.ln())
+            } else {
+                (m, ln_s)
+            }
+        };
+        let verlet = self.steps_matrix(integ, dt, 0, 1);
+        let euler = self.steps_matrix(integ, dt, n - 1, 1);
+        let dim = verlet.nrows();
+        let (mut acc, mut acc_ln) = (DMatrix::<Complex64>::identity(dim, dim), 0.0);
+        let (mut base, mut base_ln) = normalise(verlet, 0.0);
+        let mut e = n - 1;
+        while e > 0 {
+            if e & 1 == 1 {
+                (acc, acc_ln) = normalise(&acc * &base, acc_ln + base_ln);
+            }
+            e >>= 1;
+            if e > 0 {
+                (base, base_ln) = normalise(&base * &base, 2.0 * base_ln);
+            }
+        }
+        let (cyc, ln_s) = normalise(&euler * &acc, acc_ln);
+        let rho = eigen(cyc)?.iter().map(|l| l.norm()).fold(0.0, f64::max);
+        Ok(if rho > 0.0 {
+            ((ln_s + rho.ln()) / n as f64).exp()
+        } else {
+            0.0
+        })
+    }
+
+    /// Amplification matrix of `count` steps of `integ` starting at step `first` of its cycle
+    /// (memory as in [`ModeSystem::amplification_with`]).
+    fn steps_matrix(
+        &self,
+        integ: Integrator,
+        dt: f64,
+        first: usize,
+        count: usize,
+    ) -> DMatrix<Complex64> {
         let n = self.j.nrows();
         let parts = [&self.ix, &self.iv, &self.iq];
         let mem = integ.memory();
@@ -89,11 +145,11 @@ impl ModeSystem {
                 }
             }
             st.memory_valid = true;
-            st.steps = 0;
+            st.steps = first;
             let [x, v, q] = &mut z[..] else {
                 unreachable!()
             };
-            for _ in 0..integ.cycle() {
+            for _ in 0..count {
                 st.step(self, x, v, q, dt);
             }
             for (idx, vals) in parts.iter().zip(&z) {
@@ -136,6 +192,8 @@ pub trait Modes {
     /// Amplification matrix of one cycle of `integ` at k ([`ModeSystem::amplification_with`]);
     /// `dt` in Δx/c.
     fn amplification_with(&self, k: Self::K, dt: f64, integ: Integrator) -> DMatrix<Complex64>;
+    /// Growth per step of `integ` at k ([`ModeSystem::growth_per_step`]); `dt` in Δx/c.
+    fn growth_per_step(&self, k: Self::K, dt: f64, integ: Integrator) -> Result<f64>;
     /// Amplification matrix G(k, Δt) of one leapfrog step; `dt` in Δx/c.
     fn amplification(&self, k: Self::K, dt: f64) -> DMatrix<Complex64> {
         self.amplification_with(k, dt, Integrator::Kdk)
@@ -234,9 +292,7 @@ fn largest_stable(mut lo: f64, mut hi: f64, stable: impl Fn(f64) -> Result<bool>
 /// Growth per step of `integ` at k: the spectral radius of one cycle's amplification matrix to
 /// the power 1/cycle; `dt` in Δx/c.
 pub fn spectral_radius_with<L: Modes>(lin: &L, k: L::K, dt: f64, integ: Integrator) -> Result<f64> {
-    let ev = eigen(lin.amplification_with(k, dt, integ))?;
-    let r = ev.iter().map(|l| l.norm()).fold(0.0, f64::max);
-    Ok(r.powf(1.0 / integ.cycle() as f64))
+    lin.growth_per_step(k, dt, integ)
 }
 
 /// The largest growth per step of `integ` over `ks` at `dt` (Δx/c), and where.

@@ -298,6 +298,10 @@ impl<const D: usize> Modes for Bloch<D> {
     fn amplification_with(&self, k: [f64; D], dt: f64, integ: Integrator) -> DMatrix<Complex64> {
         Bloch::amplification_with(self, k, dt, integ)
     }
+    fn growth_per_step(&self, k: [f64; D], dt: f64, integ: Integrator) -> Result<f64> {
+        self.core
+            .growth_per_step(self.jacobian(k), dt * self.time_scale, integ)
+    }
     fn eigenvalues(&self, k: [f64; D]) -> Result<Vec<Complex64>> {
         Bloch::eigenvalues(self, k)
     }

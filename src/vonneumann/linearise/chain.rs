@@ -224,6 +224,10 @@ impl Modes for Linearisation {
         self.core
             .amplification(self.jacobian(kappa), dt * self.dx / self.c, integ)
     }
+    fn growth_per_step(&self, kappa: f64, dt: f64, integ: Integrator) -> Result<f64> {
+        self.core
+            .growth_per_step(self.jacobian(kappa), dt * self.dx / self.c, integ)
+    }
     fn eigenvalues(&self, kappa: f64) -> Result<Vec<Complex64>> {
         Linearisation::eigenvalues(self, kappa)
     }

@@ -139,6 +139,18 @@ impl<O: Copy> Columns<O> {
         ModeSystem::new(j, self.ix.clone(), self.iv.clone(), self.iq.clone())
             .amplification_with(integ, dt)
     }
+
+    /// Growth per step of `integ` with step `dt` (units of J⁻¹) of the mode with Jacobian `j`
+    /// ([`ModeSystem::growth_per_step`]).
+    pub fn growth_per_step(
+        &self,
+        j: DMatrix<Complex64>,
+        dt: f64,
+        integ: Integrator,
+    ) -> Result<f64> {
+        ModeSystem::new(j, self.ix.clone(), self.iv.clone(), self.iq.clone())
+            .growth_per_step(integ, dt)
+    }
 }
 
 /// The Bloch sum of Jacobian columns: J_ab(k) = Σ_j A_ab(j) e^{−iθ_j}, θ_j = `phase(offset_j)`
@@ -217,38 +229,45 @@ pub fn eigen(m: DMatrix<Complex64>) -> Result<Vec<Complex64>> {
     if n == 1 {
         return Ok(vec![m[(0, 0)]]);
     }
-    // nalgebra's Schur iteration occasionally stalls on a well-posed matrix (seen on amplification
-    // matrices of multi-step cycles); the same matrix scaled to unit largest entry, or shifted
-    // off the real axis, converges, and the eigenvalues map back exactly
-    let scale = m.iter().map(|z| z.norm()).fold(0.0, f64::max);
-    if !(scale.is_finite()) {
+    // nalgebra's Schur iteration has no exceptional shifts and occasionally stalls on a well-posed
+    // matrix (seen on amplification matrices of multi-step cycles: highly non-normal, with
+    // eigenvalues 0 and 1 of multiplicity 2, or eigenvalues spanning ten decades). Those go to
+    // faer's eigenvalue solver (LAPACK-style multishift QR with aggressive deflation and
+    // exceptional shifts); nalgebra stays first so that every result that converged before is
+    // unchanged.
+    if m.iter().any(|z| !(z.re.is_finite() && z.im.is_finite())) {
         return Err(Error::NonFinite("Schur decomposition (non-finite matrix)"));
     }
-    let scale = if scale > 0.0 { scale } else { 1.0 };
-    for (s, rotate) in [(1.0, false), (scale, false), (1.0, true), (scale, true)] {
-        if let Some(ev) = shifted_schur(&m.map(|z| z / s), rotate) {
-            return Ok(ev.into_iter().map(|z| z * s).collect());
-        }
+    if let Some(ev) = shifted_schur(&m) {
+        return Ok(ev);
     }
-    Err(Error::NonFinite("Schur decomposition (no convergence)"))
+    let f = faer::Mat::<faer::c64>::from_fn(n, n, |i, j| {
+        let z = m[(i, j)];
+        faer::c64::new(z.re, z.im)
+    });
+    match f.eigenvalues() {
+        Ok(ev) if ev.iter().all(|z| z.re.is_finite() && z.im.is_finite()) => {
+            Ok(ev.into_iter().map(|z| Complex64::new(z.re, z.im)).collect())
+        }
+        _ => Err(Error::NonFinite(
+            "eigenvalue decomposition (no convergence)",
+        )),
+    }
 }
 
 /// Eigenvalues by the Schur form of m + μI, μ = max column sum + 1 (every eigenvalue of the
-/// shifted matrix then has positive real part, which steadies the iteration), or μ rotated by
-/// 45° into the complex plane (`rotate`); `None` if the iteration stalls.
-fn shifted_schur(m: &DMatrix<Complex64>, rotate: bool) -> Option<Vec<Complex64>> {
+/// shifted matrix then has positive real part, which steadies the iteration); `None` if the
+/// iteration has not converged after 30 sweeps per eigenvalue (LAPACK's limit; a converging
+/// iteration takes 2–3).
+fn shifted_schur(m: &DMatrix<Complex64>) -> Option<Vec<Complex64>> {
     let n = m.nrows();
     let norm = (0..n)
         .map(|j| m.column(j).iter().map(|z| z.norm()).sum::<f64>())
         .fold(0.0, f64::max)
         + 1.0;
-    let mu = if rotate {
-        Complex64::from_polar(norm, std::f64::consts::FRAC_PI_4)
-    } else {
-        Complex64::new(norm, 0.0)
-    };
+    let mu = Complex64::new(norm, 0.0);
     let shifted = m + DMatrix::<Complex64>::identity(n, n) * mu;
-    let schur = nalgebra::linalg::Schur::try_new(shifted, 4.0 * f64::EPSILON, 100 * n * n)?;
+    let schur = nalgebra::linalg::Schur::try_new(shifted, 4.0 * f64::EPSILON, 30 * n)?;
     let ev = schur.eigenvalues()?;
     Some(ev.iter().map(|&z| z - mu).collect())
 }
