@@ -534,3 +534,87 @@ pub fn panels_svg(
     }
     Ok(svg)
 }
+
+/// One panel of [`scatter_panels_svg`]: caption and points (legend index, x, y).
+#[derive(Clone, Debug)]
+pub struct ScatterPanel {
+    /// Panel caption.
+    pub title: String,
+    /// Points: legend entry, x, y.
+    pub points: Vec<(usize, f64, f64)>,
+}
+
+/// A row of log–log scatter panels sharing both axis ranges, with one legend column on the
+/// right: point of legend entry i drawn in the style of [`panels_svg`] (colour i, marker shape
+/// i mod 6, filled for i < 6, hollow for 6 ≤ i < 12). Points that are not finite and positive
+/// are left out.
+pub fn scatter_panels_svg(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    legend: &[String],
+    panels: &[ScatterPanel],
+) -> Result<String> {
+    let ok = |p: &&(usize, f64, f64)| p.1.is_finite() && p.1 > 0.0 && p.2.is_finite() && p.2 > 0.0;
+    let all: Vec<&(usize, f64, f64)> = panels
+        .iter()
+        .flat_map(|p| p.points.iter())
+        .filter(ok)
+        .collect();
+    if all.is_empty() {
+        return Err(Error::Incompatible(
+            "nothing to plot: no finite positive points".into(),
+        ));
+    }
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for p in &all {
+        x0 = x0.min(p.1);
+        x1 = x1.max(p.1);
+        y0 = y0.min(p.2);
+        y1 = y1.max(p.2);
+    }
+    let (x0, x1, y0, y1) = (x0 / 1.5, x1 * 1.5, y0 / 2.0, y1 * 2.0);
+    let cols = panels.len().max(1) as u32;
+    let mut svg = String::new();
+    {
+        let (w, h) = (PANEL_W * cols + 220, PANEL_H + 110);
+        let base = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+        base.fill(&WHITE).map_err(plot_err)?;
+        let root = base.titled(title, ("sans-serif", 19)).map_err(plot_err)?;
+        let (grid, side) = root.split_horizontally(PANEL_W * cols);
+        let areas = grid.split_evenly((1, cols as usize));
+        for (panel, area) in panels.iter().zip(&areas) {
+            let mut chart = ChartBuilder::on(area)
+                .caption(&panel.title, ("sans-serif", 15))
+                .margin(8)
+                .x_label_area_size(40)
+                .y_label_area_size(55)
+                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .map_err(plot_err)?;
+            chart
+                .configure_mesh()
+                .x_desc(x_desc)
+                .y_desc(y_desc)
+                .x_label_formatter(&|v| format!("{v:.0e}"))
+                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .label_style(("sans-serif", 12))
+                .bold_line_style(BLACK.mix(0.12))
+                .light_line_style(WHITE)
+                .draw()
+                .map_err(plot_err)?;
+            for p in panel.points.iter().filter(ok) {
+                let (color, kind, solid) = panel_style(p.0);
+                draw_marker(&base, chart.backend_coord(&(p.1, p.2)), kind, color, solid)?;
+            }
+        }
+        for (i, label) in legend.iter().enumerate() {
+            let (color, kind, solid) = panel_style(i);
+            let y = 60 + 24 * i as i32;
+            draw_marker(&side, (20, y), kind, color, solid)?;
+            side.draw(&Text::new(label.clone(), (34, y - 7), ("sans-serif", 14)))
+                .map_err(plot_err)?;
+        }
+        base.present().map_err(plot_err)?;
+    }
+    Ok(svg)
+}

@@ -13,6 +13,10 @@
 //! | `critical_dt` | critical leapfrog Δt c/Δx at σ̄ = 0 from the amplification matrices (the critical CFL number in Δx) |
 //! | `ns_per_particle_time` | ns_per_particle_step / critical_dt: the cost of advancing one particle by Δx/c at the largest stable step |
 //!
+//! With `integrators` (1D only) the report gains `integrator_rows`: the integrator as a
+//! dimension of the study, one row per configuration × integrator ([`integrators`]).
+//! `sphstab tradeoff --cfl-table` prints the critical CFL table ([`cfl`]).
+//!
 //! The 1D grid covers the ten 1D forms, the 2D grid the six 2D forms (square lattice, hydro
 //! material p = K(ρ/ρ0 − 1), as in the Swegle test). A configuration the engine rejects (e.g. an
 //! MLS support that does not cover enough neighbours) is reported with its error, not dropped.
@@ -21,6 +25,7 @@ use crate::analysis::Query1D;
 use crate::analysis::{MaterialSpec, Query2D};
 use crate::error::{Error, Result};
 use crate::forms::{FormKind, Model1D, Model2D};
+use crate::integrator::{DEFAULT_EULER_EVERY, Integrator};
 use crate::kernel::{self, Kernel};
 use crate::lattice::Lattice2D;
 use crate::solver::throughput::MemoryProbe;
@@ -31,6 +36,11 @@ use crate::vonneumann::linearise::Linearisation;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
+
+pub mod cfl;
+pub mod integrators;
+
+pub use integrators::IntegratorRow;
 
 /// What to sweep.
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -57,6 +67,17 @@ pub struct TradeoffConfig {
     /// What the figure shows (analysis config).
     #[serde(default)]
     pub note: String,
+    /// Integrators of the integrator dimension (`all`: every one; empty: none, the report has
+    /// no `integrator_rows`). 1D only.
+    #[serde(default)]
+    pub integrators: Vec<String>,
+    /// Δt used = `safety` × critical Δt for the integrator rows, in (0, 1].
+    #[serde(default = "default_safety")]
+    pub safety: f64,
+}
+
+fn default_safety() -> f64 {
+    integrators::DEFAULT_SAFETY
 }
 
 fn one() -> u8 {
@@ -76,6 +97,8 @@ impl Default for TradeoffConfig {
             repeats: 3,
             output: None,
             note: String::new(),
+            integrators: Vec::new(),
+            safety: integrators::DEFAULT_SAFETY,
         }
     }
 }
@@ -138,6 +161,9 @@ pub struct TradeoffReport {
     pub scene: String,
     /// One row per configuration.
     pub rows: Vec<Row>,
+    /// One row per configuration × integrator (only when integrators were asked for).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub integrator_rows: Vec<IntegratorRow>,
 }
 
 /// σ̄ candidates of the tension scan (the first unstable one is refined by bisection).
@@ -202,6 +228,8 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
             range: "must be an integer in [1, 100]".into(),
         });
     }
+    integrator_list(cfg)?;
+    crate::error::check_range("--safety", cfg.safety, 0.0, 1.0, false, true)?;
     let forms: Vec<FormKind> = if cfg.forms.is_empty() {
         FormKind::ALL
             .iter()
@@ -242,6 +270,24 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
                 out.push((f, k, h));
             }
         }
+    }
+    Ok(out)
+}
+
+/// The integrators of the integrator dimension (validated; `all` expands to every one).
+pub fn integrator_list(cfg: &TradeoffConfig) -> Result<Vec<Integrator>> {
+    let mut out = Vec::new();
+    for name in &cfg.integrators {
+        if name == "all" {
+            out.extend(Integrator::all(DEFAULT_EULER_EVERY));
+        } else {
+            out.push(Integrator::from_name(name, DEFAULT_EULER_EVERY)?);
+        }
+    }
+    if !out.is_empty() && cfg.dim != 1 {
+        return Err(Error::Incompatible(
+            "--integrators: the integrator dimension is 1D only (use --dim 1)".into(),
+        ));
     }
     Ok(out)
 }
@@ -388,11 +434,31 @@ fn scene_1d(
     h: f64,
     probe: Option<&dyn MemoryProbe>,
 ) -> Result<SceneRun> {
+    scene_1d_with(form, k, h, probe, Integrator::Kdk, SCENE_DT, false).map(|s| s.0)
+}
+
+/// Steps of the wave scene (2⅛ periods at Δt = 0.2 Δx/c).
+fn scene_steps() -> usize {
+    let period = SCENE_PPW as f64; // 2π/(c k) with c = Δx = 1
+    (SCENE_PERIODS * period / SCENE_DT).round() as usize
+}
+
+/// The 1D wave scene stepped by `integ` with step `dt` (the scene's number of steps whatever
+/// `dt`); with `count`, also the rate calls per step counted on the same system
+/// ([`integrators::rate_calls_per_step`], before the timed loop; 0 without).
+fn scene_1d_with(
+    form: FormKind,
+    k: &'static dyn Kernel,
+    h: f64,
+    probe: Option<&dyn MemoryProbe>,
+    integ: Integrator,
+    dt: f64,
+    count: bool,
+) -> Result<(SceneRun, f64)> {
     let n = SCENE_1D_N;
     let kw = 2.0 * PI / SCENE_PPW as f64;
-    let period = SCENE_PPW as f64; // 2π/(c k) with c = Δx = 1
-    let t_end = SCENE_PERIODS * period;
-    let steps = (t_end / SCENE_DT).round() as usize;
+    let steps = scene_steps();
+    let mut calls = 0.0;
     let (res, bytes) = with_memory(probe, || -> Result<(f64, f64)> {
         let q = Query1D::new(form, k, h, 0.0);
         let x: Vec<f64> = (0..n).map(|i| i as f64).collect();
@@ -401,10 +467,14 @@ fn scene_1d(
         for (v, &xi) in z.v.iter_mut().zip(&x) {
             *v = SCENE_AMPLITUDE * (kw * xi).sin();
         }
+        if count {
+            calls = integrators::rate_calls_per_step(&model, &z, integ, dt)?;
+        }
         let mut run = Run1D::new(model, z, vec![None; n])?;
+        run.set_integrator(integ);
         let start = std::time::Instant::now();
         for _ in 0..steps {
-            run.step(SCENE_DT)?;
+            run.step(dt)?;
         }
         let secs = start.elapsed().as_secs_f64();
         let ct = (kw * run.t).cos();
@@ -417,13 +487,16 @@ fn scene_1d(
         Ok((relative_l2(num, den), secs))
     });
     let (l2, seconds) = res?;
-    Ok(SceneRun {
-        l2,
-        particle_steps: (n * steps) as f64,
-        seconds,
-        bytes,
-        particles: n,
-    })
+    Ok((
+        SceneRun {
+            l2,
+            particle_steps: (n * steps) as f64,
+            seconds,
+            bytes,
+            particles: n,
+        },
+        calls,
+    ))
 }
 
 /// The standing-wave scene in 2D: periodic strip, hydro, plane wave along x.
@@ -498,8 +571,9 @@ pub fn run(
     progress: impl Fn(usize, usize) + Sync,
 ) -> Result<TradeoffReport> {
     let configs = grid(cfg)?;
+    let integs = integrator_list(cfg)?;
     let start = std::time::Instant::now();
-    let total = 2 * configs.len();
+    let total = 2 * configs.len() * (1 + integs.len());
     let done = std::sync::atomic::AtomicUsize::new(0);
     let mut rows: Vec<Row> = configs
         .par_iter()
@@ -567,13 +641,114 @@ pub fn run(
         let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         progress(d, total);
     }
+    let integrator_rows = integrator_rows(cfg, &configs, &integs, &done, total, &progress);
     Ok(TradeoffReport {
         dim: cfg.dim,
         threads: rayon::current_num_threads(),
         runtime_s: start.elapsed().as_secs_f64(),
         scene: scene_description(cfg.dim),
         rows,
+        integrator_rows,
     })
+}
+
+/// The integrator dimension ([`integrators`]): the engine part in parallel, then the timed
+/// scenes one at a time.
+fn integrator_rows(
+    cfg: &TradeoffConfig,
+    configs: &[(FormKind, &'static dyn Kernel, f64)],
+    integs: &[Integrator],
+    done: &std::sync::atomic::AtomicUsize,
+    total: usize,
+    progress: &(impl Fn(usize, usize) + Sync),
+) -> Vec<IntegratorRow> {
+    let tick = || {
+        let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        progress(d, total);
+    };
+    let jobs: Vec<(FormKind, &'static dyn Kernel, f64, Integrator)> = configs
+        .iter()
+        .flat_map(|&(f, k, h)| integs.iter().map(move |&i| (f, k, h, i)))
+        .collect();
+    let mut rows: Vec<IntegratorRow> = jobs
+        .par_iter()
+        .map(|&(form, k, h, integ)| {
+            let mut row = IntegratorRow {
+                form: form.name().into(),
+                kernel: k.name().into(),
+                shape: form.default_shape().name().into(),
+                h_over_dx: h,
+                integrator: integ.name().into(),
+                euler_every: match integ {
+                    Integrator::VerletEuler { every } => Some(every),
+                    _ => None,
+                },
+                order: integ.order(),
+                critical_dt: None,
+                weak: false,
+                weak_growth_rate: None,
+                dt_rule: None,
+                dt_used: None,
+                evaluations_per_step: 0,
+                rate_calls_per_step: None,
+                ns_per_particle_step: None,
+                ns_per_evaluation: None,
+                ns_per_particle_time: None,
+                phase_error_10ppw: None,
+                amplitude_error_10ppw: None,
+                phase_error_20ppw: None,
+                amplitude_error_20ppw: None,
+                error: None,
+            };
+            let res = integrators::analyse(form, k, h, integ, cfg.safety, KAPPAS_1D, &mut row)
+                .and_then(|()| {
+                    let q = Query1D::new(form, k, h, 0.0);
+                    let x: Vec<f64> = (0..SCENE_1D_N).map(|i| i as f64).collect();
+                    let model = Model1D::new(
+                        q.params(0.0),
+                        x,
+                        vec![1.0; SCENE_1D_N],
+                        Some(SCENE_1D_N as f64),
+                    )?;
+                    row.evaluations_per_step = integrators::evaluations_per_step(&model, integ)?;
+                    Ok(())
+                });
+            if let Err(e) = res {
+                row.error = Some(e.to_string());
+            }
+            tick();
+            row
+        })
+        .collect();
+    for (row, &(form, k, h, integ)) in rows.iter_mut().zip(&jobs) {
+        if row.error.is_none() {
+            let dt = row.dt_used.map_or(SCENE_DT, |d| d.min(SCENE_DT));
+            let mut times = Vec::with_capacity(cfg.repeats);
+            for r in 0..cfg.repeats {
+                match scene_1d_with(form, k, h, None, integ, dt, r == 0) {
+                    Ok((s, calls)) => {
+                        if r == 0 {
+                            row.rate_calls_per_step = Some(calls);
+                        }
+                        times.push(s.seconds * 1e9 / s.particle_steps);
+                    }
+                    Err(e) => {
+                        row.error = Some(format!("wave scene: {e}"));
+                        break;
+                    }
+                }
+            }
+            if row.error.is_none() {
+                let ns = median(times);
+                row.ns_per_particle_step = Some(ns);
+                row.ns_per_evaluation =
+                    row.rate_calls_per_step.filter(|&c| c > 0.0).map(|c| ns / c);
+                row.ns_per_particle_time = row.dt_used.map(|dt| ns / dt);
+            }
+        }
+        tick();
+    }
+    rows
 }
 
 fn fmt_opt(v: Option<f64>, prec: usize) -> String {
@@ -656,6 +831,106 @@ pub fn pareto_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
         "phase-velocity error |c_num/c − 1| at 10 points per wavelength",
         &pts,
     )
+}
+
+/// The table of the integrator rows printed by `sphstab tradeoff --integrators …`.
+pub fn integrator_table(rep: &TradeoffReport) -> String {
+    let mut s = format!(
+        "{:<18} {:<12} {:>5} {:<20} {:>8} {:>8} {:>8} {:>4} {:>5} {:>7} {:>6} {:>9} {:>10} {:>10} {:>10} {:>10}\n",
+        "form",
+        "kernel",
+        "h/Δx",
+        "integrator",
+        "Δt_crit",
+        "weak γ",
+        "Δt_used",
+        "eval",
+        "calls",
+        "ns/p·st",
+        "ns/ev",
+        "ns/p·Δx/c",
+        "phase@10",
+        "amp@10",
+        "phase@20",
+        "amp@20"
+    );
+    for r in &rep.integrator_rows {
+        if let Some(e) = &r.error {
+            s += &format!(
+                "{:<18} {:<12} {:>5.2} {:<20} error: {e}\n",
+                r.form, r.kernel, r.h_over_dx, r.integrator
+            );
+            continue;
+        }
+        s += &format!(
+            "{:<18} {:<12} {:>5.2} {:<20} {:>8} {:>8} {:>8} {:>4} {:>5} {:>7} {:>6} {:>9} {:>10} {:>10} {:>10} {:>10}\n",
+            r.form,
+            r.kernel,
+            r.h_over_dx,
+            r.integrator,
+            fmt_opt(r.critical_dt, 3),
+            fmt_opt(r.weak_growth_rate, 1),
+            fmt_opt(r.dt_used, 3),
+            r.evaluations_per_step,
+            fmt_opt(r.rate_calls_per_step, 0),
+            fmt_opt(r.ns_per_particle_step, 0),
+            fmt_opt(r.ns_per_evaluation, 0),
+            fmt_opt(r.ns_per_particle_time, 0),
+            fmt_opt(r.phase_error_10ppw, 2),
+            fmt_opt(r.amplitude_error_10ppw, 2),
+            fmt_opt(r.phase_error_20ppw, 2),
+            fmt_opt(r.amplitude_error_20ppw, 2),
+        );
+    }
+    s
+}
+
+/// The integrator figure: per form, cost per unit simulated time (ns per particle per Δx/c at
+/// the Δt used) against |phase error| per wavelength travelled at 10 points per wavelength,
+/// log–log, one marker per integrator, every kernel and h of the grid.
+pub fn integrators_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
+    let mut names: Vec<&str> = Vec::new();
+    let mut forms: Vec<&str> = Vec::new();
+    for r in &rep.integrator_rows {
+        if !names.contains(&r.integrator.as_str()) {
+            names.push(&r.integrator);
+        }
+        if !forms.contains(&r.form.as_str()) {
+            forms.push(&r.form);
+        }
+    }
+    let panels: Vec<crate::plot::ScatterPanel> = forms
+        .iter()
+        .map(|f| crate::plot::ScatterPanel {
+            title: (*f).to_string(),
+            points: rep
+                .integrator_rows
+                .iter()
+                .filter(|r| r.form == *f)
+                .filter_map(|r| {
+                    let i = names.iter().position(|n| *n == r.integrator)?;
+                    Some((i, r.ns_per_particle_time?, r.phase_error_10ppw?.abs()))
+                })
+                .collect(),
+        })
+        .collect();
+    let legend: Vec<String> = names.iter().map(|s| s.to_string()).collect();
+    crate::plot::scatter_panels_svg(
+        title,
+        "ns per particle per Δx/c (at the Δt used)",
+        "|phase error| per wavelength, 10 ppw (rad)",
+        &legend,
+        &panels,
+    )
+}
+
+/// The figure of a report: [`integrators_svg`] when it has integrator rows, else [`pareto_svg`].
+pub fn figure_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
+    if rep.integrator_rows.is_empty() {
+        pareto_svg(rep, title)
+    } else {
+        integrators_svg(rep, title)
+    }
 }
 
 /// Parses a study config; errors name the file and the field ([`crate::study`]).

@@ -3,7 +3,7 @@
 
 mod common;
 
-use sphstab::tradeoff::{TradeoffConfig, TradeoffReport, grid, pareto_svg, parse_config, run};
+use sphstab::tradeoff::{TradeoffConfig, TradeoffReport, figure_svg, grid, parse_config, run};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -110,11 +110,13 @@ fn committed_tradeoff_figures_are_drawn_from_their_stored_data() {
         let g = grid(&cfg).unwrap();
         assert_eq!(rep.dim, cfg.dim);
         assert_eq!(rep.rows.len(), g.len(), "{name}");
+        let integs = sphstab::tradeoff::integrator_list(&cfg).unwrap();
+        assert_eq!(rep.integrator_rows.len(), g.len() * integs.len(), "{name}");
         for (r, (f, k, h)) in rep.rows.iter().zip(&g) {
             assert_eq!((r.form.as_str(), r.kernel.as_str()), (f.name(), k.name()));
             assert!((r.h_over_dx - h).abs() < 1e-12);
         }
-        let svg = pareto_svg(&rep, &sphstab_title(&rep)).unwrap();
+        let svg = figure_svg(&rep, &sphstab_title(&rep)).unwrap();
         let committed = std::fs::read_to_string(root.join("figures").join(&out)).unwrap();
         assert!(
             svg == committed,
@@ -129,10 +131,17 @@ fn committed_tradeoff_figures_are_drawn_from_their_stored_data() {
 /// The CLI's title (src/bin/sphstab/tradeoff.rs), repeated here because the binary's modules
 /// are not a library.
 fn sphstab_title(rep: &TradeoffReport) -> String {
-    format!(
-        "speed/accuracy trade-off, {}D: every form × kernel × h (filled: stable at σ̄ = ±0.01)",
-        rep.dim
-    )
+    if rep.integrator_rows.is_empty() {
+        format!(
+            "speed/accuracy trade-off, {}D: every form × kernel × h (filled: stable at σ̄ = ±0.01)",
+            rep.dim
+        )
+    } else {
+        format!(
+            "integrator trade-off, {}D, σ̄ = 0: cost per unit time vs phase error per wavelength (every kernel × h)",
+            rep.dim
+        )
+    }
 }
 
 #[test]
@@ -146,7 +155,19 @@ fn tradeoff_bad_input_is_one_line_exit_2() {
             &["tradeoff", "--dim", "2", "--forms", "least-squares"],
             "--forms",
         ),
+        (&["tradeoff", "--integrators", "nosuch"], "integrator"),
+        (&["tradeoff", "--integrators", "kdk,nosuch"], "integrator"),
+        (&["tradeoff", "--safety", "0"], "--safety"),
+        (&["tradeoff", "--safety", "1.5"], "--safety"),
+        (&["tradeoff", "--safety", "NaN"], "--safety"),
+        (
+            &["tradeoff", "--dim", "2", "--integrators", "kdk"],
+            "--integrators",
+        ),
     ]);
+    // the message states the allowed range
+    let (_, _, err) = common::sphstab(&["tradeoff", "--safety", "0"]);
+    assert!(err.contains("(0, 1]"), "{err}");
 }
 
 #[test]
@@ -210,4 +231,209 @@ fn atlas_shards_merge_into_the_whole_sweep() {
         (&["atlas", "--stress-min", "-2"], "--stress-min"),
     ]);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The integrator dimension on `total-lagrangian` / m4 at h = Δx, whose rate function has no
+/// auxiliary state: each mode is the oscillator x'' = −ω²x with ω² from the engine's reduced
+/// stiffness (`Linearisation::omega2`, not the amplification matrices). Expected values are the
+/// schemes' closed forms on that oscillator, independent of the code under test:
+/// leapfrog: cos(ω_num Δt) = 1 − (ωΔt)²/2, |λ| = 1 below 2/ω_max; rk4: λ = R(−iωΔt) with
+/// R(z) = 1 + z + z²/2 + z³/6 + z⁴/24, critical Δt = 2√2/ω_max.
+#[test]
+fn integrator_rows_match_closed_forms_on_the_oscillator() {
+    use sphstab::analysis::Query1D;
+    use sphstab::forms::FormKind;
+    use sphstab::kernel;
+    let cfg = TradeoffConfig {
+        forms: vec!["total-lagrangian".into()],
+        kernels: vec!["m4".into()],
+        h_points: 3, // 1, 1.5, 2: the checks use h = 1
+        repeats: 1,
+        integrators: vec!["all".into()],
+        safety: 0.8,
+        ..Default::default()
+    };
+    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    assert_eq!(rep.integrator_rows.len(), 3 * 12);
+    let q = Query1D::new(
+        FormKind::by_name("total-lagrangian").unwrap(),
+        kernel::by_name("m4").unwrap(),
+        1.0,
+        0.0,
+    );
+    let lin = q.linearise().unwrap();
+    // ω_max over the study's κ grid (256 points, as the study), from ω²
+    let wmax = (1..=256)
+        .map(|k| lin.omega2(PI * k as f64 / 256.0).0)
+        .fold(0.0f64, f64::max)
+        .sqrt();
+    let row = |name: &str| {
+        rep.integrator_rows
+            .iter()
+            .find(|r| r.integrator == name && r.h_over_dx == 1.0)
+            .unwrap()
+    };
+    for ppw in [10.0, 20.0] {
+        let kap = 2.0 * PI / ppw;
+        let w = lin.omega2(kap).0.sqrt();
+        let period = 2.0 * PI / kap;
+        // kdk
+        let r = row("kdk");
+        let dt = 0.8 * 2.0 / wmax;
+        assert!((r.critical_dt.unwrap() - 2.0 / wmax).abs() < 1e-6, "{r:?}");
+        assert!((r.dt_used.unwrap() - dt).abs() < 1e-6);
+        let wn = (1.0 - 0.5 * (w * dt).powi(2)).acos() / dt;
+        let (p, a) = if ppw == 10.0 {
+            (r.phase_error_10ppw, r.amplitude_error_10ppw)
+        } else {
+            (r.phase_error_20ppw, r.amplitude_error_20ppw)
+        };
+        assert!(
+            (p.unwrap() - (wn - kap) * period).abs() < 1e-6,
+            "kdk {ppw}: {p:?}"
+        );
+        assert!(a.unwrap().abs() < 1e-6, "kdk {ppw}: {a:?}");
+        // symplectic Euler has the leapfrog's eigenvalues on a linear oscillator (same trace
+        // 2 − ω²Δt², determinant 1)
+        let se = row("symplectic-euler-vx");
+        let ps = if ppw == 10.0 {
+            se.phase_error_10ppw
+        } else {
+            se.phase_error_20ppw
+        };
+        assert!((ps.unwrap() - p.unwrap()).abs() < 1e-6);
+        // rk4
+        let r = row("rk4");
+        let crit = 2.0 * 2f64.sqrt() / wmax;
+        assert!((r.critical_dt.unwrap() - crit).abs() < 1e-6, "{r:?}");
+        let dt = 0.8 * crit;
+        let z = num_complex::Complex64::new(0.0, -w * dt);
+        let lam = 1.0 + z + z * z / 2.0 + z * z * z / 6.0 + z * z * z * z / 24.0;
+        let wn = -lam.arg() / dt;
+        let amp = lam.norm().powf(period / dt) - 1.0;
+        let (p, a) = if ppw == 10.0 {
+            (r.phase_error_10ppw, r.amplitude_error_10ppw)
+        } else {
+            (r.phase_error_20ppw, r.amplitude_error_20ppw)
+        };
+        assert!(
+            (p.unwrap() - (wn - kap) * period).abs() < 1e-6,
+            "rk4 {ppw}: {p:?}"
+        );
+        assert!((a.unwrap() - amp).abs() < 1e-6, "rk4 {ppw}: {a:?} vs {amp}");
+    }
+    for r in &rep.integrator_rows {
+        assert!(r.error.is_none(), "{r:?}");
+        // every number finite (no NaN in output)
+        for v in [
+            r.dt_used,
+            r.ns_per_particle_step,
+            r.ns_per_evaluation,
+            r.ns_per_particle_time,
+            r.phase_error_10ppw,
+            r.amplitude_error_10ppw,
+            r.phase_error_20ppw,
+            r.amplitude_error_20ppw,
+            r.rate_calls_per_step,
+        ] {
+            assert!(v.unwrap().is_finite(), "{r:?}");
+        }
+        // the weakly unstable schemes (module docs of sphstab::integrator: forward Euler, the
+        // RK2 family, pec's extrapolated rates, the Euler step of verlet-euler) are flagged and
+        // run at the tolerance Δt; the others at safety × critical Δt
+        let weak = matches!(
+            r.integrator.as_str(),
+            "euler" | "rk2-midpoint" | "rk2-heun" | "epec" | "pec" | "verlet-euler"
+        );
+        assert_eq!(r.weak, weak, "{r:?}");
+        assert_eq!(r.critical_dt.is_none(), weak, "{r:?}");
+        assert_eq!(r.weak_growth_rate.is_some(), weak, "{r:?}");
+        assert!(!weak || r.weak_growth_rate.unwrap() > 0.0);
+        assert_eq!(
+            r.dt_rule.as_deref(),
+            Some(if weak { "weak-tolerance" } else { "safety" })
+        );
+        if weak {
+            // the 10-ppw mode is within the tolerance of the worst mode over T_REF = its period
+            // (κΔx = 2π/10 lies between two grid points: 1% slack)
+            assert!(
+                r.amplitude_error_10ppw.unwrap() <= 1.01 * sphstab::tradeoff::integrators::WEAK_TOL,
+                "{r:?}"
+            );
+        }
+    }
+    // cost per unit time consistent with the measured step cost and Δt; rk4 vs kdk: the rate
+    // calls per step of the 1D solver (rk4: 4 `rates` calls = 8 accel/qrate calls; kdk: accel,
+    // qrate, accel = 3) and the Δt ratio √2 (both at 0.8 of their critical Δt)
+    let (k, r4) = (row("kdk"), row("rk4"));
+    assert_eq!((k.evaluations_per_step, r4.evaluations_per_step), (3, 4));
+    assert_eq!(
+        (k.rate_calls_per_step, r4.rate_calls_per_step),
+        (Some(3.0), Some(8.0))
+    );
+    for r in [k, r4] {
+        let c = r.ns_per_particle_step.unwrap() / r.dt_used.unwrap();
+        assert!((r.ns_per_particle_time.unwrap() / c - 1.0).abs() < 1e-12);
+    }
+    assert!((r4.dt_used.unwrap() / k.dt_used.unwrap() - 2f64.sqrt()).abs() < 1e-6);
+    // timing is noisy on a shared machine: the ratio of step costs within a factor 2.5 of the
+    // ratio of rate calls (8/3)
+    let ratio = r4.ns_per_particle_step.unwrap() / k.ns_per_particle_step.unwrap();
+    assert!(
+        ratio > 8.0 / 3.0 / 2.5 && ratio < 8.0 / 3.0 * 2.5,
+        "rk4/kdk step cost {ratio}"
+    );
+}
+
+/// The critical CFL table: kdk's Δt_crit (bisection on the amplification matrices) must equal
+/// 2/ω_max and rk4's 2√2/ω_max, with ω_max from `timestep`'s independent path (the largest ω² of
+/// the dispersion curve: `critical_dt_from_omega_max` = 2/ω_max), on every non-dissipative cell;
+/// CFL = Δt_crit/(h/Δx).
+#[test]
+fn cfl_table_matches_the_leapfrog_and_rk4_limits() {
+    use sphstab::analysis::{Query1D, timestep_with};
+    use sphstab::forms::FormKind;
+    use sphstab::integrator::Integrator;
+    use sphstab::kernel;
+    use sphstab::tradeoff::cfl::{CFL_POINTS, cfl_cell};
+    for form in ["classical", "total-lagrangian"] {
+        for kern in ["m4", "wendland-c2", "gaussian", "efg-quartic"] {
+            for h in [1.2, 2.0] {
+                let f = FormKind::by_name(form).unwrap();
+                let k = kernel::by_name(kern).unwrap();
+                let mut q = Query1D::new(f, k, h, 0.0);
+                q.points = CFL_POINTS;
+                let t = timestep_with(&q, Integrator::Kdk, None).unwrap();
+                let leap = t.critical_dt_from_omega_max.unwrap();
+                let kdk = cfl_cell(f, k, h, Integrator::Kdk).unwrap();
+                let rk4 = cfl_cell(f, k, h, Integrator::Rk4).unwrap();
+                let ctx = format!("{form} {kern} h={h}");
+                assert!((kdk.critical_dt.unwrap() - leap).abs() < 1e-6, "{ctx}");
+                assert!(
+                    (rk4.critical_dt.unwrap() - 2f64.sqrt() * leap).abs() < 1e-6,
+                    "{ctx}"
+                );
+                assert!((kdk.critical_cfl.unwrap() - leap / h).abs() < 1e-6, "{ctx}");
+                let eu = cfl_cell(f, k, h, Integrator::Euler).unwrap();
+                assert!(eu.weak && eu.critical_dt.is_none() && eu.weak_growth_rate > 0.0);
+            }
+        }
+    }
+}
+
+/// The README's CFL table is the output of the command, verbatim.
+#[test]
+fn readme_cfl_table_is_the_command_output() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let start = readme.find("<!-- cfl-table -->\n").expect("start marker") + 19;
+    let end = readme.find("<!-- /cfl-table -->").expect("end marker");
+    let (code, out, err) = common::sphstab(&["tradeoff", "--cfl-table"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        readme[start..end].trim() == out.trim(),
+        "README's CFL table differs from `cargo run --release -- tradeoff --cfl-table`"
+    );
+    let j = common::json(&["tradeoff", "--cfl-table", "--json"]);
+    assert_eq!(j["cells"].as_array().unwrap().len(), 2 * 2 * 12 * 11);
 }

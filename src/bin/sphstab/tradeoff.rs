@@ -24,7 +24,20 @@ pub struct Args {
     /// Timed repeats of the wave scene (median reported), in [1, 100].
     #[arg(long, default_value_t = 3)]
     repeats: usize,
-    /// A study config (JSON: dim, forms, kernels, h_points, repeats, output, note); its
+    /// Integrator dimension (1D): comma-separated integrator names or `all`; adds one row per
+    /// configuration × integrator (cost per unit simulated time, phase and amplitude error per
+    /// wavelength travelled).
+    #[arg(long, value_delimiter = ',')]
+    integrators: Vec<String>,
+    /// Δt used for the integrator rows = safety × critical Δt, in (0, 1].
+    #[arg(long, default_value_t = sphstab::tradeoff::integrators::DEFAULT_SAFETY)]
+    safety: f64,
+    /// Print the critical CFL table (c Δt_crit/h per integrator × kernel, classical and
+    /// total-lagrangian, h/Δx = 1.2 and 2.0, σ̄ = 0) as Markdown (JSON with --json) and stop.
+    #[arg(long)]
+    cfl_table: bool,
+    /// A study config (JSON: dim, forms, kernels, h_points, repeats, output, note, integrators,
+    /// safety); its
     /// `output` names the figure written to figures/ together with the data (same name, .json).
     /// Overrides the grid flags.
     #[arg(long)]
@@ -40,22 +53,39 @@ pub struct Args {
     plot: Option<PathBuf>,
 }
 
-/// Title of the Pareto figure.
+/// Title of the figure (the Pareto figure, or the integrator figure when the report has
+/// integrator rows).
 pub fn title(rep: &TradeoffReport) -> String {
-    format!(
-        "speed/accuracy trade-off, {}D: every form × kernel × h (filled: stable at σ̄ = ±0.01)",
-        rep.dim
-    )
+    if rep.integrator_rows.is_empty() {
+        format!(
+            "speed/accuracy trade-off, {}D: every form × kernel × h (filled: stable at σ̄ = ±0.01)",
+            rep.dim
+        )
+    } else {
+        format!(
+            "integrator trade-off, {}D, σ̄ = 0: cost per unit time vs phase error per wavelength (every kernel × h)",
+            rep.dim
+        )
+    }
 }
 
 pub fn run(a: Args) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
+    if a.cfl_table {
+        let t = sphstab::tradeoff::cfl::cfl_table()?;
+        if a.json {
+            println!("{}", serde_json::to_string(&t)?);
+        } else {
+            print!("{}", sphstab::tradeoff::cfl::cfl_markdown(&t));
+        }
+        return Ok(());
+    }
     if let Some(from) = &a.from {
         let rep: TradeoffReport = study::read_report(from)?;
         return study::write_plot(
-            sphstab::tradeoff::pareto_svg(&rep, &title(&rep)),
+            sphstab::tradeoff::figure_svg(&rep, &title(&rep)),
             study::plot_path(a.plot.as_ref())?,
         );
     }
@@ -72,27 +102,34 @@ pub fn run(a: Args) -> Result<()> {
                 kernels: a.kernels.clone(),
                 h_points: a.h_points,
                 repeats: a.repeats,
+                integrators: a.integrators.clone(),
+                safety: a.safety,
                 ..Default::default()
             },
             None,
         ),
     };
-    let total = sphstab::tradeoff::grid(&cfg)?.len();
+    let total = sphstab::tradeoff::grid(&cfg)?.len()
+        * (1 + sphstab::tradeoff::integrator_list(&cfg)?.len());
     let pb = progress::bar(progress::wanted(a.json));
     let rep = sphstab::tradeoff::run(&cfg, Some(&crate::alloc::Probe), |d, t| {
         progress::set(&pb, d as f64 / t.max(1) as f64)
     })?;
     pb.finish_and_clear();
     if let Some(path) = &a.plot {
-        study::write_plot(sphstab::tradeoff::pareto_svg(&rep, &title(&rep)), path)?;
+        study::write_plot(sphstab::tradeoff::figure_svg(&rep, &title(&rep)), path)?;
     }
     if let Some(name) = config_out {
-        study::write_figure_and_data(&rep, &name, |r| sphstab::tradeoff::pareto_svg(r, &title(r)))?;
+        study::write_figure_and_data(&rep, &name, |r| sphstab::tradeoff::figure_svg(r, &title(r)))?;
     }
     if a.json {
         println!("{}", serde_json::to_string(&rep)?);
     } else {
         print!("{}", sphstab::tradeoff::table(&rep));
+        if !rep.integrator_rows.is_empty() {
+            println!();
+            print!("{}", sphstab::tradeoff::integrator_table(&rep));
+        }
         println!(
             "{} configurations in {:.1} s ({} threads); scene: {}",
             total, rep.runtime_s, rep.threads, rep.scene
