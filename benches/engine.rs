@@ -53,6 +53,7 @@ fn benches(c: &mut Criterion) {
         c_partition: 0.5,
         av: None,
         art_stress: None,
+        diffusion: None,
     };
     let model = Model2D::periodic_patch(
         p,

@@ -150,6 +150,7 @@ fn two_d_results_are_scale_free() {
             c_partition: 0.5,
             av: None,
             art_stress: None,
+            diffusion: None,
         };
         Linearisation2D::new(p, &lat, dx, 0.02).unwrap()
     };

@@ -1,6 +1,6 @@
 //! The 2D solver's time loop does not allocate: a counting global allocator sees no allocation
 //! in 10 steps after 2 warm-up steps (the buffers grow in the first step), for the classical
-//! form with a Jaumann elastic material, artificial viscosity and artificial stress, for a
+//! form with a Jaumann elastic material, artificial viscosity, artificial stress and δ-SPH density diffusion, for a
 //! hydrodynamic material, for a mixed form and for the total-Lagrangian form.
 //!
 //! Rayon itself allocates a little when work is *injected* into its pool from outside (the
@@ -80,6 +80,12 @@ fn block(n: usize, form: FormKind, material: Material2D, av: bool, art: bool) ->
             n: 4,
             spacing: 1.0,
         }),
+        // δ-SPH with Antuono's gradient pass: its buffer is in the workspace too
+        diffusion: art.then_some(sphstab::forms::DensityDiffusion {
+            delta: 0.1,
+            form: sphstab::forms::DiffusionForm::Antuono,
+            sound_speed: 1.0,
+        }),
     };
     let mut x = Vec::new();
     for i in 0..n {
@@ -123,7 +129,7 @@ fn time_loop_does_not_allocate() {
     let hydro = Material2D::Hydro { bulk: 1.0 };
     let cases = [
         (
-            "classical elastic (Jaumann) + AV + art. stress",
+            "classical elastic (Jaumann) + AV + art. stress + δ-SPH (antuono)",
             FormKind::Classical,
             jaumann,
             true,

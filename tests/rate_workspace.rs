@@ -35,6 +35,7 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material2D, kern: &str) 
         c_partition: 0.4,
         av: None,
         art_stress: None,
+        diffusion: None,
     }
 }
 

@@ -105,6 +105,7 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material2D) -> ModelPara
         c_partition: 0.5,
         av: None,
         art_stress: None,
+        diffusion: None,
     }
 }
 

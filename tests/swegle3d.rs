@@ -136,6 +136,7 @@ fn periodic_box_at_rest_stays_at_rest() {
                         c_partition: 0.5,
                         av: None,
                         art_stress: None,
+                        diffusion: None,
                     };
                     let (rho, s0) = base_state(&material, 1.0, sigma_bar).unwrap();
                     let vol = vec![lattice.area(); x.len()];

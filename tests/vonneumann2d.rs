@@ -29,6 +29,7 @@ fn params(
         c_partition: 0.5,
         av: None,
         art_stress: None,
+        diffusion: None,
     }
 }
 

@@ -2,9 +2,11 @@
 //! (`dispersion`), and its critical time step (`timestep`), over κΔx ∈ (0, π] of the chain
 //! engine ([`Linearisation`]; every 1D form).
 
-use super::common::{IntegratorReport, Setup, check_common, check_count, linearised_av};
+use super::common::{
+    IntegratorReport, Setup, check_common, check_count, density_diffusion, linearised_av,
+};
 use crate::error::{Error, Result, check_range};
-use crate::forms::{FormKind, ModelParams};
+use crate::forms::{DiffusionForm, FormKind, ModelParams};
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
 use crate::shape::{KernelParams, ShapeFamily};
@@ -41,6 +43,8 @@ pub struct Query1D {
     pub dt: Option<f64>,
     /// Time integrator of the fully discrete check and the critical Δt (default `kdk`).
     pub integrator: Integrator,
+    /// δ-SPH density diffusion (δ, form).
+    pub diffusion: Option<(f64, DiffusionForm)>,
     /// Number of κ points in (0, π].
     pub points: usize,
     /// Physical lattice (results in normalised units do not depend on it).
@@ -61,6 +65,7 @@ impl Query1D {
             av: None,
             dt: None,
             integrator: Integrator::Kdk,
+            diffusion: None,
             points: 512,
             lattice: Lattice1D::default(),
         }
@@ -78,6 +83,7 @@ impl Query1D {
         )?;
         check_range("--alpha-s", self.alpha_s, 0.0, 100.0, true, true)?;
         check_count("--points", self.points, 2, 10_000_000)?;
+        density_diffusion(self.diffusion, 1.0, self.form)?;
         check_range(
             "lattice dx",
             self.lattice.dx,
@@ -119,6 +125,8 @@ impl Query1D {
             alpha_s: self.alpha_s,
             av: linearised_av(self.av, c),
             dx: lat.dx,
+            // checked by `validate`
+            diffusion: density_diffusion(self.diffusion, c, self.form).unwrap_or(None),
         }
     }
 

@@ -3,7 +3,7 @@
 //! configuration line every report starts with, and the linearised artificial viscosity.
 
 use crate::error::{Error, Result, check_range};
-use crate::forms::{ArtificialViscosity, FormKind};
+use crate::forms::{ArtificialViscosity, DensityDiffusion, DiffusionForm, FormKind};
 use crate::kernel::Kernel;
 use crate::shape::ShapeFamily;
 use serde::Serialize;
@@ -167,6 +167,31 @@ pub fn linearised_av(av: Option<(f64, f64)>, c: f64) -> Option<ArtificialViscosi
         sound_speed: c,
         approaching_only: false,
     })
+}
+
+/// δ-SPH density diffusion (δ, form) with sound speed `c`, checked for `form` (δ in
+/// [`crate::forms::DELTA_RANGE`], a form with a density state; `--delta` in the messages).
+pub fn density_diffusion(
+    d: Option<(f64, DiffusionForm)>,
+    c: f64,
+    form: FormKind,
+) -> Result<Option<DensityDiffusion>> {
+    let Some((delta, kind)) = d else {
+        return Ok(None);
+    };
+    let dd = DensityDiffusion {
+        delta,
+        form: kind,
+        sound_speed: c,
+    };
+    dd.check("--delta", form)?;
+    if !form.in_2d() {
+        return Err(Error::Incompatible(format!(
+            "--delta (density diffusion) is available for classical, nonlocal, local, lnl and cll, not --form {}",
+            form.name()
+        )));
+    }
+    Ok(Some(dd))
 }
 
 /// What a time integrator does to a configuration's modes ([`crate::integrator`],

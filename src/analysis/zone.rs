@@ -65,6 +65,8 @@ pub struct Query<const D: usize> {
     pub integrator: crate::integrator::Integrator,
     /// Artificial stress (ε, n) of the classical form.
     pub art_stress: Option<(f64, i32)>,
+    /// δ-SPH density diffusion (δ, form).
+    pub diffusion: Option<(f64, crate::forms::DiffusionForm)>,
     /// Wave vectors per reciprocal-lattice direction (the zone is sampled n^D).
     pub grid: usize,
 }
@@ -115,6 +117,7 @@ impl<const D: usize> Query<D> {
             dt: None,
             integrator: crate::integrator::Integrator::Kdk,
             art_stress: None,
+            diffusion: None,
             grid: default_grid(D),
         }
     }
@@ -187,6 +190,7 @@ impl<const D: usize> Query<D> {
                     n,
                     spacing: 1.0,
                 }),
+            diffusion: super::common::density_diffusion(self.diffusion, 1.0, self.form)?,
         })
     }
 

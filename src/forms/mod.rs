@@ -47,9 +47,10 @@ pub use model::{
     ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,
 };
 pub use model_nd::{
-    ArtificialStress, AuxRates, AuxRates2D, Comp, Comp2, Material, Material2D, Model, Model2D,
-    Model3D, ModelParams2D, ObjectiveRate, RateOut, RateOut2D, State, State2D, State3D, StateView,
-    StateView2D, Tensor, n_sym, voigt,
+    ArtificialStress, AuxRates, AuxRates2D, Comp, Comp2, DELTA_RANGE, DIFFUSION_FORM_NAMES,
+    DensityDiffusion, DiffusionForm, Material, Material2D, Model, Model2D, Model3D, ModelParams2D,
+    ObjectiveRate, RateOut, RateOut2D, State, State2D, State3D, StateView, StateView2D, Tensor,
+    n_sym, voigt,
 };
 pub use workspace::RateWorkspace;
 

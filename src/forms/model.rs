@@ -49,6 +49,8 @@ pub struct ModelParams {
     pub av: Option<ArtificialViscosity>,
     /// Characteristic spacing Δx (for β of the least-squares form).
     pub dx: f64,
+    /// Optional δ-SPH density diffusion (the forms of the dimension-generic model only).
+    pub diffusion: Option<super::DensityDiffusion>,
 }
 
 impl ModelParams {
@@ -72,6 +74,7 @@ impl ModelParams {
             c_partition: self.c_partition,
             av: self.av,
             art_stress: None,
+            diffusion: self.diffusion,
         }
     }
 }
@@ -298,6 +301,12 @@ impl Model1D {
             mass_op: MassOperator::Lumped,
             nd: None,
         };
+        if p.diffusion.is_some() && !p.form.in_2d() {
+            return Err(crate::error::Error::Incompatible(format!(
+                "--delta (density diffusion) is available for classical, nonlocal, local, lnl and cll, not --form {}",
+                p.form.name()
+            )));
+        }
         if p.form.in_2d() {
             let vols = model.vol_ref.clone();
             model.nd = Some(super::Model::new(

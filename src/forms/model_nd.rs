@@ -100,6 +100,81 @@ pub struct ArtificialStress {
     pub spacing: f64,
 }
 
+/// The δ-SPH density-diffusion term of the continuity equation (Molteni & Colagrossi 2009;
+/// Antuono et al. 2010), added to ρ̇_I:
+///
+/// ```text
+/// D_I = δ h c0 Σ_J ψ_IJ · ∇_I W_IJ V_J,   V_J = m_J/ρ_J,   x_JI = x_J − x_I,
+/// molteni-colagrossi:  ψ_IJ = 2(ρ_J − ρ_I) x_JI/|x_JI|²
+/// antuono:             ψ_IJ = 2(ρ_J − ρ_I) x_JI/|x_JI|² − (⟨∇ρ⟩_I + ⟨∇ρ⟩_J),
+///                      ⟨∇ρ⟩_I = M_I⁻¹ Σ_J (ρ_J − ρ_I) ∇_I W_IJ V_J,  M_I = Σ_J ∇_I W_IJ ⊗ x_JI V_J
+/// ```
+///
+/// The Molteni–Colagrossi term diffuses any density variation (O(k²) damping of long waves, and
+/// of a hydrostatic gradient); Antuono's renormalised-gradient correction removes the part a
+/// linear density field produces, so long waves are damped at O(k⁴) while the shortest (k = π/Δx,
+/// where the gradient estimate vanishes) are damped as strongly as without it. Both act on the
+/// density only, and need a density state (not the total-Lagrangian form).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DensityDiffusion {
+    /// δ (typically 0.1).
+    pub delta: f64,
+    /// Which ψ.
+    pub form: DiffusionForm,
+    /// c0 (physical units).
+    pub sound_speed: f64,
+}
+
+/// The two δ-SPH diffusion terms of [`DensityDiffusion`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiffusionForm {
+    /// Molteni & Colagrossi (2009).
+    MolteniColagrossi,
+    /// Antuono, Colagrossi, Marrone & Molteni (2010).
+    Antuono,
+}
+
+/// The CLI names of [`DiffusionForm`].
+pub const DIFFUSION_FORM_NAMES: [&str; 2] = ["molteni-colagrossi", "antuono"];
+
+/// Allowed range of δ.
+pub const DELTA_RANGE: (f64, f64) = (0.0, 10.0);
+
+impl DiffusionForm {
+    /// The form of a CLI name.
+    pub fn from_name(name: &str) -> Result<Self> {
+        match name {
+            "molteni-colagrossi" => Ok(Self::MolteniColagrossi),
+            "antuono" => Ok(Self::Antuono),
+            _ => Err(Error::UnknownName {
+                what: "density-diffusion form",
+                given: name.to_string(),
+                valid: DIFFUSION_FORM_NAMES.join(", "),
+            }),
+        }
+    }
+    /// The CLI name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::MolteniColagrossi => DIFFUSION_FORM_NAMES[0],
+            Self::Antuono => DIFFUSION_FORM_NAMES[1],
+        }
+    }
+}
+
+impl DensityDiffusion {
+    /// Checks δ (named `name`, e.g. `--delta`) and the form's compatibility.
+    pub fn check(&self, name: &'static str, form: FormKind) -> Result<()> {
+        crate::error::check_range(name, self.delta, DELTA_RANGE.0, DELTA_RANGE.1, true, true)?;
+        if form == FormKind::TotalLagrangian {
+            return Err(Error::Incompatible(format!(
+                "{name} (density diffusion) does not apply to --form total-lagrangian: it has no density state"
+            )));
+        }
+        Ok(())
+    }
+}
+
 /// Parameters of a particle model (any dimension).
 #[derive(Clone, Copy, Debug)]
 pub struct ModelParams2D {
@@ -119,6 +194,8 @@ pub struct ModelParams2D {
     pub av: Option<ArtificialViscosity>,
     /// Optional artificial stress (classical and cll forms).
     pub art_stress: Option<ArtificialStress>,
+    /// Optional δ-SPH density diffusion (forms with a density state).
+    pub diffusion: Option<DensityDiffusion>,
 }
 
 /// A particle model in D dimensions: parameters plus the constant per-particle data.
@@ -467,6 +544,9 @@ impl<const D: usize> Model<D> {
                     range: "neo-hookean: the reference state is unstressed, σ̄ must be 0".into(),
                 });
             }
+        }
+        if let Some(d) = p.diffusion {
+            d.check("--delta", p.form)?;
         }
         if D == 3 && p.art_stress.is_some() {
             return Err(Error::Incompatible(

@@ -21,7 +21,8 @@
 
 use super::FormKind;
 use super::model_nd::{
-    AuxRates, Material, Model, ObjectiveRate, RateOut, State, StateView, Tensor,
+    AuxRates, DensityDiffusion, DiffusionForm, Material, Model, ObjectiveRate, RateOut, State,
+    StateView, Tensor,
 };
 use super::workspace::{NbD, RateWorkspace};
 use crate::error::Result;
@@ -300,6 +301,89 @@ fn art_accel<S: Scalar, const D: usize>(
     acc
 }
 
+/// V_J ∇_I W_IJ (kernel gradient at x_JI = `d`) and |x_JI|², for the δ-SPH terms.
+#[inline]
+fn diffusion_pair<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    nb: &NbD<S, D>,
+) -> ([S; D], S) {
+    let (_, g) = kernel::w_and_grad(m.p.kp.kernel, m.p.kp.h, nb.d);
+    let vj = S::cst(m.mass[nb.j]) / z.rho[nb.j];
+    let mut r2 = nb.d[0] * nb.d[0];
+    for c in 1..D {
+        r2 += nb.d[c] * nb.d[c];
+    }
+    (g.map(|gc| gc * vj), r2)
+}
+
+/// Antuono's renormalised density gradient ⟨∇ρ⟩_I = M_I⁻¹ Σ_J (ρ_J − ρ_I) ∇_I W_IJ V_J,
+/// M_I = Σ_J ∇_I W_IJ ⊗ x_JI V_J (exact for a linear density field).
+fn renormalised_density_gradient<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    i: usize,
+    st: &[NbD<S, D>],
+) -> [S; D] {
+    let mut mm = [[S::zero(); D]; D];
+    let mut g = [S::zero(); D];
+    for nb in st {
+        let (gv, r2) = diffusion_pair(m, z, nb);
+        if r2.re() == 0.0 {
+            continue;
+        }
+        let dr = z.rho[nb.j] - z.rho[i];
+        for a in 0..D {
+            g[a] += gv[a] * dr;
+            for b in 0..D {
+                mm[a][b] += gv[a] * nb.d[b];
+            }
+        }
+    }
+    // M⁻¹ g = cof(M)ᵀ g / det M
+    let det = det_s(&mm);
+    let cof = cof_s(&mm);
+    let mut out = [S::zero(); D];
+    for a in 0..D {
+        for b in 0..D {
+            out[a] += cof[b][a] * g[b];
+        }
+        out[a] = out[a] / det;
+    }
+    out
+}
+
+/// The δ-SPH term D_I of ρ̇_I ([`super::model_nd::DensityDiffusion`]); `grad` holds ⟨∇ρ⟩ for
+/// Antuono's form and is empty for Molteni–Colagrossi's.
+fn density_diffusion<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    i: usize,
+    st: &[NbD<S, D>],
+    grad: &[[S; D]],
+) -> S {
+    let Some(dd) = m.p.diffusion else {
+        return S::zero();
+    };
+    let mut sum = S::zero();
+    for nb in st {
+        let (gv, r2) = diffusion_pair(m, z, nb);
+        if r2.re() == 0.0 {
+            continue;
+        }
+        // ψ_IJ = 2(ρ_J − ρ_I) x_JI/|x_JI|² [− (⟨∇ρ⟩_I + ⟨∇ρ⟩_J)]
+        let f = (z.rho[nb.j] - z.rho[i]) * 2.0 / r2;
+        for c in 0..D {
+            let mut psi = nb.d[c] * f;
+            if !grad.is_empty() {
+                psi -= grad[i][c] + grad[nb.j][c];
+            }
+            sum += psi * gv[c];
+        }
+    }
+    sum * (dd.delta * m.p.kp.h * dd.sound_speed)
+}
+
 /// The rate of an Eulerian form, into the requested parts of `out`.
 pub(crate) fn rate<S: Scalar, const D: usize>(
     m: &Model<D>,
@@ -374,7 +458,20 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
     if let Some(AuxRates { rho, sigma, tau }) = out.aux {
         let zero = [[S::zero(); D]; D];
         ws.aux.resize(z.x.len(), (S::zero(), zero, zero));
-        let st = &ws.stencils;
+        ws.rho_grad.clear();
+        if let Some(DensityDiffusion {
+            form: DiffusionForm::Antuono,
+            ..
+        }) = m.p.diffusion
+        {
+            ws.rho_grad.resize(z.x.len(), [S::zero(); D]);
+            let st = &ws.stencils;
+            ws.rho_grad
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(i, g)| *g = renormalised_density_gradient(m, z, i, &st[i].a));
+        }
+        let (st, grad) = (&ws.stencils, &ws.rho_grad);
         // per-particle auxiliary rates in parallel (rayon), then copied into `out`
         ws.aux.par_iter_mut().enumerate().for_each(|(i, r)| {
             let la = vel_grad(z.v, i, &st[i].a);
@@ -393,7 +490,8 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
                     tra * (1.0 - c) + trb * c
                 } else {
                     tra
-                };
+                }
+                + density_diffusion(m, z, i, &st[i].a, grad);
             let sig_rate = if z.sigma.is_empty() {
                 zero
             } else {

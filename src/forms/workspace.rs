@@ -96,6 +96,8 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     pub(crate) aux: Vec<AuxRate<S, D>>,
     /// Displacements (total-Lagrangian forms).
     pub(crate) disp: Vec<[S; D]>,
+    /// Antuono's renormalised density gradients ⟨∇ρ⟩_I (δ-SPH).
+    pub(crate) rho_grad: Vec<[S; D]>,
     /// What the current stencils were built for (`None`: nothing valid).
     key: Option<StencilKey<D>>,
     key_x: Vec<[S; D]>,
@@ -125,6 +127,7 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             art: Vec::new(),
             aux: Vec::new(),
             disp: Vec::new(),
+            rho_grad: Vec::new(),
             key: None,
             key_x: Vec::new(),
             key_rho: Vec::new(),
@@ -174,6 +177,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             + (self.hydro.capacity() + self.art.capacity()) * size_of::<Tensor<S, D>>()
             + self.aux.capacity() * size_of::<AuxRate<S, D>>()
             + self.disp.capacity() * size_of::<[S; D]>()
+            + self.rho_grad.capacity() * size_of::<[S; D]>()
             + self.key_x.capacity() * size_of::<[S; D]>()
             + self.key_rho.capacity() * size_of::<S>()
             + self.key_mass.capacity() * size_of::<f64>()

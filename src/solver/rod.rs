@@ -97,6 +97,7 @@ pub fn run_rod(cfg: &RodConfig) -> Result<RodReport> {
         alpha_s: 0.0,
         av: None,
         dx,
+        diffusion: None,
     };
     let model = Model1D::new(p, x, vec![dx; n], None)?;
     let mut z = model.rest_state();

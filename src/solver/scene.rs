@@ -385,6 +385,7 @@ impl Scene1D {
                     approaching_only: true,
                 }),
             dx,
+            diffusion: None,
         };
         let model = Model1D::new(p, x.clone(), vec![dx; n], None)?;
         let mut z = model.rest_state();

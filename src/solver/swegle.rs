@@ -99,6 +99,8 @@ pub struct SwegleConfig {
     pub until_window: bool,
     /// Time integrator (default `kdk`; [`crate::integrator`]).
     pub integrator: crate::integrator::Integrator,
+    /// δ-SPH density diffusion (δ, form); None: off, as in the published test.
+    pub diffusion: Option<(f64, crate::forms::DiffusionForm)>,
 }
 
 impl SwegleConfig {
@@ -131,6 +133,7 @@ impl SwegleConfig {
             until_window: false,
             art_stress: None,
             integrator: crate::integrator::Integrator::Kdk,
+            diffusion: None,
         }
     }
 
@@ -244,6 +247,13 @@ impl SwegleConfig {
                     eps,
                     n,
                     spacing: self.dx,
+                }),
+            diffusion: self
+                .diffusion
+                .map(|(delta, form)| crate::forms::DensityDiffusion {
+                    delta,
+                    form,
+                    sound_speed: self.sound_speed(),
                 }),
         }
     }
@@ -466,6 +476,14 @@ where
                     eps,
                     n,
                     spacing: 1.0,
+                }),
+            // normalised units: h in Δx, c = 1
+            diffusion: cfg
+                .diffusion
+                .map(|(delta, form)| crate::forms::DensityDiffusion {
+                    delta,
+                    form,
+                    sound_speed: 1.0,
                 }),
             ..cfg.params()
         },

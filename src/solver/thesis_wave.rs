@@ -96,6 +96,7 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
         alpha_s: 0.0,
         av: None,
         dx,
+        diffusion: None,
     };
     let mut model = Model1D::new(p, x.clone(), vec![dx; n], None)?;
     let a = 0.5 * len;

@@ -217,6 +217,7 @@ impl ThroughputConfig {
                 n,
                 spacing: 1.0,
             }),
+            diffusion: None,
         })
     }
 }

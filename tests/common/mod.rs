@@ -34,6 +34,7 @@ pub fn params(
         alpha_s: 0.0,
         av: None,
         dx: 1.0,
+        diffusion: None,
     }
 }
 

@@ -73,6 +73,9 @@ pub struct Config {
     /// Artificial-stress exponent n of f = W(r)/W(Δx), in [1, 12] (default 4; needs --art-eps).
     #[arg(long = "art-n")]
     pub art_n: Option<i32>,
+    /// δ-SPH density diffusion.
+    #[command(flatten)]
+    pub diffusion: DiffusionArgs,
     /// 2D/3D: wave vectors per reciprocal direction (the zone is sampled grid^D), 2D in
     /// [2, 1024] (default 64), 3D in [2, 128] (default 16).
     #[arg(long)]
@@ -104,6 +107,7 @@ impl Config {
         }
         q.c_partition = q1.c_partition;
         q.av = q1.av;
+        q.diffusion = q1.diffusion;
         q.dt = q1.dt;
         q.grid = self.grid.unwrap_or(sphstab::analysis::default_grid(D));
         q.art_stress = art_stress(self.art_eps, self.art_n)?;
@@ -233,6 +237,7 @@ impl Config {
         if self.av_alpha.is_some() || self.av_beta.is_some() {
             q.av = Some((self.av_alpha.unwrap_or(0.0), self.av_beta.unwrap_or(0.0)));
         }
+        q.diffusion = self.diffusion.get()?;
         q.validate()?;
         Ok(q)
     }
@@ -297,5 +302,45 @@ impl IntegratorArgs {
             &self.integrator,
             self.euler_every,
         )?)
+    }
+}
+
+/// `--delta` / `--delta-form` (δ-SPH density diffusion), shared by `query`, `dispersion`,
+/// `timestep` and `swegle`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct DiffusionArgs {
+    /// δ-SPH density diffusion δ in [0, 10] (typical 0.1): D_I = δ h c Σ_J ψ_IJ·∇_I W_IJ V_J is
+    /// added to the continuity equation (forms with a density state, not total-lagrangian).
+    #[arg(long, allow_hyphen_values = true)]
+    pub delta: Option<f64>,
+    /// The δ-SPH term: antuono (default; renormalised-gradient correction, Antuono et al. 2010)
+    /// or molteni-colagrossi (Molteni & Colagrossi 2009); needs --delta.
+    #[arg(long = "delta-form")]
+    pub delta_form: Option<String>,
+}
+
+impl DiffusionArgs {
+    /// (δ, form), or None without `--delta`; `--delta-form` alone is an error.
+    pub fn get(&self) -> Result<Option<(f64, sphstab::forms::DiffusionForm)>> {
+        use sphstab::forms::{DELTA_RANGE, DiffusionForm};
+        match (self.delta, &self.delta_form) {
+            (Some(d), f) => {
+                sphstab::error::check_range(
+                    "--delta",
+                    d,
+                    DELTA_RANGE.0,
+                    DELTA_RANGE.1,
+                    true,
+                    true,
+                )?;
+                let form = DiffusionForm::from_name(f.as_deref().unwrap_or("antuono"))?;
+                Ok(Some((d, form)))
+            }
+            (None, Some(_)) => Err(crate::query::not_in(
+                "--delta-form",
+                "no --delta (it chooses the density-diffusion term)",
+            )),
+            (None, None) => Ok(None),
+        }
     }
 }

@@ -11,6 +11,8 @@ use sphstab::solver::swegle::{SwegleConfig, default_size, run_swegle};
 pub struct Args {
     #[command(flatten)]
     integ: crate::common::IntegratorArgs,
+    #[command(flatten)]
+    diffusion: crate::common::DiffusionArgs,
     /// Dimension: 2 (size² particles) or 3 (size³ particles).
     #[arg(long, default_value_t = 2)]
     dim: usize,
@@ -102,6 +104,7 @@ pub fn run(a: Args) -> Result<()> {
     cfg.c_partition = a.c;
     cfg.until_window = a.until_window;
     cfg.integrator = a.integ.integrator()?;
+    cfg.diffusion = a.diffusion.get()?;
     if let Some((eps, n)) = crate::common::art_stress(a.art_eps, a.art_n)? {
         if !matches!(form, FormKind::Classical | FormKind::Cll) {
             return Err(crate::query::not_in(

@@ -88,7 +88,13 @@ impl<O: Copy> Columns<O> {
             cols.push(col);
         }
         let zero_sum = zero_sums(&cols, nd);
-        check_rest(&cols, |a| iq.contains(&a), |b| iv.contains(&b))?;
+        // auxiliary rates may depend on velocities, and on the auxiliary state itself (δ-SPH
+        // density diffusion: J_qq ≠ 0, which makes the system dissipative), not on positions
+        check_rest(
+            &cols,
+            |a| iq.contains(&a),
+            |b| iv.contains(&b) || iq.contains(&b),
+        )?;
         Ok(Self {
             cols,
             zero_sum,
@@ -108,14 +114,18 @@ impl<O: Copy> Columns<O> {
         bloch_sum(&self.cols, &self.zero_sum, phase)
     }
 
-    /// Whether velocities enter the accelerations (artificial viscosity): then only the
-    /// eigenvalue route applies.
+    /// Whether velocities enter the accelerations (artificial viscosity) or the auxiliary state
+    /// enters its own rate (δ-SPH density diffusion): then the mechanical reduction
+    /// K = −(J_vx + J_vq J_qv) is not the whole system and only the eigenvalue route applies.
     pub fn is_dissipative(&self) -> bool {
-        self.iv.iter().any(|&b| {
-            self.cols[b]
-                .iter()
-                .any(|(_, c)| self.iv.iter().any(|&a| c[a] != 0.0))
-        })
+        let enters = |cols: &[usize], rows: &[usize]| {
+            cols.iter().any(|&b| {
+                self.cols[b]
+                    .iter()
+                    .any(|(_, c)| rows.iter().any(|&a| c[a] != 0.0))
+            })
+        };
+        enters(&self.iv, &self.iv) || enters(&self.iq, &self.iq)
     }
 
     /// Entry (a, b) of the reduced stiffness K = −(J_vx + Σ_q J_vq J_qv) of the mechanical
@@ -193,8 +203,8 @@ fn zero_sums<O>(cols: &[Vec<(O, Vec<f64>)>], nd: usize) -> Vec<Vec<bool>> {
     zs
 }
 
-/// The mechanical reduction assumes the auxiliary rates depend on velocities only at rest:
-/// entries (auxiliary row, non-velocity column) above [`REST_RATE_TOL`] of the largest are an error.
+/// The mechanical reduction assumes the auxiliary rates depend on velocities (and, when
+/// dissipative, on the auxiliary state) only at rest: entries (auxiliary row, position column) above [`REST_RATE_TOL`] of the largest are an error.
 fn check_rest<O>(
     cols: &[Vec<(O, Vec<f64>)>],
     aux_row: impl Fn(usize) -> bool,
