@@ -57,21 +57,24 @@ fn params(kern: &str, h: f64, delta: f64, form: DiffusionForm) -> sphstab::forms
 }
 
 /// The engine's eigenvalues contain the diffusion symbol, for both forms, four kernels, three
-/// h and κ over (0, π], to 1e-12 of the largest |s| (unit lattice).
+/// h and κ over (0, π], to 1e-12 of the largest |s|, on lattices of Δx = 1e-6, 1 and 1e6
+/// (normalised results do not depend on Δx).
 ///
-/// Not asserted here, found while writing this test and left open (issue-12 note): on lattices
-/// of Δx = 1e-6 or 1e6 the *eigenvalue route* (every dissipative system: viscosity or δ-SPH)
-/// loses accuracy — ~1e-8 relative for the compact kernels, ~1e-3 for the gaussian at 1e-6 (an
-/// undamped acoustic pair gets Re s = ±7.7e-4) — because J normalised by Δx/c still holds
-/// positions in physical units; the non-dissipative reduced route is unaffected
-/// (tests/extremes.rs).
+/// Skipped: the gaussian at h = Δx and 2Δx off the unit lattice. Its support R = 3h then lands
+/// exactly on a neighbour, and the truncated gaussian jumps there (W(3h) = e⁻⁹/√π h). Whether that
+/// neighbour counts depends on the rounding of x_J − x_I, and at Δx = 1e-6 it counts on one side
+/// only, so J is off by ~1e-3. This is a limit of discontinuous kernels at r = R; it is left
+/// open and named in the issue-12 note.
 #[test]
 fn engine_eigenvalue_is_the_diffusion_symbol() {
     let mut worst: f64 = 0.0;
     for form in [DiffusionForm::MolteniColagrossi, DiffusionForm::Antuono] {
         for kern in ["m4", "wendland-c2", "gaussian", "m6"] {
             for h in [1.0, 1.3, 2.0] {
-                for dx in [1.0] {
+                for dx in [1e-6, 1.0, 1e6] {
+                    if kern == "gaussian" && (3.0f64 * h).fract() == 0.0 && dx != 1.0 {
+                        continue;
+                    }
                     let lat = Lattice1D {
                         dx,
                         ..Lattice1D::default()
