@@ -23,7 +23,9 @@ pub struct Args {
 
 /// The second figure of `--plot FILE.svg`: FILE-damping.svg next to it.
 fn damping_path(p: &std::path::Path) -> std::path::PathBuf {
-    let stem = p.file_stem().map_or("dispersion".into(), |s| s.to_string_lossy());
+    let stem = p
+        .file_stem()
+        .map_or("dispersion".into(), |s| s.to_string_lossy());
     p.with_file_name(format!("{stem}-damping.svg"))
 }
 
