@@ -57,7 +57,7 @@ pub fn branch_damping(eigs: &[Complex64], omega2: &[f64]) -> Vec<Option<f64>> {
 pub fn branch_eigenvalues(eigs: &[Complex64], omega2: &[f64]) -> Vec<Option<Complex64>> {
     let up = upper_members(eigs);
     let mut none = vec![None; omega2.len()];
-    if up.len() != omega2.len() || omega2.iter().any(|&w| !(w > 0.0)) {
+    if up.len() != omega2.len() || !omega2.iter().all(|&w| w > 0.0) {
         return none;
     }
     let mut order: Vec<usize> = (0..omega2.len()).collect();
