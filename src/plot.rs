@@ -165,6 +165,51 @@ pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
     )
 }
 
+/// Axis description of every damping plot.
+pub const DAMPING_DESC: &str = "Re s Δx / c  (damping rate of the branch; < 0: damped)";
+
+/// Damping curves Re s(x) of branches with labels; a null (ambiguous matching) leaves a gap.
+pub fn damping_curves_svg(
+    title: &str,
+    x_desc: &str,
+    x: &[f64],
+    branches: &[(String, Vec<Option<f64>>)],
+) -> Result<String> {
+    let curves: Vec<Curve> = branches
+        .iter()
+        .map(|(label, y)| Curve {
+            label: label.clone(),
+            x: x.to_vec(),
+            // a gap in the drawn line only (lines_svg splits at non-finite values)
+            y: y.iter().map(|v| v.unwrap_or(f64::NAN)).collect(),
+            dashed: false,
+        })
+        .collect();
+    lines_svg(title, x_desc, DAMPING_DESC, &curves, None)
+}
+
+/// Damping rate Re s(κ) of a dissipative 1D dispersion report (`None` when it has none).
+pub fn damping_svg(r: &DispersionReport) -> Result<Option<String>> {
+    let Some(rate) = &r.damping_rate else {
+        return Ok(None);
+    };
+    let xs: Vec<f64> = r
+        .kappa_dx
+        .iter()
+        .map(|k| k / std::f64::consts::PI)
+        .collect();
+    damping_curves_svg(
+        &format!("{} — damping", r.header),
+        KAPPA_DESC,
+        &xs,
+        &[(
+            format!("{} (eigenvalues of J(κ))", r.header.setup.form),
+            rate.clone(),
+        )],
+    )
+    .map(Some)
+}
+
 /// A heat map of z over a rectangular (x, y) grid (cell centres), white (0) to dark red (max).
 pub fn heatmap_svg(
     title: &str,

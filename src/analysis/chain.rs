@@ -16,6 +16,7 @@ use crate::vonneumann::amplification::{
 use crate::vonneumann::classify::{
     GROWTH_TOL, Instability, Kind, ZERO_OMEGA2_TOL, branch, growth_kind, runs,
 };
+use crate::vonneumann::damping::{branch_eigenvalues, critical_dt_eq120, damping_ratio};
 use crate::vonneumann::linearise::{Lattice1D, Linearisation};
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -218,6 +219,15 @@ pub struct DispersionReport {
     pub growth_rate: Vec<f64>,
     /// Continuum ω²Δx²/c² = (1 + σ̄)(κΔx)² \[B00 eq 32\].
     pub omega2_continuum: Vec<f64>,
+    /// Dissipative systems only (absent otherwise): damping rate Re s (c/Δx, ≤ 0 when damped)
+    /// of the mechanical branch at each κ, from the exact eigenvalues of J(κ); null where the
+    /// matching of eigenvalue to branch is ambiguous (overdamped: two real eigenvalues; rule in
+    /// [`crate::vonneumann::damping`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping_rate: Option<Vec<Option<f64>>>,
+    /// Dissipative systems only: modal damping ratio ξ = −Re s/|s| of the same eigenvalue.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping_ratio: Option<Vec<Option<f64>>>,
 }
 
 /// Critical time step.
@@ -228,6 +238,12 @@ pub struct TimestepReport {
     pub header: Header,
     /// 2/ω_max, the leapfrog limit \[B00 eq 120, ξ = 0\] (non-dissipative systems).
     pub critical_dt_from_omega_max: Option<f64>,
+    /// Dissipative systems only (absent otherwise, where eq 120 is `critical_dt_from_omega_max`):
+    /// \[B00\] eq 120, min over the modes of (2/ω)(√(ξ² + 1) − ξ) with the modal (ω, ξ) of the
+    /// semi-discrete eigenvalues ([`crate::vonneumann::damping::critical_dt_eq120`]); Δx/c. Null
+    /// when the semi-discrete system grows or no mode oscillates.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub critical_dt_eq120: Option<f64>,
     /// The integrator's critical Δt, CFL number, weak instability and spurious growth
     /// (`critical_dt` is null if the semi-discrete system grows).
     #[serde(flatten)]
@@ -379,12 +395,24 @@ pub fn dispersion(q: &Query1D) -> Result<DispersionReport> {
     let kappas = q.kappas();
     let (w2, g) = curve(&lin, &kappas)?;
     let cont = kappas.iter().map(|k| (1.0 + q.stress) * k * k).collect();
+    let (mut rate, mut ratio) = (None, None);
+    if lin.is_dissipative() {
+        let (mut r, mut x) = (Vec::with_capacity(kappas.len()), Vec::new());
+        for (&k, &w) in kappas.iter().zip(&w2) {
+            let s = branch_eigenvalues(&lin.eigenvalues(k)?, &[w])[0];
+            r.push(s.map(|s| s.re));
+            x.push(s.map(damping_ratio));
+        }
+        (rate, ratio) = (Some(r), Some(x));
+    }
     Ok(DispersionReport {
         header: Header::of(q),
         kappa_dx: kappas,
         omega2: w2,
         growth_rate: g,
         omega2_continuum: cont,
+        damping_rate: rate,
+        damping_ratio: ratio,
     })
 }
 
@@ -409,9 +437,15 @@ pub fn timestep_with(q: &Query1D, integ: Integrator, dt: Option<f64>) -> Result<
     if let Some(d) = dt {
         check_range("--dt", d, 0.0, 1e6, false, true)?;
     }
+    let eq120 = if lin.is_dissipative() && !grows {
+        Some(critical_dt_eq120(&lin, &kappas)?).filter(|d| d.is_finite())
+    } else {
+        None
+    };
     Ok(TimestepReport {
         header: Header::of(q),
         critical_dt_from_omega_max: from_w,
+        critical_dt_eq120: eq120,
         step: IntegratorReport::of(&lin, &kappas, integ, dt, q.h_over_dx, grows)?,
     })
 }

@@ -15,6 +15,7 @@ use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
 use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt_given};
 use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL, growth_kind};
+use crate::vonneumann::damping::{branch_eigenvalues, damping_ratio};
 use crate::vonneumann::linearise::Bloch;
 use serde::Serialize;
 
@@ -515,6 +516,14 @@ pub struct Dispersion2D {
     pub growth_rate: Vec<f64>,
     /// Continuum branches ω²Δx²/c², ascending: the D − 1 S (transverse) branches, then P.
     pub omega2_continuum: Vec<Vec<f64>>,
+    /// Dissipative systems only (absent otherwise): damping rate Re s (c/Δx, ≤ 0 when damped)
+    /// of each of the D branches (order of `omega2`) from the exact eigenvalues of J(k); null
+    /// where the matching is ambiguous (rule in [`crate::vonneumann::damping`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping_rate: Option<Vec<Vec<Option<f64>>>>,
+    /// Dissipative systems only: damping ratio ξ = −Re s/|s| of the same eigenvalues.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping_ratio: Option<Vec<Vec<Option<f64>>>>,
 }
 
 /// Largest `--grid` (wave vectors per reciprocal direction): 1024² wave vectors take ~8 s for
@@ -556,6 +565,8 @@ pub fn dispersion2d<const D: usize>(q: &Query<D>, n: usize) -> Result<Dispersion
         omega2: Vec::new(),
         growth_rate: Vec::new(),
         omega2_continuum: Vec::new(),
+        damping_rate: lin.is_dissipative().then(Vec::new),
+        damping_ratio: lin.is_dissipative().then(Vec::new),
     };
     for (k, s) in path {
         let b = lin.branches(k);
@@ -565,7 +576,13 @@ pub fn dispersion2d<const D: usize>(q: &Query<D>, n: usize) -> Result<Dispersion
         }
         out.path.push(s);
         out.kappa.push(k.to_vec());
-        out.omega2.push(b.iter().map(|x| x.0.re).collect());
+        let w2: Vec<f64> = b.iter().map(|x| x.0.re).collect();
+        if let (Some(rate), Some(ratio)) = (&mut out.damping_rate, &mut out.damping_ratio) {
+            let s = branch_eigenvalues(&lin.eigenvalues(k)?, &w2);
+            rate.push(s.iter().map(|s| s.map(|s| s.re)).collect());
+            ratio.push(s.iter().map(|s| s.map(damping_ratio)).collect());
+        }
+        out.omega2.push(w2);
         out.growth_rate.push(lin.growth(k)?.0);
         let mut cont = vec![cs * k2; D - 1];
         cont.push(cp * k2);

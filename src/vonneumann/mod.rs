@@ -5,6 +5,7 @@ pub mod amplification;
 pub mod antiplane;
 pub mod classify;
 pub mod closed_form;
+pub mod damping;
 pub mod derived;
 pub mod linearise;
 pub mod timestep_bounds;

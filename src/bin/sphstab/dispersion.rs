@@ -15,9 +15,30 @@ pub struct Args {
     /// Print one JSON document instead of a table.
     #[arg(long)]
     json: bool,
-    /// Write an SVG plot of ω²Δx²/c² against κΔx/π to this file.
+    /// Write an SVG plot of ω²Δx²/c² against κΔx/π to this file; for a dissipative system also
+    /// the damping rate Re s to FILE-damping.svg (same directory).
     #[arg(long)]
     plot: Option<std::path::PathBuf>,
+}
+
+/// The second figure of `--plot FILE.svg`: FILE-damping.svg next to it.
+fn damping_path(p: &std::path::Path) -> std::path::PathBuf {
+    let stem = p
+        .file_stem()
+        .map_or("dispersion".into(), |s| s.to_string_lossy());
+    p.with_file_name(format!("{stem}-damping.svg"))
+}
+
+fn write_svg(path: &std::path::Path, svg: String) -> Result<()> {
+    std::fs::write(path, svg).with_context(|| format!("--plot: cannot write {}", path.display()))
+}
+
+/// A damping cell of the table: Re s or ξ, "-" when the matching is ambiguous.
+fn cell(v: Option<f64>, width: usize, prec: usize) -> String {
+    match v {
+        Some(x) => format!("{:>width$.prec$e}", x + 0.0),
+        None => format!("{:>width$}", "-"),
+    }
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -33,27 +54,37 @@ pub fn run(a: Args) -> Result<()> {
     let q = a.cfg.query(a.points)?;
     let r = sphstab::analysis::dispersion(&q)?;
     if let Some(path) = &a.plot {
-        let svg = sphstab::plot::dispersion_svg(&r)?;
-        std::fs::write(path, svg)
-            .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+        write_svg(path, sphstab::plot::dispersion_svg(&r)?)?;
+        if let Some(svg) = sphstab::plot::damping_svg(&r)? {
+            write_svg(&damping_path(path), svg)?;
+        }
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
     println!("# {}", r.header);
-    println!(
+    let damped = r.damping_rate.as_ref().zip(r.damping_ratio.as_ref());
+    let mut head = format!(
         "{:>12} {:>16} {:>16} {:>14}",
         "κΔx/π", "ω²Δx²/c²", "continuum", "growth c/Δx"
     );
+    if damped.is_some() {
+        head += &format!(" {:>14} {:>12}", "Re s c/Δx", "ξ");
+    }
+    println!("{head}");
     for i in 0..r.kappa_dx.len() {
-        println!(
+        let mut line = format!(
             "{:>12.6} {:>16.9e} {:>16.9e} {:>14.6e}",
             r.kappa_dx[i] / std::f64::consts::PI,
             r.omega2[i],
             r.omega2_continuum[i],
             r.growth_rate[i]
         );
+        if let Some((rate, xi)) = damped {
+            line += &format!(" {} {}", cell(rate[i], 14, 6), cell(xi[i], 12, 4));
+        }
+        println!("{line}");
     }
     Ok(())
 }
@@ -106,8 +137,30 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
             &curves,
             Some((dmin.min(0.0), 1.3 * dmax.max(1e-12))),
         )?;
-        std::fs::write(path, svg)
-            .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+        write_svg(path, svg)?;
+        if let Some(rate) = &r.damping_rate {
+            let branches: Vec<(String, Vec<Option<f64>>)> = (0..D)
+                .map(|b| {
+                    (
+                        format!("{} branch {}", r.form, b + 1),
+                        rate.iter().map(|row| row[b]).collect(),
+                    )
+                })
+                .collect();
+            let svg = sphstab::plot::damping_curves_svg(
+                &format!(
+                    "{} / {} h = {}Δx, σ̄ = {} ({D}D) — damping",
+                    r.form, r.kernel, r.h_over_dx, r.stress
+                ),
+                &format!(
+                    "arc length along the path, units 1/Δx ({})",
+                    labels.join(", ")
+                ),
+                &r.path,
+                &branches,
+            )?;
+            write_svg(&damping_path(path), svg)?;
+        }
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
@@ -135,6 +188,15 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
         head += &format!(" {:>14}", format!("ω²{b}Δx²/c²"));
     }
     head += &format!(" {:>12}", "growth");
+    let damped = r.damping_rate.as_ref().zip(r.damping_ratio.as_ref());
+    if damped.is_some() {
+        for b in 1..=D {
+            head += &format!(" {:>12}", format!("Re s{b}"));
+        }
+        for b in 1..=D {
+            head += &format!(" {:>10}", format!("ξ{b}"));
+        }
+    }
     println!("{head}");
     for i in 0..r.path.len() {
         let mut line = format!("{:>8.4}", r.path[i]);
@@ -151,6 +213,14 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
             0.0
         };
         line += &format!(" {g:>12.4e}");
+        if let Some((rate, xi)) = damped {
+            for v in &rate[i] {
+                line += &format!(" {}", cell(*v, 12, 4));
+            }
+            for v in &xi[i] {
+                line += &format!(" {}", cell(*v, 10, 3));
+            }
+        }
         println!("{line}");
     }
     Ok(())

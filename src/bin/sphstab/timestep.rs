@@ -49,6 +49,13 @@ fn print_step(s: &IntegratorReport) {
     );
 }
 
+/// The \[B00\] eq 120 line of a dissipative system.
+fn print_eq120(v: Option<f64>) {
+    if let Some(v) = v {
+        println!("[B00] eq 120 (ω, ξ per mode): Δt ≤ {v:.9} Δx/c");
+    }
+}
+
 pub fn run(a: Args) -> Result<()> {
     let integ = a.integ.integrator()?;
     let dim = a.cfg.dim()?;
@@ -77,6 +84,7 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(v) = r.critical_dt_from_omega_max {
         println!("leapfrog limit 2/ω_max = {v:.9} Δx/c");
     }
+    print_eq120(r.critical_dt_eq120);
     print_step(&r.step);
     Ok(())
 }
@@ -91,6 +99,11 @@ fn run_nd<const D: usize>(a: Args, integ: Integrator) -> Result<()> {
     }
     let grows = r.critical_dt.is_none();
     let step = IntegratorReport::of(&lin, &ks, integ, a.cfg.dt, r.setup.h_over_dx, grows)?;
+    let eq120 = if lin.is_dissipative() && !grows {
+        Some(sphstab::vonneumann::damping::critical_dt_eq120(&lin, &ks)?).filter(|d| d.is_finite())
+    } else {
+        None
+    };
     let mut v = serde_json::json!({
         "dim": D, "form": r.setup.form, "kernel": r.setup.kernel, "h_over_dx": r.setup.h_over_dx,
         "support_over_dx": r.setup.support_over_dx, "stress": r.setup.stress,
@@ -100,6 +113,9 @@ fn run_nd<const D: usize>(a: Args, integ: Integrator) -> Result<()> {
         (v.as_object_mut(), serde_json::to_value(&step)?)
     {
         m.extend(s);
+        if let Some(d) = eq120 {
+            m.insert("critical_dt_eq120".into(), d.into());
+        }
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&v)?);
@@ -116,6 +132,7 @@ fn run_nd<const D: usize>(a: Args, integ: Integrator) -> Result<()> {
                 .map(|v| format!("{v:.9}"))
                 .unwrap_or_else(|| "n/a".into()),
         );
+        print_eq120(eq120);
         print_step(&step);
     }
     Ok(())
