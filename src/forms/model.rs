@@ -301,6 +301,12 @@ impl Model1D {
             mass_op: MassOperator::Lumped,
             nd: None,
         };
+        if p.av.is_some() && !p.form.in_2d() {
+            return Err(crate::error::Error::Incompatible(format!(
+                "--av-alpha (artificial viscosity) is available for classical, nonlocal, local, lnl and cll, not --form {}",
+                p.form.name()
+            )));
+        }
         if p.diffusion.is_some() && !p.form.in_2d() {
             return Err(crate::error::Error::Incompatible(format!(
                 "--delta (density diffusion) is available for classical, nonlocal, local, lnl and cll, not --form {}",

@@ -37,9 +37,9 @@ pub fn box_growth<const D: usize>(run: &Run<D>) -> Result<(f64, usize)> {
             "dense box operator of {nx} degrees of freedom exceeds {MAX_DENSE_DOFS}; use the standing-mode prediction"
         )));
     }
-    if run.model.p.av.is_some() {
+    if run.model.p.av.is_some() || run.model.p.diffusion.is_some() {
         return Err(Error::Incompatible(
-            "the box operator is defined without artificial viscosity".into(),
+            "the box operator is defined without artificial viscosity and density diffusion".into(),
         ));
     }
     let aux: Vec<Comp> = run

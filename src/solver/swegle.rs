@@ -363,6 +363,10 @@ pub struct SwegleReport {
     pub diverged: Option<Diverged>,
     /// Time integrator (CLI name).
     pub integrator: &'static str,
+    /// δ-SPH density diffusion: δ (0: off).
+    pub delta: f64,
+    /// δ-SPH form (CLI name; null when off).
+    pub delta_form: Option<&'static str>,
     /// Form.
     pub form: &'static str,
     /// Kernel.
@@ -496,7 +500,11 @@ where
         1.0 - cfg.density_ratio,
     )?;
     let (standing_rate, standing_k) = box_prediction(&lin_unit, nfree)?;
-    let (box_rate, method) = if D * nfree.pow(D as u32) <= MAX_DENSE_BOX_DOFS.min(MAX_DENSE_DOFS) {
+    // the dense operator is the mechanical reduction ω² = eig(−(J_vx + J_vq J_qv)), exact only
+    // without dissipation; with δ-SPH the standing modes' eigenvalues (of the full J) are used
+    let (box_rate, method) = if D * nfree.pow(D as u32) <= MAX_DENSE_BOX_DOFS.min(MAX_DENSE_DOFS)
+        && cfg.diffusion.is_none()
+    {
         (box_growth(&run)?.0 / unit, "dense-operator")
     } else {
         (standing_rate, "standing-modes")
@@ -612,6 +620,8 @@ where
     Ok(SwegleReport {
         diverged,
         integrator: cfg.integrator.name(),
+        delta: cfg.diffusion.map_or(0.0, |d| d.0),
+        delta_form: cfg.diffusion.map(|d| d.1.name()),
         form: cfg.form.name(),
         kernel: cfg.kernel.name(),
         h_over_dx: cfg.h_over_dx,

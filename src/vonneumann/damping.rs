@@ -14,11 +14,12 @@
 //! negative with density diffusion). An eigenvalue is an *upper member of an oscillating pair*
 //! when Im s > [`OSC_TOL`]·max(1, max|s|), real when |Im s| is below that (the rounding of the
 //! zero and real eigenvalues is far below). When there are exactly as many upper members as branches
-//! with ω² > 0, both are sorted — the upper members by |s| (= ω of the oscillator, whatever its
+//! with ω > [`OSC_TOL`]·max(1, max|s|), both are sorted — the upper members by |s| (= ω of the oscillator, whatever its
 //! damping), the branches by ω_b = √ω²_b of the mechanical reduction — and paired in order.
 //! Otherwise (an overdamped branch shows as two real eigenvalues, a growing one as a real
 //! positive one, an auxiliary dof may oscillate) the matching is ambiguous and every branch of
-//! that mode gets `None` (printed "-", JSON null).
+//! that mode gets `None` (printed "-", JSON null). A branch of zero frequency (the transverse
+//! branch of a fluid) has only real eigenvalues and is always `None`.
 
 use super::amplification::Modes;
 use super::classify::GROWTH_TOL;
@@ -56,16 +57,22 @@ pub fn branch_damping(eigs: &[Complex64], omega2: &[f64]) -> Vec<Option<f64>> {
 /// matching is ambiguous.
 pub fn branch_eigenvalues(eigs: &[Complex64], omega2: &[f64]) -> Vec<Option<Complex64>> {
     let up = upper_members(eigs);
-    let mut none = vec![None; omega2.len()];
-    if up.len() != omega2.len() || !omega2.iter().all(|&w| w > 0.0) {
-        return none;
+    let mut out = vec![None; omega2.len()];
+    // the branches that oscillate: ω > OSC_TOL·max(1, max|s|), the threshold of the upper
+    // members; a zero-frequency branch (the transverse branch of a fluid) has only real
+    // eigenvalues and stays None
+    let scale = eigs.iter().map(|s| s.norm()).fold(1.0, f64::max);
+    let mut order: Vec<usize> = (0..omega2.len())
+        .filter(|&b| omega2[b] > (OSC_TOL * scale).powi(2))
+        .collect();
+    if up.len() != order.len() {
+        return out;
     }
-    let mut order: Vec<usize> = (0..omega2.len()).collect();
     order.sort_by(|&a, &b| omega2[a].total_cmp(&omega2[b]));
     for (rank, &b) in order.iter().enumerate() {
-        none[b] = Some(up[rank]);
+        out[b] = Some(up[rank]);
     }
-    none
+    out
 }
 
 /// Damping ratio ξ = −Re s/|s| of an eigenvalue (0 for s = 0).
