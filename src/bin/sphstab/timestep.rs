@@ -104,10 +104,17 @@ fn run_nd<const D: usize>(a: Args, integ: Integrator) -> Result<()> {
     } else {
         None
     };
+    // 2/ω_max is the leapfrog limit of a non-dissipative system only (the query's critical Δt
+    // is found by bisection otherwise, and reported as `critical_dt`)
+    let from_omega_max = if lin.is_dissipative() {
+        None
+    } else {
+        r.critical_dt
+    };
     let mut v = serde_json::json!({
         "dim": D, "form": r.setup.form, "kernel": r.setup.kernel, "h_over_dx": r.setup.h_over_dx,
         "support_over_dx": r.setup.support_over_dx, "stress": r.setup.stress,
-        "critical_dt_from_omega_max": r.critical_dt,
+        "critical_dt_from_omega_max": from_omega_max,
     });
     if let (Some(m), serde_json::Value::Object(s)) =
         (v.as_object_mut(), serde_json::to_value(&step)?)
@@ -121,16 +128,18 @@ fn run_nd<const D: usize>(a: Args, integ: Integrator) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!(
-            "{} / {} h = {}Δx σ̄ = {} ({D}D, {}): ω_max = {:.9} c/Δx, leapfrog limit 2/ω_max = {}",
+            "{} / {} h = {}Δx σ̄ = {} ({D}D, {}): ω_max = {:.9} c/Δx{}",
             r.setup.form,
             r.setup.kernel,
             r.setup.h_over_dx,
             r.setup.stress,
             r.lattice,
             step.omega_max,
-            r.critical_dt
-                .map(|v| format!("{v:.9}"))
-                .unwrap_or_else(|| "n/a".into()),
+            match (from_omega_max, r.critical_dt) {
+                (Some(v), _) => format!(", leapfrog limit 2/ω_max = {v:.9}"),
+                (None, Some(_)) => " (dissipative: no 2/ω_max limit)".into(),
+                (None, None) => ", leapfrog limit 2/ω_max = n/a".into(),
+            },
         );
         print_eq120(eq120);
         print_step(&step);
