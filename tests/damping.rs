@@ -154,9 +154,10 @@ fn no_viscosity_no_damping() {
 }
 
 /// One damped oscillator per κ: x'' = −ω²(κ) x + J_vv(κ) x', ω² of the total-Lagrangian form
-/// (whose 1D mode has no auxiliary state) and J_vv of the linearised viscosity summed by hand.
-/// The total-Lagrangian rate function applies no artificial viscosity, so the mode is assembled
-/// here and run through the crate's amplification matrices ([`ModeSystem`]).
+/// (whose 1D mode has no auxiliary state) and J_vv of the linearised viscosity summed by hand,
+/// assembled here and run through the crate's amplification matrices ([`ModeSystem`]): an
+/// independent construction, against which the engine's own total-Lagrangian form with
+/// viscosity (its rate function applies Monaghan's Π on the reference pairs) is checked too.
 struct Oscillators {
     tl: Linearisation,
     c: Vec<(f64, f64)>,
@@ -251,6 +252,15 @@ fn eq120_is_the_critical_step_of_verlet_lagged_on_damped_oscillators() {
         );
         assert!((from_eigs / by_hand - 1.0).abs() <= 1e-9, "α {alpha}");
         assert!((lagged / from_eigs - 1.0).abs() <= 1e-6, "α {alpha}");
+        // the engine: total-lagrangian with the viscosity in its rate function
+        let mut q = Query1D::new(FormKind::TotalLagrangian, k("m4"), H, 0.0);
+        q.av = Some((alpha, 0.0));
+        q.points = 128;
+        let t = timestep_with(&q, Integrator::VerletLagged, None).unwrap();
+        let (e120, crit) = (t.critical_dt_eq120.unwrap(), t.step.critical_dt.unwrap());
+        eprintln!("  engine TL + viscosity: eq 120 {e120:.9}, verlet-lagged {crit:.9}");
+        assert!((e120 / from_eigs - 1.0).abs() <= 1e-9, "α {alpha}: {e120}");
+        assert!((crit / lagged - 1.0).abs() <= 1e-6, "α {alpha}: {crit}");
     }
 }
 

@@ -194,8 +194,8 @@ fn solver_density_wave_decays_at_the_symbol_rate() {
 
 /// The CLI: `--delta`/`--delta-form` in `timestep`, `query`, `dispersion` (1D, 2D hydro) and
 /// `swegle`; δ-SPH lowers kdk's critical Δt of a 2D hydro lattice below the inviscid 2/ω_max;
-/// bad input is one line, exit 2, naming the flag (also `--av-alpha` with a form whose rate has
-/// no viscosity term).
+/// bad input is one line, exit 2, naming the flag (also `--av-alpha` with a 1D form whose rate
+/// has no viscosity term).
 #[test]
 fn cli_delta() {
     for form in ["molteni-colagrossi", "antuono"] {
@@ -287,12 +287,7 @@ fn cli_delta() {
             "--delta",
         ),
         (&["swegle", "--delta", "-1"][..], "--delta"),
-        // the viscosity exists in the Eulerian forms' rate only: the others refuse it rather
-        // than ignore it
-        (
-            &["timestep", "--form", "total-lagrangian", "--av-alpha", "1"][..],
-            "--av-alpha",
-        ),
+        // the 1D [B00]-only forms have no viscosity term: they refuse it rather than ignore it
         (
             &["query", "--form", "least-squares", "--av-alpha", "1"][..],
             "--av-alpha",

@@ -7,7 +7,9 @@
 //! injector queue takes a new block every 63 jobs; a step injects a few parallel loops). So the
 //! steps are run twice: inside one `ThreadPool::install` (one injection for all 10 steps) the
 //! count must be exactly zero; from the test thread on the global pool it must not depend on
-//! the number of particles (same count at 30×30 and 60×60, at most one block per step).
+//! the number of particles (at most one block per step, and the counts at 30×30 and 60×60 within
+//! one of each other: which run crosses a 63-job boundary of the injector depends on how many
+//! jobs were injected before it, not on N).
 //!
 //! Everything runs in one test function: the counter is global, and tests of one binary run in
 //! parallel.
@@ -178,6 +180,9 @@ fn time_loop_does_not_allocate() {
             small <= 10 && large <= 10,
             "{name}: more than one allocation per step on the global pool"
         );
-        assert_eq!(small, large, "{name}: allocations grow with N");
+        assert!(
+            small.abs_diff(large) <= 1,
+            "{name}: allocations grow with N"
+        );
     }
 }

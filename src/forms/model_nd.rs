@@ -548,11 +548,6 @@ impl<const D: usize> Model<D> {
         if let Some(d) = p.diffusion {
             d.check("--delta", p.form)?;
         }
-        if p.av.is_some() && p.form == FormKind::TotalLagrangian {
-            return Err(Error::Incompatible(
-                "--av-alpha (artificial viscosity) does not apply to --form total-lagrangian: its rate function has no viscosity term".into(),
-            ));
-        }
         if D == 3 && p.art_stress.is_some() {
             return Err(Error::Incompatible(
                 "--art-eps (artificial stress) is available with --dim 2 only".into(),

@@ -170,6 +170,36 @@ pub(crate) fn stress_rate<S: Scalar, const D: usize>(
     r
 }
 
+/// −m_J Π_IJ ∇_I W_IJ of one pair (Monaghan viscosity), `d` = x_J − x_I, `dv` = v_I − v_J,
+/// ρ̄ the pair's mean density; zero for a receding pair when the viscosity acts on approaching
+/// pairs only.
+#[inline]
+fn av_pair<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    av: &super::ArtificialViscosity,
+    d: [S; D],
+    dv: [S; D],
+    rho_bar: S,
+    mass_j: f64,
+) -> [S; D] {
+    let h = m.p.kp.h;
+    // x_IJ = x_I − x_J = −d
+    let mut vx = -(dv[0] * d[0]);
+    let mut r2 = d[0] * d[0];
+    for c in 1..D {
+        vx -= dv[c] * d[c];
+        r2 += d[c] * d[c];
+    }
+    if av.approaching_only && vx.re() >= 0.0 {
+        return [S::zero(); D];
+    }
+    let mu = vx * h / (r2 + 0.01 * h * h);
+    let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
+    // ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
+    let (_, grad) = kernel::w_and_grad(m.p.kp.kernel, h, d);
+    grad.map(|g| -(pi * g * mass_j))
+}
+
 fn av_accel<S: Scalar, const D: usize>(
     m: &Model<D>,
     z: StateView<'_, S, D>,
@@ -179,29 +209,19 @@ fn av_accel<S: Scalar, const D: usize>(
     let Some(av) = m.p.av else {
         return [S::zero(); D];
     };
-    let h = m.p.kp.h;
     let mut a = [S::zero(); D];
     for nb in st {
         if nb.j == i {
             continue;
         }
-        let xij = nb.d.map(|c| -c);
-        let mut vx = (z.v[i][0] - z.v[nb.j][0]) * xij[0];
-        let mut r2 = xij[0] * xij[0];
-        for c in 1..D {
-            vx += (z.v[i][c] - z.v[nb.j][c]) * xij[c];
-            r2 += xij[c] * xij[c];
-        }
-        if av.approaching_only && vx.re() >= 0.0 {
-            continue;
-        }
-        let mu = vx * h / (r2 + 0.01 * h * h);
-        let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
-        let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
-        // ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
-        let (_, grad) = kernel::w_and_grad(m.p.kp.kernel, h, nb.d);
+        let mut dv = [S::zero(); D];
         for c in 0..D {
-            a[c] -= pi * grad[c] * m.mass[nb.j];
+            dv[c] = z.v[i][c] - z.v[nb.j][c];
+        }
+        let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
+        let f = av_pair(m, &av, nb.d, dv, rho_bar, m.mass[nb.j]);
+        for c in 0..D {
+            a[c] += f[c];
         }
     }
     a
@@ -556,7 +576,10 @@ fn cof_s<S: Scalar, const D: usize>(f: &Tensor<S, D>) -> Tensor<S, D> {
 /// - elastic: St Venant–Kirchhoff about the pre-stress, S = σ0 I + λ_T tr E I + 2G_T E, P = F S,
 ///   with (λ_T, G_T) = (λ, G) for the Truesdell rate and (λ + σ0, G − σ0) for the Jaumann rate,
 ///   so that the tangent C_T + σ0 δ (\[B00\] eq 15) is that of the Eulerian law;
-/// - neo-Hookean: P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ.
+/// - neo-Hookean: P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ;
+///
+/// plus Monaghan's viscosity, as in the Eulerian forms, on the pairs of the reference stencils at
+/// their current separation (reference densities in ρ̄).
 pub(crate) fn rate_tl<S: Scalar, const D: usize>(
     m: &Model<D>,
     z: StateView<'_, S, D>,
@@ -694,6 +717,28 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
     }
     for (a, &ms) in acc.iter_mut().zip(&m.mass) {
         *a = a.map(|x| x / ms);
+    }
+    // Monaghan viscosity on the reference neighbours at their current (minimum-image)
+    // separation, with the reference densities m/V0 (the forms carry no density)
+    if let Some(av) = m.p.av {
+        for (i, st) in m.ref_master.iter().enumerate() {
+            let rho_i = m.mass[i] / m.vol_ref[i];
+            for &(k, _, _) in st {
+                if k == i {
+                    continue;
+                }
+                let d = m.rel(z.x[i], z.x[k]);
+                let mut dv = [S::zero(); D];
+                for c in 0..D {
+                    dv[c] = z.v[i][c] - z.v[k][c];
+                }
+                let rho_bar = S::cst((rho_i + m.mass[k] / m.vol_ref[k]) * 0.5);
+                let f = av_pair(m, &av, d, dv, rho_bar, m.mass[k]);
+                for c in 0..D {
+                    acc[i][c] += f[c];
+                }
+            }
+        }
     }
     Ok(())
 }
