@@ -4,7 +4,7 @@
 //!
 //! | column | how it is obtained |
 //! |---|---|
-//! | `critical_dt` | [`IntegratorReport::of`] at σ̄ = 0 (the `timestep` code path: [`step_stability`] on the amplification matrices of the scheme), Δx/c; null for a weakly unstable scheme |
+//! | `critical_dt` | [`IntegratorReport::of`] at σ̄ = 0 (the `timestep` code path: [`crate::vonneumann::amplification::step_stability`] on the amplification matrices of the scheme), Δx/c; null for a weakly unstable scheme |
 //! | `weak_growth_rate` | weakly unstable schemes: their spurious growth per unit time at Δt = 1/ω_max, c/Δx (the `spurious_growth_rate` of `timestep`) |
 //! | `dt_used` | `safety` × `critical_dt`; weakly unstable schemes: the largest Δt for which no mode of the κ grid grows by more than [`WEAK_TOL`] while a wave travels one wavelength at 10 points per wavelength ([`T_REF`] = 10 Δx/c), by bisection on the raw spectral radius of the scheme |
 //! | `evaluations_per_step` | [`Stepper::evaluations_per_step`]: the scheme's nominal count (one `rates` call = one evaluation) |
