@@ -1,0 +1,102 @@
+//! Golden data of the analysis engine: 156 `sphstab` commands (the 1D atlas over every form and
+//! kernel, 1D dispersion curves of every form × kernel in tension and compression, dissipative
+//! and fine-κ curves, 1D queries and time steps, 2D/3D maps, queries and dispersion curves)
+//! with their JSON output, recorded by `tests/golden/analysis/generate.py` from the code
+//! *before* issue 13's performance work (revision 3bf5745). The faster engine must reproduce
+//! every number to 1e-12 relative.
+//!
+//! "Relative" is taken to the scale of the quantity: a number inside an array is compared
+//! with `1e-12 × max(1, max |x| over that array)`, a lone number with `1e-12 × max(1, |x|)`.
+//! All outputs are in normalised units (κΔx, ω in c/Δx, Δt in Δx/c), where the physical
+//! scale is O(1); the floor of 1 keeps rounding noise around zero (growth rates of 1e-17 of a
+//! stable mode) from demanding agreement below 1e-12 of the quantity's scale. Strings and
+//! booleans must be identical; `runtime_s` and `threads` (machine-dependent) are skipped.
+
+use serde_json::Value;
+use std::process::Command;
+
+const TOL: f64 = 1e-12;
+
+fn compare(path: &str, gold: &Value, new: &Value, scale: f64, worst: &mut (f64, String)) {
+    match (gold, new) {
+        (Value::Number(a), Value::Number(b)) => {
+            let (a, b) = (a.as_f64().unwrap(), b.as_f64().unwrap());
+            let s = scale.max(a.abs()).max(1.0);
+            let e = (a - b).abs() / s;
+            assert!(
+                e <= TOL,
+                "{path}: golden {a:e}, now {b:e} (error {e:.2e} of scale {s:e})"
+            );
+            if e > worst.0 {
+                *worst = (e, path.to_string());
+            }
+        }
+        (Value::Array(a), Value::Array(b)) => {
+            assert_eq!(a.len(), b.len(), "{path}: length");
+            let s = a
+                .iter()
+                .filter_map(Value::as_f64)
+                .fold(0.0f64, |m, x| m.max(x.abs()));
+            for (i, (x, y)) in a.iter().zip(b).enumerate() {
+                compare(&format!("{path}[{i}]"), x, y, s, worst);
+            }
+        }
+        (Value::Object(a), Value::Object(b)) => {
+            let keys = |o: &serde_json::Map<String, Value>| {
+                let mut k: Vec<String> = o.keys().cloned().collect();
+                k.sort();
+                k
+            };
+            assert_eq!(keys(a), keys(b), "{path}: fields");
+            for (k, x) in a {
+                if k == "runtime_s" || k == "threads" {
+                    continue;
+                }
+                compare(&format!("{path}.{k}"), x, &b[k], 0.0, worst);
+            }
+        }
+        _ => assert_eq!(gold, new, "{path}"),
+    }
+}
+
+#[test]
+fn analysis_matches_the_pre_issue_13_golden_data() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/golden/analysis/cases.json"
+    ))
+    .unwrap();
+    let gold: Value = serde_json::from_str(&text).unwrap();
+    let cases = gold["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 156);
+    let mut worst = (0.0, String::new());
+    for c in cases {
+        let args: Vec<&str> = c["args"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| a.as_str().unwrap())
+            .collect();
+        let out = Command::new(env!("CARGO_BIN_EXE_sphstab"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let new: Value = serde_json::from_slice(&out.stdout).unwrap();
+        compare(&args.join(" "), &c["output"], &new, 0.0, &mut worst);
+    }
+    println!("worst relative difference {:.2e} at {}", worst.0, worst.1);
+}
+
+/// The comparison is not vacuous: a change of 1e-10 in one number of a golden case fails it.
+#[test]
+#[should_panic(expected = "golden")]
+fn a_perturbed_number_fails_the_comparison() {
+    let gold: Value = serde_json::json!({"omega2": [0.5, -0.02, 1.0], "stable": false});
+    let new: Value = serde_json::json!({"omega2": [0.5, -0.02 + 1e-10, 1.0], "stable": false});
+    compare("case", &gold, &new, 0.0, &mut (0.0, String::new()));
+}
