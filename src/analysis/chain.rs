@@ -17,7 +17,7 @@ use crate::vonneumann::classify::{
     GROWTH_TOL, Instability, Kind, ZERO_OMEGA2_TOL, branch, growth_kind, runs,
 };
 use crate::vonneumann::damping::{branch_eigenvalues, critical_dt_eq120, damping_ratio};
-use crate::vonneumann::linearise::{Lattice1D, Linearisation};
+use crate::vonneumann::linearise::{Lattice1D, Linearisation, PhaseTable};
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -250,19 +250,19 @@ pub struct TimestepReport {
     pub step: IntegratorReport,
 }
 
-/// Growth rates and ω² on the grid.
+/// Growth rates and ω² on the grid (phase factors tabulated once: [`PhaseTable`]).
 fn curve(lin: &Linearisation, kappas: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
     let mut w2 = Vec::with_capacity(kappas.len());
     let mut g = Vec::with_capacity(kappas.len());
-    let dissipative = lin.is_dissipative();
-    for &k in kappas {
-        let (o, _) = lin.omega2(k);
+    let table = PhaseTable::new(kappas, lin.reach());
+    for k in 0..kappas.len() {
+        let (o, _) = lin.omega2_tabulated(&table, k);
         if !o.is_finite() {
             return Err(Error::NonFinite("ω²"));
         }
         w2.push(o);
-        g.push(if dissipative {
-            lin.growth(k)?
+        g.push(if lin.is_dissipative() {
+            lin.growth_tabulated(&table, k)?
         } else {
             (-o).max(0.0).sqrt()
         });

@@ -9,6 +9,7 @@ use super::zone::Query;
 use crate::error::Result;
 use crate::lattice::grid_index;
 use crate::vonneumann::linearise::Bloch;
+use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -100,15 +101,22 @@ pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Resul
         }
         k
     };
-    let mut g = vec![vec![0.0; n]; n];
-    let mut w2: f64 = 0.0;
-    for (i, &kx) in ax.iter().enumerate() {
-        for (j, &ky) in ax.iter().enumerate() {
-            let k = at(kx, ky);
-            g[i][j] = lin.growth(k)?.0;
-            w2 = w2.max(lin.branches(k)[D - 1].0.re);
-        }
-    }
+    // rows in parallel, one J(k) per wave vector
+    let rows: Vec<(Vec<f64>, f64)> = ax
+        .par_iter()
+        .map(|&kx| {
+            let mut row = Vec::with_capacity(n);
+            let mut w2: f64 = 0.0;
+            for &ky in &ax {
+                let (g, _, top) = lin.growth_and_top(at(kx, ky))?;
+                row.push(g);
+                w2 = w2.max(top);
+            }
+            Ok((row, w2))
+        })
+        .collect::<Result<_>>()?;
+    let w2 = rows.iter().fold(0.0f64, |m, r| m.max(r.1));
+    let g: Vec<Vec<f64>> = rows.into_iter().map(|r| r.0).collect();
     Ok(GrowthMap {
         kx: ax.clone(),
         ky: ax,

@@ -17,6 +17,7 @@ use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt_given};
 use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL, growth_kind};
 use crate::vonneumann::damping::{branch_eigenvalues, damping_ratio};
 use crate::vonneumann::linearise::Bloch;
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// Material choice of a 2D or 3D query.
@@ -377,9 +378,12 @@ pub fn query_nd<const D: usize>(q: &Query<D>) -> Result<QueryReport2D> {
     let mut pol = Vec::with_capacity(ks.len());
     let mut w2max: f64 = 0.0;
     let mut zeros = Vec::with_capacity(ks.len());
-    for &k in &ks {
-        let (g, p) = lin.growth(k)?;
-        let br = lin.branches(k);
+    // one J(k) per wave vector, in parallel
+    let modes: Vec<_> = ks
+        .par_iter()
+        .map(|&k| lin.growth_and_branches(k))
+        .collect::<Result<_>>()?;
+    for (g, p, br) in modes {
         if !g.is_finite() || br.iter().any(|b| !b.0.re.is_finite()) {
             return Err(Error::NonFinite("dispersion branches (eigenvalues)"));
         }

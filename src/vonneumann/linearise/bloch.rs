@@ -14,7 +14,7 @@
 // Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::columns::{Columns, Linearisable, eigen};
+use super::columns::{Columns, Linearisable, SparseJacobian, eigen};
 use crate::error::{Error, Result};
 use crate::forms::{
     Comp, FieldKind, FormKind, Material, Model, ModelParams2D, RateWorkspace, State,
@@ -37,6 +37,10 @@ pub struct Bloch<const D: usize> {
     pub lattice: Lattice<D>,
     omega2_scale: f64,
     time_scale: f64,
+    /// [`Columns::is_dissipative`], computed once.
+    dissipative: bool,
+    /// The entries the mechanical branches read ([`Columns::mechanical_entries`]).
+    mechanical: SparseJacobian<[f64; D]>,
 }
 
 /// The 2D linearisation.
@@ -190,6 +194,8 @@ impl<const D: usize> Bloch<D> {
         let c2 = p.material.modulus() / p.rho0;
         Ok(Self {
             comps: sys.comps,
+            dissipative: core.is_dissipative(),
+            mechanical: core.mechanical_entries(),
             core,
             lattice: *lat,
             omega2_scale: dx * dx / c2,
@@ -199,27 +205,42 @@ impl<const D: usize> Bloch<D> {
 
     /// Whether velocities enter the accelerations (artificial viscosity).
     pub fn is_dissipative(&self) -> bool {
-        self.core.is_dissipative()
+        self.dissipative
     }
 
-    /// J(k) (physical units; k in units of 1/Δx).
-    pub fn jacobian(&self, k: [f64; D]) -> DMatrix<Complex64> {
-        self.core.jacobian(|r: &[f64; D]| {
+    /// The phase θ = k·r.
+    fn phase(k: [f64; D]) -> impl Fn(&[f64; D]) -> f64 {
+        move |r: &[f64; D]| {
             let mut t = k[0] * r[0];
             for a in 1..D {
                 t += k[a] * r[a];
             }
             t
-        })
+        }
+    }
+
+    /// J(k) (physical units; k in units of 1/Δx).
+    pub fn jacobian(&self, k: [f64; D]) -> DMatrix<Complex64> {
+        self.core.jacobian(Self::phase(k))
+    }
+
+    /// J(k) with only the entries the mechanical branches read (the others zero): enough for
+    /// [`Self::dynamical_of`] of a non-dissipative system.
+    fn jacobian_mechanical(&self, k: [f64; D]) -> DMatrix<Complex64> {
+        self.core.jacobian_sparse(&self.mechanical, Self::phase(k))
     }
 
     /// Normalised dynamical matrix D(k)Δx²/c² (D × D) of the mechanical branches.
     pub fn dynamical(&self, k: [f64; D]) -> [[Complex64; D]; D] {
-        let j = self.jacobian(k);
+        self.dynamical_of(&self.jacobian_mechanical(k))
+    }
+
+    /// [`Self::dynamical`] from J(k).
+    fn dynamical_of(&self, j: &DMatrix<Complex64>) -> [[Complex64; D]; D] {
         let mut d = [[Complex64::new(0.0, 0.0); D]; D];
         for a in 0..D {
             for b in 0..D {
-                d[a][b] = self.core.stiffness(&j, a, b) * self.omega2_scale;
+                d[a][b] = self.core.stiffness(j, a, b) * self.omega2_scale;
             }
         }
         d
@@ -227,7 +248,12 @@ impl<const D: usize> Bloch<D> {
 
     /// The D branches at k: (ω² (complex in general), unit polarisation), ascending in Re ω².
     pub fn branches(&self, k: [f64; D]) -> Vec<(Complex64, [Complex64; D])> {
-        let d = self.dynamical(k);
+        self.branches_of(&self.jacobian_mechanical(k))
+    }
+
+    /// [`Self::branches`] from J(k).
+    fn branches_of(&self, j: &DMatrix<Complex64>) -> Vec<(Complex64, [Complex64; D])> {
+        let d = self.dynamical_of(j);
         let mut out = match D {
             1 => vec![(d[0][0], [Complex64::new(1.0, 0.0); D])],
             2 => branches2(&d),
@@ -244,11 +270,32 @@ impl<const D: usize> Bloch<D> {
 
     /// Largest growth rate at k and the polarisation of that branch.
     pub fn growth(&self, k: [f64; D]) -> Result<(f64, [Complex64; D])> {
-        let b = self.branches(k);
+        self.growth_and_top(k).map(|(g, p, _)| (g, p))
+    }
+
+    /// [`Self::growth`] and Re ω² of the top branch (`branches(k)[D − 1]`), from one J(k).
+    pub fn growth_and_top(&self, k: [f64; D]) -> Result<(f64, [Complex64; D], f64)> {
+        let (g, p, b) = self.growth_and_branches(k)?;
+        Ok((g, p, b[D - 1].0.re))
+    }
+
+    /// [`Self::growth`] and [`Self::branches`] from one J(k).
+    #[allow(clippy::type_complexity)]
+    pub fn growth_and_branches(
+        &self,
+        k: [f64; D],
+    ) -> Result<(f64, [Complex64; D], Vec<(Complex64, [Complex64; D])>)> {
+        let j = if self.dissipative {
+            self.jacobian(k)
+        } else {
+            self.jacobian_mechanical(k)
+        };
+        let b = self.branches_of(&j);
         if self.is_dissipative() {
-            let j = self.jacobian(k) * Complex64::new(self.time_scale, 0.0);
+            let j = j * Complex64::new(self.time_scale, 0.0);
             let g = eigen(j)?.iter().map(|s| s.re).fold(0.0, f64::max);
-            return Ok((g, b[0].1));
+            let p = b[0].1;
+            return Ok((g, p, b));
         }
         let mut best = (Self::growth_of(b[0].0), b[0].1);
         for br in &b[1..] {
@@ -257,7 +304,7 @@ impl<const D: usize> Bloch<D> {
                 best = (g, br.1);
             }
         }
-        Ok(best)
+        Ok((best.0, best.1, b))
     }
 
     /// Amplification matrix of one leapfrog step Δt (in Δx/c) for wave vector k.
@@ -290,7 +337,7 @@ impl<const D: usize> Bloch<D> {
 impl<const D: usize> Modes for Bloch<D> {
     type K = [f64; D];
     fn is_dissipative(&self) -> bool {
-        self.core.is_dissipative()
+        self.dissipative
     }
     fn omega2_top(&self, k: [f64; D]) -> f64 {
         self.branches(k)[D - 1].0.re

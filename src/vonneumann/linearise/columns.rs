@@ -50,6 +50,10 @@ pub(crate) struct Columns<O> {
     cols: Vec<Vec<(O, Vec<f64>)>>,
     /// Whether the k = 0 sum of entry (a, b) is zero to rounding.
     zero_sum: Vec<Vec<bool>>,
+    /// The distinct offsets of all columns, and for each column entry the index of its offset
+    /// there: a Bloch sum evaluates the phase of each offset once, not once per column.
+    offsets: Vec<O>,
+    at: Vec<Vec<usize>>,
     /// Position dofs.
     pub ix: Vec<usize>,
     /// Velocity dofs (as many as positions).
@@ -73,19 +77,28 @@ impl<O: Copy> Columns<O> {
             return Err(Error::NonFinite("layout"));
         }
         let mut cols = Vec::with_capacity(nd);
+        let mut slot = vec![usize::MAX; sys.cells()];
+        let (mut offsets, mut at) = (Vec::new(), Vec::with_capacity(nd));
         for b in 0..nd {
+            let mut col_at = Vec::new();
             sys.seeded_rate(b)?;
             let mut col = Vec::new();
-            for i in 0..sys.cells() {
+            for (i, si) in slot.iter_mut().enumerate() {
                 let v: Vec<f64> = (0..nd).map(|a| sys.tangent(a, i)).collect();
                 if v.iter().any(|x| !x.is_finite()) {
                     return Err(Error::NonFinite("rate-function Jacobian"));
                 }
                 if v.iter().any(|&x| x != 0.0) {
+                    if *si == usize::MAX {
+                        *si = offsets.len();
+                        offsets.push(sys.offset(i));
+                    }
+                    col_at.push(*si);
                     col.push((sys.offset(i), v));
                 }
             }
             cols.push(col);
+            at.push(col_at);
         }
         let zero_sum = zero_sums(&cols, nd);
         // auxiliary rates may depend on velocities, and on the auxiliary state itself (δ-SPH
@@ -98,6 +111,8 @@ impl<O: Copy> Columns<O> {
         Ok(Self {
             cols,
             zero_sum,
+            offsets,
+            at,
             ix,
             iv,
             iq,
@@ -111,7 +126,96 @@ impl<O: Copy> Columns<O> {
 
     /// J(k) (physical units) for the phase θ = k·r of an offset r.
     pub fn jacobian(&self, phase: impl Fn(&O) -> f64) -> DMatrix<Complex64> {
-        bloch_sum(&self.cols, &self.zero_sum, phase)
+        let ph: Vec<Phase> = self.offsets.iter().map(|o| Phase::of(phase(o))).collect();
+        bloch_sum(&self.cols, &self.at, &self.zero_sum, |i, _| ph[i])
+    }
+
+    /// J(k) from tabulated phase factors ([`Phase`] of each offset): the same sums as
+    /// [`Self::jacobian`] without a libm call.
+    pub fn jacobian_tabulated(&self, phase: impl Fn(&O) -> Phase) -> DMatrix<Complex64> {
+        bloch_sum(&self.cols, &self.at, &self.zero_sum, |_, o| phase(o))
+    }
+
+    /// The entries of J that the mechanical reduction K = −(J_vx + Σ_q J_vq J_qv) reads
+    /// ([`Self::stiffness`]): (v, x), (v, q) and (q, v), with their nonzero terms, and the
+    /// offsets those terms use (a subset of all: a Bloch sum of these entries needs only their
+    /// phases).
+    pub fn mechanical_entries(&self) -> SparseJacobian<O> {
+        let mut slot = vec![usize::MAX; self.offsets.len()];
+        let mut offsets = Vec::new();
+        let mut entries = Vec::new();
+        for (b, (col, col_at)) in self.cols.iter().zip(&self.at).enumerate() {
+            let rows: &[usize] = if self.iv.contains(&b) {
+                &self.iq
+            } else {
+                &self.iv
+            };
+            for &a in rows {
+                let mut terms = Vec::new();
+                for ((o, c), &i) in col.iter().zip(col_at) {
+                    if c[a] != 0.0 {
+                        if slot[i] == usize::MAX {
+                            slot[i] = offsets.len();
+                            offsets.push(*o);
+                        }
+                        terms.push((slot[i], c[a]));
+                    }
+                }
+                if !terms.is_empty() {
+                    entries.push(Sparse {
+                        a,
+                        b,
+                        minus_one: self.zero_sum[a][b],
+                        terms,
+                    });
+                }
+            }
+        }
+        SparseJacobian { offsets, entries }
+    }
+
+    /// J(k) with only the entries of `sp` filled (the others zero): the same sums, in the same
+    /// order, as [`Self::jacobian`] for those entries, with the phase of each offset computed
+    /// once.
+    pub fn jacobian_sparse(
+        &self,
+        sp: &SparseJacobian<O>,
+        phase: impl Fn(&O) -> f64,
+    ) -> DMatrix<Complex64> {
+        let ph: Vec<Phase> = sp.offsets.iter().map(|o| Phase::of(phase(o))).collect();
+        let nd = self.cols.len();
+        let mut j = DMatrix::<Complex64>::zeros(nd, nd);
+        for e in &sp.entries {
+            let mut acc = Complex64::new(0.0, 0.0);
+            for &(i, v) in &e.terms {
+                acc += ph[i].factor(e.minus_one) * v;
+            }
+            j[(e.a, e.b)] = acc;
+        }
+        j
+    }
+
+    /// The terms of entry (a, b) of J(k): the nonzero A_ab(i) with their offsets, in the order of
+    /// the Bloch sum, and whether the entry is summed with e^{−iθ} − 1 ([`zero_sums`]).
+    pub fn entry(&self, a: usize, b: usize) -> Entry<O> {
+        Entry {
+            terms: self.cols[b]
+                .iter()
+                .filter(|(_, c)| c[a] != 0.0)
+                .map(|(o, c)| (*o, c[a]))
+                .collect(),
+            minus_one: self.zero_sum[a][b],
+        }
+    }
+
+    /// Largest offset (by `norm`) of any nonzero column entry.
+    pub fn reach(&self, norm: impl Fn(&O) -> i64) -> i64 {
+        self.cols
+            .iter()
+            .flatten()
+            .map(|(o, _)| norm(o))
+            .max()
+            .unwrap_or(0)
     }
 
     /// Whether velocities enter the accelerations (artificial viscosity) or the auxiliary state
@@ -163,25 +267,163 @@ impl<O: Copy> Columns<O> {
     }
 }
 
-/// The Bloch sum of Jacobian columns: J_ab(k) = Σ_j A_ab(j) e^{−iθ_j}, θ_j = `phase(offset_j)`
-/// (= k·r_j), with the entries whose k = 0 sum vanishes ([`zero_sums`]) summed as
-/// Σ_j A_ab(j)(e^{−iθ_j} − 1), e^{−iθ} − 1 = −2 sin²(θ/2) − i sin θ — exact as k → 0.
+impl<O: Copy + PartialEq> Columns<O> {
+    /// The columns A(t) = A₀ + t (A₁ − A₀) between `self` (t = 0) and `other` (t = 1), when
+    /// both have the same structure (dofs, and the same offsets in the same order in every
+    /// column); `None` otherwise. Exact for a rate function whose Jacobian is affine in the
+    /// parameter that distinguishes the two (the atlas verifies it before using it).
+    pub fn lerp(&self, other: &Self, t: f64) -> Option<Self> {
+        if self.ix != other.ix || self.iv != other.iv || self.iq != other.iq {
+            return None;
+        }
+        let mut cols = Vec::with_capacity(self.cols.len());
+        for (ca, cb) in self.cols.iter().zip(&other.cols) {
+            if ca.len() != cb.len() || ca.iter().zip(cb).any(|(x, y)| x.0 != y.0) {
+                return None;
+            }
+            cols.push(
+                ca.iter()
+                    .zip(cb)
+                    .map(|((o, va), (_, vb))| {
+                        (
+                            *o,
+                            va.iter().zip(vb).map(|(a, b)| a + t * (b - a)).collect(),
+                        )
+                    })
+                    .collect(),
+            );
+        }
+        let zero_sum = zero_sums(&cols, self.cols.len());
+        Some(Self {
+            cols,
+            zero_sum,
+            offsets: self.offsets.clone(),
+            at: self.at.clone(),
+            ix: self.ix.clone(),
+            iv: self.iv.clone(),
+            iq: self.iq.clone(),
+        })
+    }
+
+    /// max |A_self − A_other| over every entry (an offset missing on one side counts as zero
+    /// there), relative to the largest |A| of either; `None` if the dofs differ.
+    pub fn distance(&self, other: &Self) -> Option<f64> {
+        if self.ix != other.ix || self.iv != other.iv || self.iq != other.iq {
+            return None;
+        }
+        let (mut diff, mut big) = (0.0f64, 0.0f64);
+        for (ca, cb) in self.cols.iter().zip(&other.cols) {
+            for (o, va) in ca {
+                big = va.iter().fold(big, |m, v| m.max(v.abs()));
+                match cb.iter().find(|(p, _)| p == o) {
+                    Some((_, vb)) => {
+                        diff = va
+                            .iter()
+                            .zip(vb)
+                            .fold(diff, |m, (a, b)| m.max((a - b).abs()))
+                    }
+                    None => diff = va.iter().fold(diff, |m, v| m.max(v.abs())),
+                }
+            }
+            for (o, vb) in cb {
+                big = vb.iter().fold(big, |m, v| m.max(v.abs()));
+                if !ca.iter().any(|(p, _)| p == o) {
+                    diff = vb.iter().fold(diff, |m, v| m.max(v.abs()));
+                }
+            }
+        }
+        Some(if big > 0.0 { diff / big } else { diff })
+    }
+}
+
+/// The phase factors of one offset at one wave vector, θ = k·r: cos θ, sin θ and
+/// e^{−iθ} − 1's real part −2 sin²(θ/2) (exact as θ → 0). Computed once per (k, r) by
+/// [`Phase::of`]; the 1D engine tabulates them once per κ grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Phase {
+    /// cos θ.
+    pub cos: f64,
+    /// sin θ.
+    pub sin: f64,
+    /// −2 sin²(θ/2) = cos θ − 1 without cancellation.
+    pub cos_m1: f64,
+}
+
+impl Phase {
+    /// The factors of θ.
+    #[inline]
+    pub fn of(t: f64) -> Self {
+        let half = (0.5 * t).sin();
+        Self {
+            cos: t.cos(),
+            sin: t.sin(),
+            cos_m1: -2.0 * half * half,
+        }
+    }
+
+    /// e^{−iθ}, or e^{−iθ} − 1 when `minus_one`.
+    #[inline]
+    pub fn factor(self, minus_one: bool) -> Complex64 {
+        Complex64::new(if minus_one { self.cos_m1 } else { self.cos }, -self.sin)
+    }
+}
+
+/// Some entries of J with the offsets they use ([`Columns::mechanical_entries`]).
+#[derive(Clone, Debug)]
+pub(crate) struct SparseJacobian<O> {
+    offsets: Vec<O>,
+    entries: Vec<Sparse>,
+}
+
+/// One Jacobian entry (a, b) with its nonzero terms (index of the offset in
+/// [`SparseJacobian`]'s offsets, A_ab) in the order of the Bloch sum.
+#[derive(Clone, Debug)]
+pub(crate) struct Sparse {
+    a: usize,
+    b: usize,
+    minus_one: bool,
+    terms: Vec<(usize, f64)>,
+}
+
+/// The terms of one Jacobian entry (a, b) ([`Columns::entry`]).
+#[derive(Clone, Debug)]
+pub(crate) struct Entry<O> {
+    /// (offset r_i, A_ab(i)) for the nonzero terms, in the order of the Bloch sum.
+    pub terms: Vec<(O, f64)>,
+    /// Whether the entry is summed with e^{−ik·r} − 1 (its k = 0 sum vanishes).
+    pub minus_one: bool,
+}
+
+impl<O> Entry<O> {
+    /// J_ab(k) = Σ_i A_ab(i) (e^{−iθ_i} [− 1]) with θ_i's factors from `phase` — the same
+    /// operations in the same order as [`bloch_sum`], so the same result to the last bit.
+    #[inline]
+    pub fn sum(&self, phase: impl Fn(&O) -> Phase) -> Complex64 {
+        let mut acc = Complex64::new(0.0, 0.0);
+        for (o, v) in &self.terms {
+            acc += phase(o).factor(self.minus_one) * *v;
+        }
+        acc
+    }
+}
+
+/// The Bloch sum of Jacobian columns: J_ab(k) = Σ_j A_ab(j) e^{−iθ_j}, θ_j = k·r_j with the
+/// factors of θ_j from `phase(index of the offset in Columns::offsets, offset)`, with the entries whose k = 0 sum vanishes ([`zero_sums`])
+/// summed as Σ_j A_ab(j)(e^{−iθ_j} − 1), e^{−iθ} − 1 = −2 sin²(θ/2) − i sin θ — exact as k → 0.
 fn bloch_sum<O>(
     cols: &[Vec<(O, Vec<f64>)>],
+    at: &[Vec<usize>],
     zero_sum: &[Vec<bool>],
-    phase: impl Fn(&O) -> f64,
+    phase: impl Fn(usize, &O) -> Phase,
 ) -> DMatrix<Complex64> {
     let nd = cols.len();
     let mut j = DMatrix::<Complex64>::zeros(nd, nd);
-    for (b, col) in cols.iter().enumerate() {
-        for (o, c) in col {
-            let t = phase(o);
-            let (s, half) = (t.sin(), (0.5 * t).sin());
-            let e = Complex64::new(t.cos(), -s);
-            let em1 = Complex64::new(-2.0 * half * half, -s);
+    for (b, (col, col_at)) in cols.iter().zip(at).enumerate() {
+        for ((o, c), &i) in col.iter().zip(col_at) {
+            let p = phase(i, o);
             for (a, &v) in c.iter().enumerate() {
                 if v != 0.0 {
-                    j[(a, b)] += if zero_sum[a][b] { em1 * v } else { e * v };
+                    j[(a, b)] += p.factor(zero_sum[a][b]) * v;
                 }
             }
         }

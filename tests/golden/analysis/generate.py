@@ -19,6 +19,9 @@ KERNELS = ["m4", "m5", "m6", "wendland-c2", "wendland-c4", "wendland-c6", "gauss
 cases = []
 # the 1D atlas over every form and kernel (3 h × 4 σ̄ × 64 κ)
 cases.append(["atlas", "--h-points", "3", "--stress-points", "4", "--kappas", "64", "--json"])
+# ... and with 9 σ̄ values (the atlas interpolates the Jacobian in σ̄ from 5 values on)
+cases.append(["atlas", "--h-points", "4", "--stress-points", "9", "--stress-min", "-0.9",
+              "--stress-max", "0.9", "--kappas", "128", "--json"])
 # 1D dispersion curves: every form × kernel, in tension and compression
 for f in FORMS:
     for k in KERNELS:
