@@ -341,6 +341,23 @@ pub fn run(
     })
 }
 
+/// The work the atlas cannot avoid: for every cell, one Fourier term per κ point per lattice
+/// neighbour inside the kernel support (offsets j ≠ 0 with |j|Δx < R = ζh). At the 1 ns a term
+/// costs (a multiply-add with a tabulated phase and the loop around it), this many
+/// nanoseconds of CPU is the "lattice-sum limit" the README compares the atlas with; it
+/// ignores the linearisation of each cell and the reduction to ω².
+pub fn lattice_sum_terms(rep: &AtlasReport) -> f64 {
+    rep.cells
+        .iter()
+        .map(|c| {
+            let r = kernel::by_name(&c.kernel).map_or(0.0, |k| k.zeta() * c.h_over_dx);
+            // integers 0 < |j| < r
+            let n = 2.0 * (r.ceil() - 1.0).max(0.0);
+            n * rep.config.kappas as f64
+        })
+        .sum()
+}
+
 /// Merges shards into the whole atlas: same configuration, shard counts equal, every shard
 /// index present exactly once (errors name the file).
 pub fn merge(parts: &[(String, AtlasReport)]) -> Result<AtlasReport> {

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Times a previous revision of sphstab against the working tree, back to back on the same
-# commands, and prints per command the median CPU time (user + sys) of each and their ratio.
+# commands, and prints per command the median CPU time (user + sys) and the median wall-clock
+# time of each, and their ratios (CPU measures work; wall measures what a user waits, including
+# the use of both cores). The child is started with posix_spawn and reaped with wait4, so its
+# rusage is its own (a fork of the Python interpreter would add ~50 ms of CPU to each run).
 #
 #   analysis/bench/compare.sh REV [ROUNDS] [COMMANDS_FILE]
 #
@@ -27,19 +30,22 @@ cargo build --release --quiet
 old=$work/target/release/sphstab
 new=$PWD/target/release/sphstab
 echo "load at start: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
-cpu() { # CPU seconds (user + sys, µs resolution from getrusage) of one run, output discarded
+cpu() { # "CPU wall" seconds of one run (CPU = user + sys from wait4's rusage), output discarded
     python3 - "$@" <<'PY'
-import resource, subprocess, sys
-r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-if r.returncode != 0:
-    sys.stderr.write(r.stderr.decode())
-    sys.exit(1)
-u = resource.getrusage(resource.RUSAGE_CHILDREN)
-print(u.ru_utime + u.ru_stime)
+import os, sys, time
+devnull = os.open(os.devnull, os.O_WRONLY)
+t = time.perf_counter()
+pid = os.posix_spawn(sys.argv[1], sys.argv[1:], os.environ,
+                     file_actions=[(os.POSIX_SPAWN_DUP2, devnull, 1)])
+_, status, ru = os.wait4(pid, 0)
+w = time.perf_counter() - t
+if os.waitstatus_to_exitcode(status) != 0:
+    sys.exit(f"failed: {' '.join(sys.argv[1:])}")
+print(f"{ru.ru_utime + ru.ru_stime} {w}")
 PY
 }
-echo "| command | old ${old_sha:0:8} (s CPU, median of $rounds) | new (s CPU) | old / new |"
-echo "|---|---:|---:|---:|"
+echo "| command | old ${old_sha:0:8} CPU s (median of $rounds) | new CPU s | CPU old / new | old wall s | new wall s | wall old / new |"
+echo "|---|---:|---:|---:|---:|---:|---:|"
 grep -v '^\s*\(#\|$\)' "$cmds" | while read -r line; do
     read -ra args <<<"$line"
     o=(); n=()
@@ -50,11 +56,12 @@ grep -v '^\s*\(#\|$\)' "$cmds" | while read -r line; do
     python3 - "$line" "${#o[@]}" "${o[@]}" "${n[@]}" <<'PY'
 import statistics, sys
 line, k = sys.argv[1], int(sys.argv[2])
-o = [float(x) for x in sys.argv[3:3 + k]]
-n = [float(x) for x in sys.argv[3 + k:]]
-mo, mn = statistics.median(o), statistics.median(n)
-ratio = f"{mo / mn:.2f}" if mn > 0 else "n/a"
-print(f"| `{line}` | {mo:.4f} | {mn:.4f} | {ratio} |")
+o = [tuple(map(float, x.split())) for x in sys.argv[3:3 + k]]
+n = [tuple(map(float, x.split())) for x in sys.argv[3 + k:]]
+med = lambda v, i: statistics.median(x[i] for x in v)
+r = lambda a, b: f"{a / b:.2f}" if b > 0 else "n/a"
+co, cn, wo, wn = med(o, 0), med(n, 0), med(o, 1), med(n, 1)
+print(f"| `{line}` | {co:.4f} | {cn:.4f} | {r(co, cn)} | {wo:.4f} | {wn:.4f} | {r(wo, wn)} |")
 PY
 done
 echo "load at end: $(cut -d' ' -f1-3 /proc/loadavg)" >&2

@@ -14,14 +14,14 @@
 // Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::columns::{Columns, Linearisable, SparseJacobian, eigen};
+use super::columns::{Columns, LANES, Linearisable, SparseJacobian, eigen};
 use crate::error::{Error, Result};
 use crate::forms::{
     Comp, FieldKind, FormKind, Material, Model, ModelParams2D, RateWorkspace, State,
 };
 use crate::integrator::Integrator;
 use crate::lattice::{Lattice, grid_index};
-use crate::scalar::{Dual, Scalar};
+use crate::scalar::{DualN, Scalar};
 use crate::vonneumann::amplification::{Modes, spectral_radius};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -360,8 +360,8 @@ struct Patch<const D: usize> {
     base: State<f64, D>,
     offs: Vec<[f64; D]>,
     comps: Vec<Comp>,
-    out: State<Dual, D>,
-    ws: RateWorkspace<Dual, D>,
+    out: State<DualN<LANES>, D>,
+    ws: RateWorkspace<DualN<LANES>, D>,
 }
 
 impl<const D: usize> Linearisable for Patch<D> {
@@ -375,15 +375,17 @@ impl<const D: usize> Linearisable for Patch<D> {
     fn offset(&self, i: usize) -> [f64; D] {
         self.offs[i]
     }
-    fn seeded_rate(&mut self, b: usize) -> Result<()> {
-        let mut z: State<Dual, D> = self.base.map(Dual::cst);
-        let mut t = z.get(self.comps[b], 0);
-        t.d = 1.0;
-        z.set(self.comps[b], 0, t);
+    fn seeded_rates(&mut self, b0: usize) -> Result<()> {
+        let mut z: State<DualN<LANES>, D> = self.base.map(DualN::cst);
+        for (l, &c) in self.comps.iter().skip(b0).take(LANES).enumerate() {
+            let mut t = z.get(c, 0);
+            t.d[l] = 1.0;
+            z.set(c, 0, t);
+        }
         self.model.rate_with(&z, &mut self.out, &mut self.ws)
     }
-    fn tangent(&self, a: usize, i: usize) -> f64 {
-        self.out.get(self.comps[a], i).d
+    fn tangent(&self, a: usize, i: usize, l: usize) -> f64 {
+        self.out.get(self.comps[a], i).d[l]
     }
 }
 
@@ -521,7 +523,7 @@ pub fn check_patch_budget<const D: usize>(
     } else {
         1.0
     };
-    let entry = std::mem::size_of::<crate::forms::workspace::NbD<Dual, D>>() as f64;
+    let entry = std::mem::size_of::<crate::forms::workspace::NbD<DualN<LANES>, D>>() as f64;
     let bytes = particles * (neighbours * entry * stencils * 1.25 + 64.0 * 16.0);
     crate::budget::check_memory(
         "--h/--support",

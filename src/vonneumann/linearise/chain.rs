@@ -12,11 +12,11 @@
 //! [`Lattice1D`]), so a second 1D engine for the common forms would add code, not remove it; the
 //! rate function and every step after the dual-number seeding are already the same code.
 
-use super::columns::{Columns, Entry, Linearisable, Phase, eigen};
+use super::columns::{Columns, Entry, LANES, Linearisable, Phase, eigen};
 use crate::error::Result;
 use crate::forms::{Field, FieldKind, FormKind, MassOperator, Model1D, ModelParams, State1D};
 use crate::integrator::Integrator;
-use crate::scalar::{Dual, Scalar};
+use crate::scalar::{DualN, Scalar};
 use crate::vonneumann::amplification::Modes;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -147,7 +147,7 @@ struct Chain {
     model: Model1D,
     base: State1D<f64>,
     fields: Vec<Field>,
-    out: State1D<Dual>,
+    out: State1D<DualN<LANES>>,
     n: usize,
 }
 
@@ -173,13 +173,18 @@ impl Linearisable for Chain {
     fn offset(&self, i: usize) -> i64 {
         self.wrap(i)
     }
-    fn seeded_rate(&mut self, b: usize) -> Result<()> {
-        let mut z: State1D<Dual> = self.base.map(Dual::cst);
-        z.field_mut(self.fields[b])[0].d = 1.0;
+    fn seeded_rates(&mut self, b0: usize) -> Result<()> {
+        let mut z: State1D<DualN<LANES>> = self.base.map(DualN::cst);
+        for (l, &f) in self.fields.iter().skip(b0).take(LANES).enumerate() {
+            z.field_mut(f)[0].d[l] = 1.0;
+        }
         self.model.rate(&z, &mut self.out)
     }
-    fn tangent(&self, a: usize, i: usize) -> f64 {
-        self.out.field(self.fields[a]).get(i).map_or(0.0, |v| v.d)
+    fn tangent(&self, a: usize, i: usize, l: usize) -> f64 {
+        self.out
+            .field(self.fields[a])
+            .get(i)
+            .map_or(0.0, |v| v.d[l])
     }
 }
 

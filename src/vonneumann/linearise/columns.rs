@@ -18,6 +18,11 @@ use crate::vonneumann::amplification::ModeSystem;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
+/// Tangent lanes of one rate evaluation of the linearisation ([`crate::scalar::DualN`]): the Jacobian columns
+/// of a cell's dofs come from ⌈dofs / LANES⌉ evaluations instead of one per dof. Each lane is
+/// bit for bit a [`crate::scalar::Dual`] evaluation, so the columns do not depend on it.
+pub const LANES: usize = 4;
+
 /// A k = 0 sum is treated as exactly zero when below this fraction of Σ|A_ab(i)|.
 pub const ZERO_SUM_TOL: f64 = 1e-12;
 /// A q-rate Jacobian entry ∂q̇/∂x or ∂q̇/∂q at rest larger than this (relative) is reported as an
@@ -36,10 +41,12 @@ pub(crate) trait Linearisable {
     fn cells(&self) -> usize;
     /// Position of cell `i` relative to cell 0.
     fn offset(&self, i: usize) -> Self::Offset;
-    /// Evaluates the rate function at the rest state with a unit dual part on dof `b` of cell 0.
-    fn seeded_rate(&mut self, b: usize) -> Result<()>;
-    /// Dual part of the rate of dof `a` of cell `i` after [`Self::seeded_rate`].
-    fn tangent(&self, a: usize, i: usize) -> f64;
+    /// Evaluates the rate function at the rest state once, with [`crate::scalar::DualN`] numbers of
+    /// [`LANES`] lanes: lane l carries a unit tangent on dof `b0 + l` of cell 0 (lanes past the
+    /// last dof stay zero).
+    fn seeded_rates(&mut self, b0: usize) -> Result<()>;
+    /// Lane `l` of the tangent of the rate of dof `a` of cell `i` after [`Self::seeded_rates`].
+    fn tangent(&self, a: usize, i: usize, l: usize) -> f64;
 }
 
 /// The Jacobian columns of a linearised periodic system, with the position, velocity and
@@ -80,11 +87,15 @@ impl<O: Copy> Columns<O> {
         let mut slot = vec![usize::MAX; sys.cells()];
         let (mut offsets, mut at) = (Vec::new(), Vec::with_capacity(nd));
         for b in 0..nd {
+            let (b0, l) = (b - b % LANES, b % LANES);
+            if l == 0 {
+                // one evaluation differentiates along LANES dofs
+                sys.seeded_rates(b0)?;
+            }
             let mut col_at = Vec::new();
-            sys.seeded_rate(b)?;
             let mut col = Vec::new();
             for (i, si) in slot.iter_mut().enumerate() {
-                let v: Vec<f64> = (0..nd).map(|a| sys.tangent(a, i)).collect();
+                let v: Vec<f64> = (0..nd).map(|a| sys.tangent(a, i, l)).collect();
                 if v.iter().any(|x| !x.is_finite()) {
                     return Err(Error::NonFinite("rate-function Jacobian"));
                 }
