@@ -300,6 +300,7 @@ impl<const N: usize> Sub for DualN<N> {
 impl<const N: usize> Mul for DualN<N> {
     type Output = Self;
     #[inline]
+    #[allow(clippy::suspicious_arithmetic_impl)] // the product rule
     fn mul(self, o: Self) -> Self {
         let (sv, ov) = (self.v, o.v);
         self.zip(o, sv * ov, |a, b| a * ov + sv * b)
@@ -308,6 +309,7 @@ impl<const N: usize> Mul for DualN<N> {
 impl<const N: usize> Div for DualN<N> {
     type Output = Self;
     #[inline]
+    #[allow(clippy::suspicious_arithmetic_impl)] // the quotient rule
     fn div(self, o: Self) -> Self {
         let v = self.v / o.v;
         let ov = o.v;
