@@ -1,9 +1,11 @@
-//! Criterion benches: a 1,024-point dispersion curve, a 256-cell atlas, a 128×128 2D growth map,
+//! Criterion benches: a 1,024-point dispersion curve, a 256-cell atlas, the three routes to ω²
+//! over 512 κ of one linearised cell (per-κ Jacobian matrix, tabulated phases, cosine series),
+//! the linearisation of one 1D cell, the default 2D and 3D queries, a 128×128 2D growth map,
 //! one solver step of a periodic 200×200 hydro patch, and one step of the open 200×200 elastic
-//! block of `sphstab throughput` (its defaults). `cargo bench` runs them.
+//! block of `sphstab throughput` (its defaults). `cargo bench --bench engine` runs them.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sphstab::analysis::{MaterialSpec, Query2D, growth_map};
+use sphstab::analysis::{MaterialSpec, Query2D, Query3D, growth_map, query_nd, query2d};
 use sphstab::analysis::{Query1D, dispersion};
 use sphstab::atlas::AtlasConfig;
 use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D};
@@ -13,6 +15,7 @@ use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::solver::throughput::{ThroughputConfig, build_block};
 use sphstab::solver::{BoundaryDensity, Run2D};
+use sphstab::vonneumann::linearise::PhaseTable;
 
 fn benches(c: &mut Criterion) {
     let m4 = kernel::by_name("m4").unwrap();
@@ -21,6 +24,42 @@ fn benches(c: &mut Criterion) {
     c.bench_function("dispersion 1D, 1024 points (classical m4)", |b| {
         b.iter(|| dispersion(&q).unwrap())
     });
+
+    // the three routes to ω² over a 512-point κ grid of one cell (issue 13, item 1)
+    let mut qc = Query1D::new(FormKind::Classical, m4, 1.3, 0.05);
+    qc.points = 512;
+    let lin = qc.linearise().unwrap();
+    let kappas = qc.kappas();
+    let table = PhaseTable::new(&kappas, lin.reach());
+    let series = lin.cosine_series().unwrap();
+    let mut g1 = c.benchmark_group("omega2 over 512 kappa (classical m4 h 1.3)");
+    g1.bench_function("per-kappa Jacobian matrix (pre-issue-13 route)", |b| {
+        b.iter(|| kappas.iter().map(|&k| lin.omega2(k).0).sum::<f64>())
+    });
+    g1.bench_function("tabulated phases, reduced entries", |b| {
+        b.iter(|| {
+            (0..512)
+                .map(|i| lin.omega2_tabulated(&table, i).0)
+                .sum::<f64>()
+        })
+    });
+    g1.bench_function("cosine series", |b| {
+        b.iter(|| (0..512).map(|i| series.omega2(&table, i)).sum::<f64>())
+    });
+    g1.finish();
+    c.bench_function("linearisation of one 1D cell (classical m4 h 1.3)", |b| {
+        b.iter(|| qc.linearise().unwrap())
+    });
+    let q2 = Query2D::new(FormKind::Classical, m4, 1.2, 0.01);
+    c.bench_function(
+        "query 2D, default (classical m4 elastic, 64x64 zone)",
+        |b| b.iter(|| query2d(&q2).unwrap()),
+    );
+    let q3 = Query3D::new(FormKind::Classical, m4, 1.2, 0.01);
+    c.bench_function(
+        "query 3D, default (classical m4 elastic sc, 16^3 zone)",
+        |b| b.iter(|| query_nd(&q3).unwrap()),
+    );
 
     let acfg = AtlasConfig {
         forms: vec!["classical".into()],
@@ -38,6 +77,7 @@ fn benches(c: &mut Criterion) {
 
     let mut q2 = Query2D::new(FormKind::Classical, m4, 1.2, 0.01);
     q2.material = MaterialSpec::Hydro;
+    let q2 = q2;
     let mut g = c.benchmark_group("slow");
     g.sample_size(10);
     g.bench_function("growth map 2D, 128x128 (classical m4 hydro)", |b| {

@@ -376,6 +376,41 @@ impl<const N: usize> Div<f64> for DualN<N> {
     }
 }
 
+/// A dual number type with tangent lanes that a linearisation seeds one by one: [`Dual`] (one
+/// lane) or [`DualN`] (N lanes).
+pub trait Lanes: Scalar + Default {
+    /// Number of tangent lanes.
+    const LANES: usize;
+    /// Sets lane `l` of the tangent to 1.
+    fn seed(&mut self, l: usize);
+    /// Lane `l` of the tangent.
+    fn lane(&self, l: usize) -> f64;
+}
+
+impl Lanes for Dual {
+    const LANES: usize = 1;
+    #[inline]
+    fn seed(&mut self, _l: usize) {
+        self.d = 1.0;
+    }
+    #[inline]
+    fn lane(&self, _l: usize) -> f64 {
+        self.d
+    }
+}
+
+impl<const N: usize> Lanes for DualN<N> {
+    const LANES: usize = N;
+    #[inline]
+    fn seed(&mut self, l: usize) {
+        self.d[l] = 1.0;
+    }
+    #[inline]
+    fn lane(&self, l: usize) -> f64 {
+        self.d[l]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

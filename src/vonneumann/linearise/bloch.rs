@@ -21,7 +21,7 @@ use crate::forms::{
 };
 use crate::integrator::Integrator;
 use crate::lattice::{Lattice, grid_index};
-use crate::scalar::{DualN, Scalar};
+use crate::scalar::{Dual, DualN, Lanes};
 use crate::vonneumann::amplification::{Modes, spectral_radius};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -182,18 +182,22 @@ impl<const D: usize> Bloch<D> {
         let (rho, s0) = base_state(&p.material, p.rho0, sigma_bar)?;
         let (model, offs) = patch(p, lat, dx, rho, s0)?;
         let comps = p.form.comps(D, &p.material);
-        let mut sys = Patch {
-            base: model.rest_state(rho),
-            model,
-            offs,
-            comps,
-            out: State::default(),
-            ws: RateWorkspace::new(),
+        let count = offs.len();
+        // LANES tangents per rate evaluation when that fits the memory budget (the stencils
+        // carry every lane), one otherwise; the columns are the same to the last bit
+        let (wide, _) = patch_bytes::<DualN<LANES>, D>(&p, lat, dx, count);
+        let (comps, core) = if crate::budget::check_memory("", "", wide).is_ok() {
+            let mut sys = Patch::<DualN<LANES>, D>::new(model, rho, offs, comps);
+            let core = Columns::of(&mut sys)?;
+            (sys.comps, core)
+        } else {
+            let mut sys = Patch::<Dual, D>::new(model, rho, offs, comps);
+            let core = Columns::of(&mut sys)?;
+            (sys.comps, core)
         };
-        let core = Columns::of(&mut sys)?;
         let c2 = p.material.modulus() / p.rho0;
         Ok(Self {
-            comps: sys.comps,
+            comps,
             dissipative: core.is_dissipative(),
             mechanical: core.mechanical_entries(),
             core,
@@ -355,16 +359,29 @@ impl<const D: usize> Modes for Bloch<D> {
 }
 
 /// The periodic patch being differentiated.
-struct Patch<const D: usize> {
+struct Patch<S, const D: usize> {
     model: Model<D>,
     base: State<f64, D>,
     offs: Vec<[f64; D]>,
     comps: Vec<Comp>,
-    out: State<DualN<LANES>, D>,
-    ws: RateWorkspace<DualN<LANES>, D>,
+    out: State<S, D>,
+    ws: RateWorkspace<S, D>,
 }
 
-impl<const D: usize> Linearisable for Patch<D> {
+impl<S: Lanes, const D: usize> Patch<S, D> {
+    fn new(model: Model<D>, rho: f64, offs: Vec<[f64; D]>, comps: Vec<Comp>) -> Self {
+        Self {
+            base: model.rest_state(rho),
+            model,
+            offs,
+            comps,
+            out: State::default(),
+            ws: RateWorkspace::new(),
+        }
+    }
+}
+
+impl<S: Lanes, const D: usize> Linearisable for Patch<S, D> {
     type Offset = [f64; D];
     fn kinds(&self) -> Vec<FieldKind> {
         self.comps.iter().map(|c| c.kind()).collect()
@@ -375,17 +392,20 @@ impl<const D: usize> Linearisable for Patch<D> {
     fn offset(&self, i: usize) -> [f64; D] {
         self.offs[i]
     }
+    fn lanes(&self) -> usize {
+        S::LANES
+    }
     fn seeded_rates(&mut self, b0: usize) -> Result<()> {
-        let mut z: State<DualN<LANES>, D> = self.base.map(DualN::cst);
-        for (l, &c) in self.comps.iter().skip(b0).take(LANES).enumerate() {
+        let mut z: State<S, D> = self.base.map(S::cst);
+        for (l, &c) in self.comps.iter().skip(b0).take(S::LANES).enumerate() {
             let mut t = z.get(c, 0);
-            t.d[l] = 1.0;
+            t.seed(l);
             z.set(c, 0, t);
         }
         self.model.rate_with(&z, &mut self.out, &mut self.ws)
     }
     fn tangent(&self, a: usize, i: usize, l: usize) -> f64 {
-        self.out.get(self.comps[a], i).d[l]
+        self.out.get(self.comps[a], i).lane(l)
     }
 }
 
@@ -510,6 +530,25 @@ pub fn check_patch_budget<const D: usize>(
     dx: f64,
     count: usize,
 ) -> Result<()> {
+    let (bytes, neighbours) = patch_bytes::<Dual, D>(p, lat, dx, count);
+    crate::budget::check_memory(
+        "--h/--support",
+        &format!(
+            "the {D}D linearisation ({count} particles in the periodic patch, ~{neighbours:.0} neighbours per particle)"
+        ),
+        bytes,
+    )
+}
+
+/// Estimated bytes of the linearisation of a patch of `count` particles whose rate is
+/// evaluated with scalar type `S` (stencil entries of `NbD<S, D>`), and neighbours per
+/// particle.
+fn patch_bytes<S, const D: usize>(
+    p: &ModelParams2D,
+    lat: &Lattice<D>,
+    dx: f64,
+    count: usize,
+) -> (f64, f64) {
     let r = p.kp.support() / dx;
     let particles = count as f64;
     let ball = match D {
@@ -523,13 +562,9 @@ pub fn check_patch_budget<const D: usize>(
     } else {
         1.0
     };
-    let entry = std::mem::size_of::<crate::forms::workspace::NbD<DualN<LANES>, D>>() as f64;
-    let bytes = particles * (neighbours * entry * stencils * 1.25 + 64.0 * 16.0);
-    crate::budget::check_memory(
-        "--h/--support",
-        &format!(
-            "the {D}D linearisation ({count} particles in the periodic patch, ~{neighbours:.0} neighbours per particle)"
-        ),
-        bytes,
+    let entry = std::mem::size_of::<crate::forms::workspace::NbD<S, D>>() as f64;
+    (
+        particles * (neighbours * entry * stencils * 1.25 + 64.0 * 16.0),
+        neighbours,
     )
 }

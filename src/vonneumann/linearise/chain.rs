@@ -173,6 +173,9 @@ impl Linearisable for Chain {
     fn offset(&self, i: usize) -> i64 {
         self.wrap(i)
     }
+    fn lanes(&self) -> usize {
+        LANES
+    }
     fn seeded_rates(&mut self, b0: usize) -> Result<()> {
         let mut z: State1D<DualN<LANES>> = self.base.map(DualN::cst);
         for (l, &f) in self.fields.iter().skip(b0).take(LANES).enumerate() {

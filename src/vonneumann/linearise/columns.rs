@@ -18,9 +18,10 @@ use crate::vonneumann::amplification::ModeSystem;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-/// Tangent lanes of one rate evaluation of the linearisation ([`crate::scalar::DualN`]): the Jacobian columns
-/// of a cell's dofs come from ⌈dofs / LANES⌉ evaluations instead of one per dof. Each lane is
-/// bit for bit a [`crate::scalar::Dual`] evaluation, so the columns do not depend on it.
+/// Tangent lanes of one rate evaluation of the linearisation ([`crate::scalar::DualN`]): the
+/// Jacobian columns of a cell's dofs come from ⌈dofs / LANES⌉ evaluations instead of one per
+/// dof. Each lane is bit for bit a [`crate::scalar::Dual`] evaluation, so the columns do not
+/// depend on it. (A D-dim patch too large for the memory budget with LANES lanes uses one.)
 pub const LANES: usize = 4;
 
 /// A k = 0 sum is treated as exactly zero when below this fraction of Σ|A_ab(i)|.
@@ -41,9 +42,11 @@ pub(crate) trait Linearisable {
     fn cells(&self) -> usize;
     /// Position of cell `i` relative to cell 0.
     fn offset(&self, i: usize) -> Self::Offset;
-    /// Evaluates the rate function at the rest state once, with [`crate::scalar::DualN`] numbers of
-    /// [`LANES`] lanes: lane l carries a unit tangent on dof `b0 + l` of cell 0 (lanes past the
-    /// last dof stay zero).
+    /// Tangent lanes of one evaluation ([`crate::scalar::Lanes`]).
+    fn lanes(&self) -> usize;
+    /// Evaluates the rate function at the rest state once, with dual numbers of
+    /// [`Self::lanes`] lanes: lane l carries a unit tangent on dof `b0 + l` of cell 0 (lanes past
+    /// the last dof stay zero).
     fn seeded_rates(&mut self, b0: usize) -> Result<()>;
     /// Lane `l` of the tangent of the rate of dof `a` of cell `i` after [`Self::seeded_rates`].
     fn tangent(&self, a: usize, i: usize, l: usize) -> f64;
@@ -86,8 +89,9 @@ impl<O: Copy> Columns<O> {
         let mut cols = Vec::with_capacity(nd);
         let mut slot = vec![usize::MAX; sys.cells()];
         let (mut offsets, mut at) = (Vec::new(), Vec::with_capacity(nd));
+        let lanes = sys.lanes();
         for b in 0..nd {
-            let (b0, l) = (b - b % LANES, b % LANES);
+            let (b0, l) = (b - b % lanes, b % lanes);
             if l == 0 {
                 // one evaluation differentiates along LANES dofs
                 sys.seeded_rates(b0)?;
