@@ -8,7 +8,14 @@
 //!
 //! Tolerance: every array (one state field of one case) to 1e-12 relative to the largest
 //! magnitude of that golden array (max_i |new_i − golden_i| ≤ 1e-12 · max_i |golden_i|); scalars
-//! to 1e-12 relative to their own magnitude; step counts and times exactly.
+//! to 1e-12 relative to their own magnitude; step counts and times exactly. One documented
+//! exception: the least-squares runs solve the consistent mass M a = f every evaluation, and
+//! the golden values came from a dense LU while the code now uses a banded LU (other pivot
+//! order, one refinement step). Each solve agrees with the dense one to ~4e-15 relative
+//! (cond(M) ≈ 92 for these chains; `forms::least_squares` tests it on random right-hand sides
+//! at 1e-12), and 40 steps accumulate that to at most 1.2e-12 of the final field (the
+//! `sph`/verlet-euler case, whose velocities decay to a third of the others'); those runs are
+//! compared at [`TOL_CONSISTENT_MASS`] = 2e-12.
 //!
 //! The file was written by `regenerate_solver1d_golden` (ignored) from commit c708382 (the code
 //! before the 1D solver rework; the commit is recorded in the file), with
@@ -29,6 +36,8 @@ use std::f64::consts::PI;
 use std::path::PathBuf;
 
 const TOL: f64 = 1e-12;
+/// Tolerance of the least-squares (consistent-mass) runs (module docs).
+const TOL_CONSISTENT_MASS: f64 = 2e-12;
 
 fn path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/solver1d.json")
@@ -273,7 +282,12 @@ fn compute() -> Value {
     })
 }
 
-fn close_array(case: &str, field: &str, new: &[Value], old: &[Value]) {
+fn close_array(case: &str, field: &str, new: &[Value], old: &[Value]) -> f64 {
+    let tol = if case.starts_with("least-squares") {
+        TOL_CONSISTENT_MASS
+    } else {
+        TOL
+    };
     assert_eq!(new.len(), old.len(), "{case}.{field}: length");
     let scale = old
         .iter()
@@ -285,10 +299,11 @@ fn close_array(case: &str, field: &str, new: &[Value], old: &[Value]) {
         .map(|(a, b)| (a.as_f64().unwrap() - b.as_f64().unwrap()).abs())
         .fold(0.0f64, f64::max);
     assert!(
-        worst <= TOL * scale,
-        "{case}.{field}: max deviation {worst:e}, 1e-12 × max |golden| = {:e}",
-        TOL * scale
+        worst <= tol * scale,
+        "{case}.{field}: max deviation {worst:e}, {tol:e} × max |golden| = {:e}",
+        tol * scale
     );
+    if scale > 0.0 { worst / scale } else { 0.0 }
 }
 
 fn close_scalar(what: &str, new: f64, old: f64) {
@@ -314,11 +329,14 @@ fn solver1d_reproduces_golden_data() {
         assert_eq!(n["name"], g["name"]);
         assert_eq!(n["steps"], g["steps"], "{case}");
         assert_eq!(n["t"], g["t"], "{case}");
+        let mut rel = 0.0f64;
         for f in [
             "x", "v", "rho", "sigma", "tau", "sp_x", "sp_sigma", "sp_vol",
         ] {
-            close_array(case, f, n[f].as_array().unwrap(), g[f].as_array().unwrap());
+            let (nf, gf) = (n[f].as_array().unwrap(), g[f].as_array().unwrap());
+            rel = rel.max(close_array(case, f, nf, gf));
         }
+        eprintln!("{case}: largest relative deviation {rel:.2e}");
     }
     for (g, n) in golden["rod"]
         .as_array()
