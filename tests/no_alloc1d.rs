@@ -7,7 +7,12 @@
 //!
 //! The forms of every dimension build their stencils with rayon, which allocates a little when
 //! work is *injected* into its pool from outside (tests/no_alloc.rs); as there, the steps run
-//! inside one `ThreadPool::install`, where the count must be exactly zero.
+//! inside one `ThreadPool::install`, where the count must be exactly zero. The pool's worker
+//! threads still allocate now and then on their own, depending on timing (crossbeam's epoch
+//! bags and deque buffers grow when threads steal from each other, which the machine's load
+//! decides: one run in ~12 saw 1–2 such allocations in 10 steps). So each case counts three
+//! consecutive windows of 10 steps and the fewest must be zero: an allocation the solver makes
+//! per step (or per particle) shows in every window.
 //!
 //! Everything runs in one test function: the counter is global, and tests of one binary run in
 //! parallel.
@@ -100,16 +105,22 @@ fn chain(form: FormKind, n: usize, periodic: bool, av: bool, integ: Integrator) 
     run
 }
 
-/// Allocations in 10 steps after 2 warm-up steps.
+/// Allocations in 10 steps after 2 warm-up steps: the fewest over three consecutive windows of
+/// 10 steps (module docs).
 fn count(run: &mut Run1D) -> u64 {
     for _ in 0..2 {
         run.step(0.2).unwrap();
     }
-    let before = allocations();
-    for _ in 0..10 {
-        run.step(0.2).unwrap();
-    }
-    allocations() - before
+    (0..3)
+        .map(|_| {
+            let before = allocations();
+            for _ in 0..10 {
+                run.step(0.2).unwrap();
+            }
+            allocations() - before
+        })
+        .min()
+        .unwrap()
 }
 
 #[test]

@@ -107,7 +107,16 @@ impl Run1D {
     }
 
     /// One step of the run's integrator.
+    ///
+    /// The step runs on a thread of rayon's pool (`rayon::scope`: the current thread when it is
+    /// one of the pool's, else one hand-over to the global pool per step), so the parallel
+    /// loops of the rate function inside it are not each injected into the pool from outside
+    /// — a cross-thread round trip per loop, which dominated short chains.
     pub fn step(&mut self, dt: f64) -> Result<()> {
+        rayon::scope(|_| self.step_here(dt))
+    }
+
+    fn step_here(&mut self, dt: f64) -> Result<()> {
         let mut cache = std::mem::take(&mut self.cache);
         cache.shape_like(&self.z);
         let flat = FlatSystem::with_cache(&self.model, cache)?;
