@@ -156,13 +156,22 @@ impl ChainSearch {
 
     /// Prepares the search for the masters of `z`.
     pub(crate) fn prepare<S: Scalar>(&mut self, m: &Model1D, z: &State1D<S>) {
-        let wrap = |x: f64| match m.period {
+        self.prepare_positions(m.period, z.x.iter().map(|x| x.re()));
+    }
+
+    /// Prepares the search for masters at `pos` in a chain of period `period`.
+    pub(crate) fn prepare_positions(
+        &mut self,
+        period: Option<f64>,
+        pos: impl Iterator<Item = f64>,
+    ) {
+        let wrap = |x: f64| match period {
             Some(l) => x.rem_euclid(l),
             None => x,
         };
-        self.period = m.period;
+        self.period = period;
         self.sorted.clear();
-        self.sorted.extend(z.x.iter().map(|x| wrap(x.re())));
+        self.sorted.extend(pos.map(wrap));
         self.order.clear();
         self.order.extend(0..self.sorted.len());
         self.identity = self.sorted.windows(2).all(|w| w[0] <= w[1]);

@@ -60,7 +60,7 @@ pub(crate) fn rate<S: Scalar>(m: &Model1D, z: &State1D<S>, out: &mut State1D<S>)
 /// corner correction, and the pivoting keeps the stability of the dense LU it replaces).
 /// Factorisation O(N w²), solve O(N w), memory O(N w), w the bandwidth.
 #[derive(Clone, Debug)]
-pub(crate) struct BandedLu {
+pub struct BandedLu {
     n: usize,
     /// Sub- and super-diagonals of the reordered matrix.
     kl: usize,
@@ -79,7 +79,7 @@ pub(crate) struct BandedLu {
 impl BandedLu {
     /// Factorises the sparse rows `rows` (row I: (K, M_IK)); `periodic` selects the zig-zag
     /// order. `None` when a pivot vanishes (singular matrix).
-    pub(crate) fn new(rows: &[Vec<(usize, f64)>], periodic: bool) -> Option<Self> {
+    pub fn new(rows: &[Vec<(usize, f64)>], periodic: bool) -> Option<Self> {
         let n = rows.len();
         let pos: Vec<usize> = (0..n)
             .map(|i| {
@@ -172,10 +172,15 @@ impl BandedLu {
         true
     }
 
+    /// Bandwidths (sub-, super-diagonals) of the reordered matrix.
+    pub fn bandwidths(&self) -> (usize, usize) {
+        (self.kl, self.ku)
+    }
+
     /// Solves M a = f, with one step of iterative refinement (the residual f − M a solved
     /// again and added), which brings the result to the accuracy the conditioning of M allows;
     /// `work` is a buffer of 2N entries (resized once).
-    pub(crate) fn solve(&self, f: &[f64], a: &mut [f64], work: &mut Vec<f64>) {
+    pub fn solve(&self, f: &[f64], a: &mut [f64], work: &mut Vec<f64>) {
         let n = self.n;
         work.resize(2 * n, 0.0);
         let (y, r) = work.split_at_mut(n);

@@ -43,6 +43,7 @@ mod rates;
 mod stress_points;
 pub(crate) mod workspace;
 
+pub use least_squares::BandedLu;
 pub use model::{
     ArtificialViscosity, Field, FieldKind, FlatCache, FlatSystem, MassOperator, Model1D,
     ModelParams, State1D, Workspace1D,

@@ -7,7 +7,7 @@
 //! eulerian-nodal) add the stress-point fields and the consistent mass kept here.
 
 use super::FormKind;
-use super::eulerian_common::{StencilScratch, Stencils};
+use super::eulerian_common::{ChainSearch, StencilScratch, Stencils};
 use super::least_squares::BandedLu;
 use super::workspace::RateWorkspace;
 use crate::error::Result;
@@ -330,15 +330,18 @@ impl Model1D {
             return Ok(model);
         }
         if p.form.is_lagrangian() {
+            let mut search = ChainSearch::default();
+            search.prepare_positions(period, model.x_ref.iter().copied());
             model.ref_master = (0..n)
-                .map(|i| model.ref_stencil(model.x_ref[i]))
+                .map(|i| model.ref_stencil(model.x_ref[i], &mut search))
                 .collect::<Result<_>>()?;
             if p.form == FormKind::LagrangianStressPoints {
+                search.restart();
                 model.ref_sp = model
                     .sp_x_ref
                     .clone()
                     .iter()
-                    .map(|&x| model.ref_stencil(x))
+                    .map(|&x| model.ref_stencil(x, &mut search))
                     .collect::<Result<_>>()?;
             }
             if p.form == FormKind::LeastSquares {
@@ -378,15 +381,19 @@ impl Model1D {
         }
     }
 
-    /// Shape functions of all masters within the support of reference point `x`.
-    fn ref_stencil(&self, x: f64) -> Result<RefStencil> {
+    /// Shape functions of all masters within the support of reference point `x` (masters
+    /// found by `search`, prepared for the reference positions; O(1) per point along an
+    /// ordered chain).
+    fn ref_stencil(&self, x: f64, search: &mut ChainSearch) -> Result<RefStencil> {
         let r = self.p.kp.support();
         let mut nodes = Vec::new();
         let mut idx = Vec::new();
-        for (j, (&xj, &vj)) in self.x_ref.iter().zip(&self.vol_ref).enumerate() {
-            let d = self.rel(x, xj);
+        let mut cand = Vec::new();
+        search.candidates(x, r, &mut cand);
+        for j in cand {
+            let d = self.rel(x, self.x_ref[j]);
             if d.abs() < r {
-                nodes.push((d, vj));
+                nodes.push((d, self.vol_ref[j]));
                 idx.push(j);
             }
         }
