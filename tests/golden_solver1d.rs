@@ -10,8 +10,8 @@
 //! magnitude of that golden array (max_i |new_i − golden_i| ≤ 1e-12 · max_i |golden_i|); scalars
 //! to 1e-12 relative to their own magnitude; step counts and times exactly. One documented
 //! exception: the least-squares runs solve the consistent mass M a = f every evaluation, and
-//! the golden values came from a dense LU while the code now uses a banded LU (other pivot
-//! order, one refinement step). Each solve agrees with the dense one to ~4e-15 relative
+//! the golden values came from a dense LU while the code now uses a banded LU (other row
+//! order, so other pivots and rounding). Each solve agrees with the dense one to ~4e-15 relative
 //! (cond(M) ≈ 92 for these chains; `forms::least_squares` tests it on random right-hand sides
 //! at 1e-12), and 40 steps accumulate that to at most 1.2e-12 of the final field (the
 //! `sph`/verlet-euler case, whose velocities decay to a third of the others'); those runs are

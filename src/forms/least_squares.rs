@@ -67,10 +67,8 @@ pub struct BandedLu {
     ku: usize,
     /// Row stride: 2 kl + ku + 1 (kl extra super-diagonals for the fill of the pivoting).
     w: usize,
-    /// Row r, column c of the reordered matrix at `a[r * w + c + kl − r]`: the factors.
+    /// Row r, column c of the reordered matrix (then its factors) at `a[r * w + c + kl − r]`.
     a: Vec<f64>,
-    /// The reordered matrix itself, same layout (for the residual of the refinement step).
-    m: Vec<f64>,
     piv: Vec<usize>,
     /// Reordered row of each master.
     pos: Vec<usize>,
@@ -107,7 +105,6 @@ impl BandedLu {
             ku,
             w,
             a: vec![0.0; n * w],
-            m: Vec::new(),
             piv: vec![0; n],
             pos,
         };
@@ -117,7 +114,6 @@ impl BandedLu {
                 *lu.at(r, c) += v;
             }
         }
-        lu.m = lu.a.clone();
         lu.factorise().then_some(lu)
     }
 
@@ -177,35 +173,15 @@ impl BandedLu {
         (self.kl, self.ku)
     }
 
-    /// Solves M a = f, with one step of iterative refinement (the residual f − M a solved
-    /// again and added), which brings the result to the accuracy the conditioning of M allows;
-    /// `work` is a buffer of 2N entries (resized once).
+    /// Solves M a = f; `work` is a buffer of N entries (resized once).
     pub fn solve(&self, f: &[f64], a: &mut [f64], work: &mut Vec<f64>) {
-        let n = self.n;
-        work.resize(2 * n, 0.0);
-        let (y, r) = work.split_at_mut(n);
+        work.resize(self.n, 0.0);
         for (i, &fi) in f.iter().enumerate() {
-            y[self.pos[i]] = fi;
+            work[self.pos[i]] = fi;
         }
-        self.solve_reordered(y);
-        // r = f − M y in the reordered numbering
-        for (i, &fi) in f.iter().enumerate() {
-            r[self.pos[i]] = fi;
-        }
-        let (kl, ku) = (self.kl, self.ku);
-        for (row, ri) in r.iter_mut().enumerate() {
-            let c0 = row.saturating_sub(kl);
-            let c1 = (row + ku).min(n - 1);
-            let mut s = *ri;
-            for c in c0..=c1 {
-                s -= self.m[self.idx(row, c)] * y[c];
-            }
-            *ri = s;
-        }
-        self.solve_reordered(r);
+        self.solve_reordered(work);
         for (i, ai) in a.iter_mut().enumerate() {
-            let p = self.pos[i];
-            *ai = y[p] + r[p];
+            *ai = work[self.pos[i]];
         }
     }
 
