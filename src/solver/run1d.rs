@@ -108,12 +108,19 @@ impl Run1D {
 
     /// One step of the run's integrator.
     ///
-    /// The step runs on a thread of rayon's pool (`rayon::scope`: the current thread when it is
-    /// one of the pool's, else one hand-over to the global pool per step), so the parallel
-    /// loops of the rate function inside it are not each injected into the pool from outside
-    /// — a cross-thread round trip per loop, which dominated short chains.
+    /// For the Eulerian forms of every dimension, whose rate function runs parallel loops
+    /// (rayon), the step runs on a thread of rayon's pool (`rayon::scope`: the current thread
+    /// when it is one of the pool's, else one hand-over to the global pool per step), so those
+    /// loops are not each injected into the pool from outside — a cross-thread round trip per
+    /// loop, which dominated short chains. The other forms' rates are sequential and step on
+    /// the calling thread.
     pub fn step(&mut self, dt: f64) -> Result<()> {
-        rayon::scope(|_| self.step_here(dt))
+        let form = self.model.p.form;
+        if form.in_2d() && !form.is_lagrangian() {
+            rayon::scope(|_| self.step_here(dt))
+        } else {
+            self.step_here(dt)
+        }
     }
 
     fn step_here(&mut self, dt: f64) -> Result<()> {
