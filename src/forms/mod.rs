@@ -24,7 +24,10 @@
 //!
 //! The 1D model [`Model1D`] evaluates the forms of every dimension through its
 //! [`Model<1>`](Model) (views of its fields, no copies) and adds the stress points and the
-//! consistent mass of the 1D-only forms of \[B00\].
+//! consistent mass of the 1D-only forms of \[B00\]. Its reusable buffers are one
+//! [`Workspace1D<S>`](Workspace1D) ([`Model1D::rate_with`]; it holds the D = 1
+//! [`RateWorkspace`]), which may serve any number of models in turn; the least-squares
+//! consistent mass is solved in O(N) by [`BandedLu`].
 //!
 //! Material law: hypo-elastic with the Truesdell (or Jaumann) rate and tangent modulus
 //! C = λ + 2G, as in \[B00 §2\]; in 1D `σ̇ = (C + σ) ∂v/∂x`, so the continuum modulus is
