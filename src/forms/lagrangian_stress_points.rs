@@ -12,16 +12,23 @@
 //! `lagrangian-stress-points`, the mid-points (w_p = V0/2). For `mls` shapes Σφ' = 0 so the
 //! ū shift changes nothing; for `sph` it makes F invariant under rigid translation.
 
-use super::model::{Model1D, RefStencil, State1D};
+use super::model::{Model1D, RefStencil, State1D, Workspace1D};
 use crate::error::Result;
 use crate::scalar::Scalar;
 
-pub(crate) fn rate<S: Scalar>(m: &Model1D, z: &State1D<S>, out: &mut State1D<S>) -> Result<()> {
+pub(crate) fn rate<S: Scalar>(
+    m: &Model1D,
+    z: &State1D<S>,
+    out: &mut State1D<S>,
+    ws: &mut Workspace1D<S>,
+) -> Result<()> {
     out.x.copy_from_slice(&z.v);
     for a in out.v.iter_mut() {
         *a = S::zero();
     }
-    let u: Vec<S> = z.x.iter().zip(&m.x_ref).map(|(&x, &xr)| x - xr).collect();
+    ws.u.clear();
+    ws.u.extend(z.x.iter().zip(&m.x_ref).map(|(&x, &xr)| x - xr));
+    let u = &ws.u;
     let big = m.p.sigma0 + m.p.modulus;
     let mut scatter = |st: &RefStencil, w: f64| {
         let mut sphi = 0.0;

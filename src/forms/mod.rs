@@ -24,7 +24,10 @@
 //!
 //! The 1D model [`Model1D`] evaluates the forms of every dimension through its
 //! [`Model<1>`](Model) (views of its fields, no copies) and adds the stress points and the
-//! consistent mass of the 1D-only forms of \[B00\].
+//! consistent mass of the 1D-only forms of \[B00\]. Its reusable buffers are one
+//! [`Workspace1D<S>`](Workspace1D) ([`Model1D::rate_with`]; it holds the D = 1
+//! [`RateWorkspace`]), which may serve any number of models in turn; the least-squares
+//! consistent mass is solved in O(N) by [`BandedLu`].
 //!
 //! Material law: hypo-elastic with the Truesdell (or Jaumann) rate and tangent modulus
 //! C = λ + 2G, as in \[B00 §2\]; in 1D `σ̇ = (C + σ) ∂v/∂x`, so the continuum modulus is
@@ -43,8 +46,10 @@ mod rates;
 mod stress_points;
 pub(crate) mod workspace;
 
+pub use least_squares::BandedLu;
 pub use model::{
-    ArtificialViscosity, Field, FieldKind, FlatSystem, MassOperator, Model1D, ModelParams, State1D,
+    ArtificialViscosity, Field, FieldKind, FlatCache, FlatSystem, MassOperator, Model1D,
+    ModelParams, State1D, Workspace1D,
 };
 pub use model_nd::{
     ArtificialStress, AuxRates, AuxRates2D, Comp, Comp2, DELTA_RANGE, DIFFUSION_FORM_NAMES,
@@ -174,11 +179,26 @@ impl FormKind {
 impl Model1D {
     /// The rate function of the semi-discrete system: fills `out` with the time derivatives of
     /// every field of `z`. For [`MassOperator::Lumped`] the `v` rate is the acceleration; for
-    /// [`MassOperator::Consistent`] it is the generalised force `f` of `M a = f`.
+    /// [`MassOperator::Consistent`] it is the generalised force `f` of `M a = f`. Allocates a
+    /// fresh [`Workspace1D`]: a loop of evaluations uses [`Model1D::rate_with`].
     pub fn rate<S: crate::scalar::Scalar>(
         &self,
         z: &State1D<S>,
         out: &mut State1D<S>,
+    ) -> Result<()> {
+        self.rate_with(z, out, &mut Workspace1D::new())
+    }
+
+    /// [`Model1D::rate`] with reusable buffers: `out` is resized to the shape of `z` (no
+    /// allocation when it already has it) and the workspace's buffers are reused, so a loop
+    /// of evaluations — the solver's time loop, or the linearisation over many cells — does
+    /// not allocate once they have grown. The result does not depend on what the workspace
+    /// was used for before (any model, any state).
+    pub fn rate_with<S: crate::scalar::Scalar>(
+        &self,
+        z: &State1D<S>,
+        out: &mut State1D<S>,
+        ws: &mut Workspace1D<S>,
     ) -> Result<()> {
         out.resize_like(z);
         if let Some(nd) = &self.nd {
@@ -204,12 +224,12 @@ impl Model1D {
                     tau: out.tau.as_chunks_mut::<1>().0.as_chunks_mut::<1>().0,
                 }),
             };
-            return nd.rate_into(view, rates, &mut RateWorkspace::new());
+            return nd.rate_into(view, rates, &mut ws.nd);
         }
         match self.p.form {
-            FormKind::LagrangianStressPoints => lagrangian_stress_points::rate(self, z, out),
+            FormKind::LagrangianStressPoints => lagrangian_stress_points::rate(self, z, out, ws),
             FormKind::EulerianStressPoints | FormKind::EulerianNodal => {
-                stress_points::rate(self, z, out)
+                stress_points::rate(self, z, out, ws)
             }
             FormKind::LeastSquares => least_squares::rate(self, z, out),
             f => Err(Error::Incompatible(format!(

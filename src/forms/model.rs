@@ -7,9 +7,13 @@
 //! eulerian-nodal) add the stress-point fields and the consistent mass kept here.
 
 use super::FormKind;
+use super::eulerian_common::{ChainSearch, StencilScratch, Stencils};
+use super::least_squares::BandedLu;
+use super::workspace::RateWorkspace;
 use crate::error::Result;
 use crate::scalar::Scalar;
 use crate::shape::{self, KernelParams, ShapeFamily};
+use std::cell::RefCell;
 
 /// Monaghan artificial viscosity Π_IJ = (−α c μ_IJ + β μ_IJ²)/ρ̄_IJ,
 /// μ_IJ = h v_IJ·x_IJ / (x_IJ² + 0.01 h²).
@@ -326,15 +330,18 @@ impl Model1D {
             return Ok(model);
         }
         if p.form.is_lagrangian() {
+            let mut search = ChainSearch::default();
+            search.prepare_positions(period, model.x_ref.iter().copied());
             model.ref_master = (0..n)
-                .map(|i| model.ref_stencil(model.x_ref[i]))
+                .map(|i| model.ref_stencil(model.x_ref[i], &mut search))
                 .collect::<Result<_>>()?;
             if p.form == FormKind::LagrangianStressPoints {
+                search.restart();
                 model.ref_sp = model
                     .sp_x_ref
                     .clone()
                     .iter()
-                    .map(|&x| model.ref_stencil(x))
+                    .map(|&x| model.ref_stencil(x, &mut search))
                     .collect::<Result<_>>()?;
             }
             if p.form == FormKind::LeastSquares {
@@ -374,15 +381,19 @@ impl Model1D {
         }
     }
 
-    /// Shape functions of all masters within the support of reference point `x`.
-    fn ref_stencil(&self, x: f64) -> Result<RefStencil> {
+    /// Shape functions of all masters within the support of reference point `x` (masters
+    /// found by `search`, prepared for the reference positions; O(1) per point along an
+    /// ordered chain).
+    fn ref_stencil(&self, x: f64, search: &mut ChainSearch) -> Result<RefStencil> {
         let r = self.p.kp.support();
         let mut nodes = Vec::new();
         let mut idx = Vec::new();
-        for (j, (&xj, &vj)) in self.x_ref.iter().zip(&self.vol_ref).enumerate() {
-            let d = self.rel(x, xj);
+        let mut cand = Vec::new();
+        search.candidates(x, r, &mut cand);
+        for j in cand {
+            let d = self.rel(x, self.x_ref[j]);
             if d.abs() < r {
-                nodes.push((d, vj));
+                nodes.push((d, self.vol_ref[j]));
                 idx.push(j);
             }
         }
@@ -416,121 +427,287 @@ impl Model1D {
     }
 }
 
+/// Reusable buffers of the 1D rate evaluation ([`Model1D::rate_with`]), generic over the
+/// scalar `S` (`f64` for the solver, a dual number for the linearisation): the D = 1
+/// [`RateWorkspace`] of the forms of every dimension (cell list, stencils, per-particle rates),
+/// and for the 1D-only forms the master volumes, the flat stencils of masters and stress
+/// points, the neighbour search of the chain and the displacements. Buffers are cleared and
+/// refilled, never freed: once grown, an evaluation does not allocate.
+///
+/// One workspace may serve any number of models and states, one after another: results do not
+/// depend on what it was used for before (the D = 1 part keeps its stencils only for an
+/// evaluation at bitwise the same positions, densities, masses and kernel parameters). So the
+/// linearisation can hold one `Workspace1D<Dual>` for a whole sweep — build each cell's
+/// [`Model1D`], call [`Model1D::rate_with`] once per direction with the same workspace — and
+/// allocate only in the first cell (and when a cell has more neighbours than any before).
+#[derive(Clone, Debug)]
+pub struct Workspace1D<S> {
+    pub(crate) nd: RateWorkspace<S, 1>,
+    pub(crate) vol: Vec<S>,
+    pub(crate) st_m: Stencils<S>,
+    pub(crate) st_s: Stencils<S>,
+    pub(crate) scratch: StencilScratch<S>,
+    pub(crate) u: Vec<S>,
+}
+
+impl<S> Default for Workspace1D<S> {
+    fn default() -> Self {
+        Self {
+            nd: RateWorkspace::default(),
+            vol: Vec::new(),
+            st_m: Stencils::default(),
+            st_s: Stencils::default(),
+            scratch: StencilScratch::default(),
+            u: Vec::new(),
+        }
+    }
+}
+
+impl<S: Scalar> Workspace1D<S> {
+    /// An empty workspace (allocates nothing until first used).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Bytes reserved by the buffers (capacities), for memory reports.
+    pub fn reserved_bytes(&self) -> usize {
+        let s = std::mem::size_of::<S>();
+        self.nd.reserved_bytes()
+            + (self.vol.capacity() + self.u.capacity()) * s
+            + self.st_m.capacity_bytes()
+            + self.st_s.capacity_bytes()
+            + self.scratch.capacity_bytes()
+    }
+}
+
+/// Buffers of a [`FlatSystem`] kept across time steps (a run holds one, see
+/// [`FlatSystem::with_cache`]): the state and rate buffers, the [`Workspace1D`], the factorised
+/// consistent mass, and the last evaluation with the exact state it was made at.
+#[derive(Clone, Debug, Default)]
+pub struct FlatCache {
+    z: State1D<f64>,
+    out: State1D<f64>,
+    ws: Workspace1D<f64>,
+    /// The consistent-mass rows the factorisation was made of, and the factorisation.
+    mass_rows: Vec<Vec<(usize, f64)>>,
+    mass_lu: Option<BandedLu>,
+    solve_work: Vec<f64>,
+    /// Accelerations of the last evaluation (M⁻¹ f for a consistent mass).
+    acc: Vec<f64>,
+    /// (x, v, q) of the last evaluation, as bits (`None`: no valid evaluation).
+    key: Vec<u64>,
+    valid: bool,
+    /// Whole evaluations of the rate function made through this cache.
+    evaluations: usize,
+}
+
+impl FlatCache {
+    /// Gives the state buffer the field lengths of `z`.
+    pub fn shape_like(&mut self, z: &State1D<f64>) {
+        self.z.resize_like(z);
+    }
+
+    /// Whole evaluations of the rate function made through this cache so far.
+    pub fn evaluations(&self) -> usize {
+        self.evaluations
+    }
+}
+
 /// The model as a [`crate::integrator::SecondOrderSystem`] over flat `f64` arrays: `x`, `v`
 /// the masters, `q` the auxiliary fields of the form concatenated in [`FormKind::fields`]
-/// order. For a consistent mass (least squares) the acceleration solves M a = f with an LU
-/// factorisation of the dense M, computed once (M is constant: reference configuration); meant
-/// for the reference solver's chains of up to a few thousand particles.
+/// order. For a consistent mass (least squares) the acceleration solves M a = f with a banded
+/// LU factorisation ([`BandedLu`]: O(N) per solve; periodic chains reordered to be banded),
+/// computed once per run (M is constant: reference configuration).
+///
+/// One rate evaluation serves every request at the same state: the last evaluation is kept
+/// with the exact (bitwise) state it was made at, so `accel` and `qrate` at one state — a
+/// `rates` call, or the two separate calls — cost one evaluation. And the accelerations do not
+/// depend on the velocities unless the model has artificial viscosity
+/// ([`SecondOrderSystem::accel_depends_on_velocity`]), which lets `kdk` reuse its end-of-step
+/// acceleration. Neither changes a result: the rate function is deterministic.
 pub struct FlatSystem<'a> {
     model: &'a Model1D,
-    template: State1D<f64>,
-    mass_lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    cache: RefCell<FlatCache>,
 }
 
 impl<'a> FlatSystem<'a> {
     /// Wraps `model`; `template` fixes the field lengths (e.g. [`Model1D::rest_state`]).
     pub fn new(model: &'a Model1D, template: State1D<f64>) -> Result<Self> {
-        let mass_lu = match &model.mass_op {
-            MassOperator::Lumped => None,
+        let cache = FlatCache {
+            z: template,
+            ..Default::default()
+        };
+        Self::with_cache(model, cache)
+    }
+
+    /// Wraps `model` with the buffers of an earlier [`FlatSystem`] ([`FlatSystem::into_cache`]),
+    /// whose `z` buffer has the field lengths (a run keeps one across steps: no allocation,
+    /// no refactorisation of the mass). The cached evaluation is dropped (the model may differ);
+    /// the mass factorisation is kept when the model's consistent mass is the same.
+    pub fn with_cache(model: &'a Model1D, mut cache: FlatCache) -> Result<Self> {
+        cache.valid = false;
+        match &model.mass_op {
+            MassOperator::Lumped => {
+                cache.mass_lu = None;
+                cache.mass_rows.clear();
+            }
             MassOperator::Consistent(rows) => {
-                let n = rows.len();
-                if n > 20_000 {
-                    return Err(crate::error::Error::Incompatible(format!(
-                        "consistent mass: {n} particles, the dense solve supports at most 20000"
-                    )));
-                }
-                let mut m = nalgebra::DMatrix::<f64>::zeros(n, n);
-                for (i, row) in rows.iter().enumerate() {
-                    for &(k, v) in row {
-                        m[(i, k)] += v;
+                if cache.mass_lu.is_none() || cache.mass_rows != *rows {
+                    cache.mass_lu = BandedLu::new(rows, model.period.is_some());
+                    cache.mass_rows.clone_from(rows);
+                    if cache.mass_lu.is_none() {
+                        return Err(crate::error::Error::SingularMoment {
+                            what: "consistent mass matrix",
+                            x: 0.0,
+                            det: 0.0,
+                        });
                     }
                 }
-                let lu = m.lu();
-                if !lu.is_invertible() {
-                    return Err(crate::error::Error::SingularMoment {
-                        what: "consistent mass matrix",
-                        x: 0.0,
-                        det: 0.0,
-                    });
-                }
-                Some(lu)
             }
-        };
+        }
         Ok(Self {
             model,
-            template,
-            mass_lu,
+            cache: RefCell::new(cache),
         })
     }
 
+    /// The buffers, for the next [`FlatSystem::with_cache`].
+    pub fn into_cache(self) -> FlatCache {
+        self.cache.into_inner()
+    }
+
+    /// Whole evaluations of the rate function made so far (tests, cost models).
+    pub fn evaluations(&self) -> usize {
+        self.cache.borrow().evaluations
+    }
+
     fn aux(&self) -> impl Iterator<Item = Field> + '_ {
-        self.model
-            .p
-            .form
-            .fields()
-            .iter()
-            .copied()
-            .filter(|f| f.kind() == FieldKind::Auxiliary)
+        aux_fields(self.model)
     }
 
     /// Splits a state into (x, v, q).
     pub fn flatten(&self, z: &State1D<f64>) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-        let q = self.aux().flat_map(|f| z.field(f).clone()).collect();
-        (z.x.clone(), z.v.clone(), q)
+        let (mut x, mut v, mut q) = (Vec::new(), Vec::new(), Vec::new());
+        self.flatten_into(z, &mut x, &mut v, &mut q);
+        (x, v, q)
+    }
+
+    /// Splits a state into (x, v, q), reusing the vectors' storage.
+    pub fn flatten_into(
+        &self,
+        z: &State1D<f64>,
+        x: &mut Vec<f64>,
+        v: &mut Vec<f64>,
+        q: &mut Vec<f64>,
+    ) {
+        x.clone_from(&z.x);
+        v.clone_from(&z.v);
+        q.clear();
+        for f in self.aux() {
+            q.extend_from_slice(z.field(f));
+        }
     }
 
     /// Rebuilds a state from (x, v, q).
     pub fn unflatten(&self, x: &[f64], v: &[f64], q: &[f64]) -> State1D<f64> {
-        let mut z = self.template.clone();
-        z.x.copy_from_slice(x);
-        z.v.copy_from_slice(v);
-        let mut at = 0;
-        for f in self.aux().collect::<Vec<_>>() {
-            let dst = z.field_mut(f);
-            let n = dst.len();
-            dst.copy_from_slice(&q[at..at + n]);
-            at += n;
-        }
+        let mut z = self.cache.borrow().z.clone();
+        unflatten_into(self.model, x, v, q, &mut z);
         z
     }
 
-    fn eval(&self, x: &[f64], v: &[f64], q: &[f64]) -> State1D<f64> {
-        let z = self.unflatten(x, v, q);
-        let mut out = State1D::default();
-        // The rate function only fails on singular moment matrices, which a lumped-mass
-        // system at a valid state does not have; a failure here is reported as NaN so the
-        // caller's divergence check (never NaN in output) stops the run.
-        if self.model.rate(&z, &mut out).is_err() {
-            out.resize_like(&z);
-            for a in out.v.iter_mut() {
-                *a = f64::NAN;
+    /// Writes (x, v, q) into `z`, whose fields have the right lengths.
+    pub fn unflatten_into(&self, x: &[f64], v: &[f64], q: &[f64], z: &mut State1D<f64>) {
+        unflatten_into(self.model, x, v, q, z);
+    }
+
+    /// Evaluates the rate function at (x, v, q) unless the last evaluation was made at exactly
+    /// this state; returns the cache.
+    fn eval(&self, x: &[f64], v: &[f64], q: &[f64]) -> std::cell::RefMut<'_, FlatCache> {
+        let mut guard = self.cache.borrow_mut();
+        let c = &mut *guard;
+        let same = c.valid
+            && c.key.len() == x.len() + v.len() + q.len()
+            && c.key
+                .iter()
+                .zip(x.iter().chain(v).chain(q))
+                .all(|(k, a)| *k == a.to_bits());
+        if !same {
+            unflatten_into(self.model, x, v, q, &mut c.z);
+            // The rate function only fails on singular moment matrices, which a lumped-mass
+            // system at a valid state does not have; a failure here is reported as NaN so the
+            // caller's divergence check (never NaN in output) stops the run.
+            if self.model.rate_with(&c.z, &mut c.out, &mut c.ws).is_err() {
+                c.out.resize_like(&c.z);
+                for a in c.out.v.iter_mut() {
+                    *a = f64::NAN;
+                }
             }
+            c.acc.clear();
+            match &c.mass_lu {
+                None => c.acc.extend_from_slice(&c.out.v),
+                Some(lu) => {
+                    c.acc.resize(c.out.v.len(), 0.0);
+                    lu.solve(&c.out.v, &mut c.acc, &mut c.solve_work);
+                }
+            }
+            c.key.clear();
+            c.key
+                .extend(x.iter().chain(v).chain(q).map(|a| a.to_bits()));
+            c.valid = true;
+            c.evaluations += 1;
         }
-        out
+        guard
+    }
+
+    fn copy_aux(&self, c: &FlatCache, r: &mut [f64]) {
+        let mut at = 0;
+        for f in self.aux() {
+            let src = c.out.field(f);
+            r[at..at + src.len()].copy_from_slice(src);
+            at += src.len();
+        }
+    }
+}
+
+fn aux_fields(model: &Model1D) -> impl Iterator<Item = Field> + '_ {
+    model
+        .p
+        .form
+        .fields()
+        .iter()
+        .copied()
+        .filter(|f| f.kind() == FieldKind::Auxiliary)
+}
+
+fn unflatten_into(model: &Model1D, x: &[f64], v: &[f64], q: &[f64], z: &mut State1D<f64>) {
+    z.x.copy_from_slice(x);
+    z.v.copy_from_slice(v);
+    let mut at = 0;
+    for f in aux_fields(model) {
+        let dst = z.field_mut(f);
+        let n = dst.len();
+        dst.copy_from_slice(&q[at..at + n]);
+        at += n;
     }
 }
 
 impl crate::integrator::SecondOrderSystem<f64> for FlatSystem<'_> {
     fn accel(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64]) {
-        let f = self.eval(x, v, q).v;
-        match &self.mass_lu {
-            None => a.copy_from_slice(&f),
-            Some(lu) => {
-                let rhs = nalgebra::DVector::from_vec(f);
-                match lu.solve(&rhs) {
-                    Some(sol) => a.copy_from_slice(sol.as_slice()),
-                    None => a.fill(f64::NAN),
-                }
-            }
-        }
+        let c = self.eval(x, v, q);
+        a.copy_from_slice(&c.acc);
     }
     fn qrate(&self, x: &[f64], v: &[f64], q: &[f64], r: &mut [f64]) {
-        let out = self.eval(x, v, q);
-        let mut at = 0;
-        for f in self.aux() {
-            let src = out.field(f);
-            r[at..at + src.len()].copy_from_slice(src);
-            at += src.len();
-        }
+        let c = self.eval(x, v, q);
+        self.copy_aux(&c, r);
+    }
+    fn rates(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64], r: &mut [f64]) {
+        let c = self.eval(x, v, q);
+        a.copy_from_slice(&c.acc);
+        self.copy_aux(&c, r);
+    }
+    /// Only the artificial viscosity makes the force depend on the velocity (every 1D form's
+    /// momentum rate reads positions, densities and stresses; δ-SPH acts on the density rate).
+    fn accel_depends_on_velocity(&self) -> bool {
+        self.model.p.av.is_some()
     }
 }

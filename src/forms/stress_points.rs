@@ -12,7 +12,7 @@
 //! ```
 
 use super::eulerian_common::{Nb, stencils, volumes};
-use super::model::{Model1D, State1D};
+use super::model::{Model1D, State1D, Workspace1D};
 use crate::error::Result;
 use crate::scalar::Scalar;
 
@@ -31,29 +31,38 @@ fn interp<S: Scalar>(z: &State1D<S>, st: &[Nb<S>]) -> (S, S) {
     (vbar, g)
 }
 
-pub(crate) fn rate<S: Scalar>(m: &Model1D, z: &State1D<S>, out: &mut State1D<S>) -> Result<()> {
-    let vol = volumes(m, z);
-    let st_m = stencils(m, z, &z.x, m.p.shape, &vol)?;
-    let st_s = stencils(m, z, &z.sp_x, m.p.shape, &vol)?;
+pub(crate) fn rate<S: Scalar>(
+    m: &Model1D,
+    z: &State1D<S>,
+    out: &mut State1D<S>,
+    ws: &mut Workspace1D<S>,
+) -> Result<()> {
+    volumes(m, z, &mut ws.vol);
+    ws.scratch.search_mut().prepare(m, z);
+    let vol = &ws.vol;
+    stencils(m, z, &z.x, m.p.shape, vol, &mut ws.scratch, &mut ws.st_m)?;
+    stencils(m, z, &z.sp_x, m.p.shape, vol, &mut ws.scratch, &mut ws.st_s)?;
     out.x.copy_from_slice(&z.v);
     for a in out.v.iter_mut() {
         *a = S::zero();
     }
     let c = m.p.modulus;
-    for (i, st) in st_m.iter().enumerate() {
+    for (i, &vi) in vol.iter().enumerate() {
+        let st = ws.st_m.get(i);
         let (_, g) = interp(z, st);
         out.rho[i] = -z.rho[i] * g;
         out.sigma[i] = (z.sigma[i] + c) * g;
         let w = if m.p.form.has_stress_points() {
-            vol[i] * 0.5
+            vi * 0.5
         } else {
-            vol[i]
+            vi
         };
         for nb in st {
             out.v[nb.j] -= w * nb.dphi * z.sigma[i];
         }
     }
-    for (s, st) in st_s.iter().enumerate() {
+    for s in 0..ws.st_s.len() {
+        let st = ws.st_s.get(s);
         let (vbar, g) = interp(z, st);
         out.sp_x[s] = vbar;
         out.sp_sigma[s] = (z.sp_sigma[s] + c) * g;

@@ -7,8 +7,8 @@
 //! | `critical_dt` | [`IntegratorReport::of`] at σ̄ = 0 (the `timestep` code path: [`crate::vonneumann::amplification::step_stability`] on the amplification matrices of the scheme), Δx/c; null for a weakly unstable scheme |
 //! | `weak_growth_rate` | weakly unstable schemes: their spurious growth per unit time at Δt = 1/ω_max, c/Δx (the `spurious_growth_rate` of `timestep`) |
 //! | `dt_used` | `safety` × `critical_dt`; weakly unstable schemes: the largest Δt for which no mode of the κ grid grows by more than [`WEAK_TOL`] while a wave travels one wavelength at 10 points per wavelength ([`T_REF`] = 10 Δx/c), by bisection on the raw spectral radius of the scheme |
-//! | `evaluations_per_step` | [`Stepper::evaluations_per_step`]: the scheme's nominal count (one `rates` call = one evaluation) |
-//! | `rate_calls_per_step` | `accel` + `qrate` calls per step counted on the 1D solver's system (steps 2–5 of a wave run): in 1D each is a whole evaluation of the form's rate function, so a `rates` call counts 2 |
+//! | `evaluations_per_step` | [`Stepper::evaluations_per_step`]: the scheme's nominal count (one `rates` call = one evaluation; `kdk` 2 without artificial viscosity, whose acceleration does not depend on v, 3 with it) |
+//! | `rate_calls_per_step` | `accel` + `qrate` calls per step counted on the 1D solver's system (steps 2–5 of a wave run; a `rates` call counts 2). The 1D system ([`FlatSystem`]) evaluates the form's rate function once per exact state and serves both calls at that state from it, so whole evaluations can be fewer: `kdk` 2 calls = 2 evaluations without artificial viscosity (3 and 3 with it), `rk4` 8 calls = 4 evaluations |
 //! | `ns_per_particle_step` | the wave scene of the study (real 1D solver, this integrator, the same number of steps, Δt = min(0.2, `dt_used`)), median of `repeats` runs |
 //! | `ns_per_evaluation` | `ns_per_particle_step` / `rate_calls_per_step` |
 //! | `ns_per_particle_time` | `ns_per_particle_step` / `dt_used`: the cost of advancing one particle by Δx/c |
