@@ -269,8 +269,25 @@ fn compare(got: &Value, want: &Value, at: &str, s: f64, worst: &mut f64) {
 #[test]
 fn golden_outputs_are_reproduced() {
     let text = std::fs::read_to_string(path()).expect("tests/data/golden.json");
-    let want: Value = serde_json::from_str(&text).unwrap();
-    let got = compute();
+    let mut want: Value = serde_json::from_str(&text).unwrap();
+    let mut got = compute();
+    // A trade-off row whose configuration is unstable (critical Δt null: least squares, m4,
+    // h = 2) blows up from rounding noise, so its wave error measures how far that noise grew
+    // in the run and changes with the last bit of any operation (the O(N) banded mass solve of
+    // issue 13 agrees with the dense LU to 4e-15 per solve and moves it by 10%). Its order of
+    // magnitude is the reproducible result: compared within a factor 2, then left out of the
+    // 1e-12 comparison.
+    let rows = |v: &mut Value| v["tradeoff"].as_array_mut().unwrap().clone();
+    let (g_rows, w_rows) = (rows(&mut got), rows(&mut want["data"]));
+    for (i, (g, w)) in g_rows.iter().zip(&w_rows).enumerate() {
+        if w["critical_dt"].is_null() {
+            assert!(g["critical_dt"].is_null(), "tradeoff[{i}] is no longer unstable");
+            let (a, b) = (g["l2"].as_f64().unwrap(), w["l2"].as_f64().unwrap());
+            assert!(b > 1e3 && (a / b).log2().abs() < 1.0, "tradeoff[{i}].l2: {a:e} vs {b:e}");
+            got["tradeoff"][i]["l2"] = Value::Null;
+            want["data"]["tradeoff"][i]["l2"] = Value::Null;
+        }
+    }
     let mut worst = 0.0;
     compare(&got, &want["data"], "golden", 1.0, &mut worst);
     eprintln!("golden data reproduced; worst relative difference {worst:e}");
