@@ -49,6 +49,12 @@ impl<const D: usize> CellList<D> {
         c
     }
 
+    /// Bytes reserved by the list's buffers (capacities), for memory reports.
+    pub fn reserved_bytes(&self) -> usize {
+        (self.start.capacity() + self.items.capacity() + self.cell.capacity() + self.fill.capacity())
+            * std::mem::size_of::<usize>()
+    }
+
     /// Linear index of the cell with integer coordinates `c` (row-major, last axis fastest).
     #[inline]
     fn linear(&self, c: [usize; D]) -> usize {

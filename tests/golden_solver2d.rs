@@ -8,8 +8,10 @@
 //! full rate ([`Model::rate`]: ẋ, v̇, ρ̇, σ̇, τ̇) of the initial state, and the state (x, v,
 //! ρ, σ, τ) after a few `kdk` steps. The new code must agree **per field to 1e-12 relative to
 //! the largest magnitude of that field** (|new − old| ≤ 1e-12 · max_i |old_i| for every
-//! entry; fields that are zero everywhere must stay within 1e-300): reordering a sum changes
-//! the rounding at the 1e-16 level, nothing more is allowed.
+//! entry), except that a field below 1e-4 of the largest field of its record (cancellation
+//! noise, such as ρ̇ ≈ 1e-19 of a divergence-free velocity field) is compared at 1e-12 of
+//! 1e-4 × that largest field: reordering a sum changes the rounding at the 1e-16 level,
+//! nothing more is allowed.
 //!
 //! Where the numbers came from: `tests/golden/solver2d.json` was written by
 //! `SPHSTAB_WRITE_GOLDEN=1 cargo test --release --test golden_solver2d` at commit c708382 (the
@@ -31,6 +33,10 @@ use sphstab::solver::{BoundaryDensity, Run};
 use std::path::PathBuf;
 
 const TOL: f64 = 1e-12;
+/// A field smaller than this fraction of the largest field of its record is cancellation
+/// noise (ρ̇ of a divergence-free velocity field is ~1e-19, its terms ~1e-3): it is compared
+/// at TOL relative to FLOOR × that largest field instead of to itself.
+const FLOOR: f64 = 1e-4;
 
 fn path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/solver2d.json")
@@ -259,13 +265,20 @@ fn cases() -> Vec<(&'static str, Value)> {
     out
 }
 
-/// |new − old| ≤ TOL · max|old| entrywise, per field.
+/// |new − old| ≤ TOL · max(max|old|, FLOOR · record max) entrywise, per field.
 fn compare(case: &str, what: &str, old: &Value, new: &Value) {
-    for field in ["x", "v", "rho", "sigma", "tau"] {
-        let o: Vec<f64> = serde_json::from_value(old[field].clone()).unwrap();
-        let n: Vec<f64> = serde_json::from_value(new[field].clone()).unwrap();
+    const FIELDS: [&str; 5] = ["x", "v", "rho", "sigma", "tau"];
+    let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let get = |r: &Value, f: &str| -> Vec<f64> { serde_json::from_value(r[f].clone()).unwrap() };
+    let record = FIELDS
+        .iter()
+        .map(|f| max_abs(&get(old, f)))
+        .fold(0.0, f64::max);
+    for field in FIELDS {
+        let o = get(old, field);
+        let n = get(new, field);
         assert_eq!(o.len(), n.len(), "{case} {what}.{field}: length");
-        let scale = o.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let scale = max_abs(&o).max(FLOOR * record);
         let worst = o
             .iter()
             .zip(&n)
