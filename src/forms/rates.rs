@@ -483,7 +483,8 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
         );
         // per-particle auxiliary rates in parallel (rayon), written in place
         (0..n).into_par_iter().for_each(|i| {
-            let (la, dsum) = vel_grad_and_diffusion::<S, D, false>(m, z, ws, i, diffusion.is_some());
+            let (la, dsum) =
+                vel_grad_and_diffusion::<S, D, false>(m, z, ws, i, diffusion.is_some());
             let lb = if mixed {
                 vel_grad_and_diffusion::<S, D, true>(m, z, ws, i, false).0
             } else {

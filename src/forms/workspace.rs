@@ -285,13 +285,11 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     pub fn reserved_bytes(&self) -> usize {
         use std::mem::size_of;
         let st = &self.st;
-        let stencils = (st.start.capacity()
-            + st.upper.capacity()
-            + st.entry.capacity()
-            + st.ab.capacity())
-            * size_of::<u32>()
-            + (st.f.capacity() + st.fnn.capacity()) * size_of::<S>()
-            + (st.ga.capacity() + st.gb.capacity()) * size_of::<[S; D]>();
+        let stencils =
+            (st.start.capacity() + st.upper.capacity() + st.entry.capacity() + st.ab.capacity())
+                * size_of::<u32>()
+                + (st.f.capacity() + st.fnn.capacity()) * size_of::<S>()
+                + (st.ga.capacity() + st.gb.capacity()) * size_of::<[S; D]>();
         let sc: usize = self
             .scratch
             .iter()
@@ -465,14 +463,21 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             st.upper[i + 1] += st.upper[i];
         }
         let (entries, pairs) = (st.start[n] as usize, st.upper[n] as usize);
-        st.entry.resize(entries, 0);
-        st.ab.resize(pairs, 0);
-        st.f.resize(pairs, S::zero());
+        fit(&mut st.entry, entries, 0);
+        fit(&mut st.ab, pairs, 0);
+        fit(&mut st.f, pairs, S::zero());
         let art = m.p.art_stress;
-        st.fnn.resize(if art.is_some() { pairs } else { 0 }, S::zero());
-        st.ga.resize(if sph_a { 0 } else { entries }, [S::zero(); D]);
-        st.gb
-            .resize(if with_corrected { entries } else { 0 }, [S::zero(); D]);
+        fit(
+            &mut st.fnn,
+            if art.is_some() { pairs } else { 0 },
+            S::zero(),
+        );
+        fit(&mut st.ga, if sph_a { 0 } else { entries }, [S::zero(); D]);
+        fit(
+            &mut st.gb,
+            if with_corrected { entries } else { 0 },
+            [S::zero(); D],
+        );
 
         // pass 2: pair data, owned pairs' indices, the other entries' neighbour index (for
         // pass 3), and ∇φ of the non-SPH families
@@ -593,11 +598,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
 /// W(r) and f = −W'(r)/r of a separation d (so that ∇_x W(|x − x_J|) = f d), exactly as
 /// [`kernel::w_and_grad`] computes them, including the limit −W''(0) at d = 0.
 #[inline]
-fn pair_kernel<S: Scalar, const D: usize>(
-    k: &dyn kernel::Kernel,
-    h: f64,
-    d: [S; D],
-) -> (S, S) {
+fn pair_kernel<S: Scalar, const D: usize>(k: &dyn kernel::Kernel, h: f64, d: [S; D]) -> (S, S) {
     let mut r2 = S::zero();
     for a in d {
         r2 += a * a;
@@ -610,6 +611,19 @@ fn pair_kernel<S: Scalar, const D: usize>(
     }
     let r = r2.sqrt();
     (kernel::w(k, D, r, h), -kernel::dw(k, D, r, h) / r)
+}
+
+/// Resizes `v` to `len`, contents unspecified (every entry is rewritten by the build). On
+/// growth it frees the old buffer before allocating the new one (no copy, and no moment with
+/// both alive) and reserves 1/32 more than needed instead of `Vec`'s doubling, so that the pair
+/// count of a moving block, which changes by a few between steps, neither reallocates every
+/// step nor doubles the largest buffers.
+fn fit<T: Clone>(v: &mut Vec<T>, len: usize, fill: T) {
+    if v.capacity() < len {
+        *v = Vec::new();
+        v.reserve_exact(len + len / 32);
+    }
+    v.resize(len, fill);
 }
 
 /// Whether a periodic cell is a rectangular box (off-diagonal entries exactly zero).

@@ -339,6 +339,9 @@ pub struct BlockTiming {
     /// Measured peak bytes while building and running the block, per particle (null without
     /// a memory probe).
     pub bytes_per_particle: Option<f64>,
+    /// Bytes per particle held by the run at the end ([`Run::state_bytes`]: state, model,
+    /// step buffers, rate workspace with its stencils, integrator arrays; capacities).
+    pub state_bytes_per_particle: f64,
     /// Allocations per timed step (null without a memory probe).
     pub allocations_per_step: Option<f64>,
     /// max |v| at the end (c), a sanity check that the run stayed small and finite.
@@ -436,6 +439,7 @@ fn time_block_nd<const D: usize>(
         particle_steps_per_second: n as f64 / median,
         neighbours_per_particle: mean_neighbours(&run),
         bytes_per_particle,
+        state_bytes_per_particle: run.state_bytes() as f64 / n as f64,
         allocations_per_step,
         max_speed_end: run.max_free_speed(),
     })
@@ -616,6 +620,7 @@ mod tests {
             particle_steps_per_second: 0.0,
             neighbours_per_particle: 0.0,
             bytes_per_particle: None,
+            state_bytes_per_particle: 0.0,
             allocations_per_step: None,
             max_speed_end: 0.0,
         }
