@@ -19,6 +19,9 @@
 //! `cargo test`. It is a regression oracle, not an independent check (those are in
 //! solver2d.rs, swegle.rs, vonneumann2d.rs and friends).
 
+// Small-tensor loops read best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use serde_json::{Value, json};
 use sphstab::forms::{
     ArtificialStress, ArtificialViscosity, DensityDiffusion, DiffusionForm, FormKind, Material,
