@@ -488,6 +488,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         let (kern, h) = (m.p.kp.kernel, m.p.kp.h);
         let kp = crate::shape::KernelParams { kernel: kern, h };
         let w_dp = art.map(|a| kernel::w(kern, D, a.spacing, h));
+        let pk = PairKernel::new::<D>(kern, h);
         let art_n = art.map_or(0, |a| a.n);
         let (start, upper) = (&st.start, &st.upper);
         let entry = Shared(st.entry.as_mut_ptr());
@@ -533,7 +534,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                         if j >= i {
                             e = e_own;
                             e_own += 1;
-                            let (w, f) = pair_kernel(kern, h, d);
+                            let (w, f) = pk.eval(d);
                             // SAFETY: pair p and entry e belong to particle i alone (the
                             // offsets of pass 1 partition both arrays by particle)
                             unsafe {
@@ -595,22 +596,64 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     }
 }
 
-/// W(r) and f = −W'(r)/r of a separation d (so that ∇_x W(|x − x_J|) = f d), exactly as
-/// [`kernel::w_and_grad`] computes them, including the limit −W''(0) at d = 0.
-#[inline]
-fn pair_kernel<S: Scalar, const D: usize>(k: &dyn kernel::Kernel, h: f64, d: [S; D]) -> (S, S) {
-    let mut r2 = S::zero();
-    for a in d {
-        r2 += a * a;
+/// The kernel's constants of one stencil build, so that a pair costs one evaluation of the
+/// kernel's shape and its derivative (no normalisation or power of h per pair).
+#[derive(Clone, Copy)]
+struct PairKernel<'a> {
+    k: &'a dyn kernel::Kernel,
+    h: f64,
+    /// ζh: W = W' = 0 from here on (the test of `kernel::w`).
+    support: f64,
+    /// σ/h^D and σ/h^(D+1), as `kernel::w` and `kernel::dw` compute them.
+    s0: f64,
+    s1: f64,
+    /// W(0) and −W''(0).
+    w0: f64,
+    f0: f64,
+}
+
+impl<'a> PairKernel<'a> {
+    fn new<const D: usize>(k: &'a dyn kernel::Kernel, h: f64) -> Self {
+        Self {
+            k,
+            h,
+            support: k.zeta() * h,
+            s0: k.sigma(D) / h.powi(D as i32),
+            s1: k.sigma(D) / h.powi(D as i32 + 1),
+            w0: kernel::w(k, D, 0.0f64, h),
+            f0: -kernel::d2w(k, D, 0.0, h),
+        }
     }
-    if r2.re() == 0.0 {
-        return (
-            S::cst(kernel::w(k, D, 0.0f64, h)),
-            S::cst(-kernel::d2w(k, D, 0.0, h)),
-        );
+
+    /// W(r) and f = −W'(r)/r of a separation d (so that ∇_x W(|x − x_J|) = f d), exactly as
+    /// [`kernel::w_and_grad`] computes them (same values and tangents), including the limit
+    /// −W''(0) at d = 0.
+    #[inline]
+    fn eval<S: Scalar, const D: usize>(&self, d: [S; D]) -> (S, S) {
+        let mut r2 = S::zero();
+        for a in d {
+            r2 += a * a;
+        }
+        if r2.re() == 0.0 {
+            return (S::cst(self.w0), S::cst(self.f0));
+        }
+        let r = r2.sqrt();
+        let rv = r.re().abs();
+        if rv >= self.support {
+            return (r.lift(0.0, 0.0), -r.lift(0.0, 0.0) / r);
+        }
+        let q = rv / self.h;
+        let (k, h) = (self.k, self.h);
+        // the tangents only for types that carry one, as in `kernel::w` and `kernel::dw`
+        let (g0, g1) = if S::TANGENT {
+            (self.s0 * k.df(D, q) / h, self.s1 * k.d2f(D, q) / h)
+        } else {
+            (0.0, 0.0)
+        };
+        let w = r.lift(self.s0 * k.f(D, q), g0);
+        let dw = r.lift(self.s1 * k.df(D, q), g1);
+        (w, -dw / r)
     }
-    let r = r2.sqrt();
-    (kernel::w(k, D, r, h), -kernel::dw(k, D, r, h) / r)
 }
 
 /// Resizes `v` to `len`, contents unspecified (every entry is rewritten by the build). On
