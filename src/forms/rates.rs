@@ -44,23 +44,22 @@ fn dot<S: Scalar, const D: usize>(s: &Tensor<S, D>, g: [S; D]) -> [S; D] {
     f
 }
 
-/// (σ_I/ρ_I² + σ_J/ρ_J²) ρ_J · ∇φ_J, one term of the classical sum \[V21 eq 55\];
-/// `inv_ri2` = 1/ρ_I² (one division per pair, not one per component: the quotients differ
-/// from σ/ρ² in the last bit).
+/// (σ_I/ρ_I² + σ_J/ρ_J²) ρ_J · ∇φ_J, one term of the classical sum \[V21 eq 55\] (the
+/// quotients as divisions: the Swegle runs amplify a last-bit change of them to 1e-7).
 #[inline]
 fn sum_term<S: Scalar, const D: usize>(
     si: &Tensor<S, D>,
-    inv_ri2: S,
+    ri2: S,
     sj: &Tensor<S, D>,
     rj: S,
     g: [S; D],
 ) -> [S; D] {
-    let inv_rj2 = S::cst(1.0) / (rj * rj);
+    let rj2 = rj * rj;
     let mut t = [[S::zero(); D]; D];
     // symmetric: the upper triangle, mirrored
     for p in 0..D {
         for q in p..D {
-            t[p][q] = si[p][q] * inv_ri2 + sj[p][q] * inv_rj2;
+            t[p][q] = si[p][q] / ri2 + sj[p][q] / rj2;
             t[q][p] = t[p][q];
         }
     }
@@ -326,12 +325,12 @@ fn accelerations<S: Scalar, const D: usize>(
     // per-particle accelerations in parallel (rayon)
     acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
         let (rho_i, si) = (z.rho[i], &sig[i]);
-        let inv_ri2 = S::cst(1.0) / (rho_i * rho_i);
+        let ri2 = rho_i * rho_i;
         let (mut fa, mut fav, mut far) = ([S::zero(); D], [S::zero(); D], [S::zero(); D]);
         st.for_each::<false>(m, z.x, vol, i, |nb| {
             let j = nb.j;
             if sum_form {
-                add(&mut fa, sum_term(si, inv_ri2, &sig[j], z.rho[j], nb.g));
+                add(&mut fa, sum_term(si, ri2, &sig[j], z.rho[j], nb.g));
             } else if diff_form {
                 add(&mut fa, diff_term(si, &sig[j], nb.g));
             }

@@ -65,7 +65,7 @@ pub(crate) struct NbD<S, const D: usize> {
 pub(crate) struct Stencils<S, const D: usize> {
     /// Directed entries of particle I: `entry[start[I]..start[I + 1]]` (n + 1 offsets).
     start: Vec<u32>,
-    /// Pairs owned by I (J ≥ I): `upper[I]..upper[I + 1]`; they are I's first entries.
+    /// Pairs owned by I (J ≥ I): `upper[I]..upper[I + 1]`.
     upper: Vec<u32>,
     /// Pair index of each directed entry.
     entry: Vec<u32>,
@@ -163,6 +163,9 @@ impl<S, const D: usize> Default for ShapeScratch<S, D> {
         }
     }
 }
+
+/// Top bit of a directed entry between passes 2 and 3: a neighbour index, not yet a pair.
+const LOWER: u32 = 1 << 31;
 
 /// Particles per parallel work item of the stencil build (each item owns one scratch).
 const CHUNK: usize = 128;
@@ -521,19 +524,16 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                             &mut sc.vals_b,
                         )?;
                     }
-                    let (mut e_own, mut e_other) = (
-                        start[i] as usize,
-                        start[i] as usize + (upper[i + 1] - upper[i]) as usize,
-                    );
+                    // entries in the order of the scan (the summation order of every rate
+                    // term: an unstable run amplifies a reordering's last bits), owned pairs
+                    // numbered in that order
+                    let mut e = start[i] as usize;
                     let mut p = upper[i] as usize;
                     for (k, (&j, &(d, _))) in sc.idx.iter().zip(&sc.nodes).enumerate() {
                         if j == i && !with_self {
                             continue;
                         }
-                        let e;
                         if j >= i {
-                            e = e_own;
-                            e_own += 1;
                             let (w, f) = pk.eval(d);
                             // SAFETY: pair p and entry e belong to particle i alone (the
                             // offsets of pass 1 partition both arrays by particle)
@@ -552,10 +552,9 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                             }
                             p += 1;
                         } else {
-                            e = e_other;
-                            e_other += 1;
-                            // SAFETY: as above (the pair index is found in pass 3)
-                            unsafe { entry.write(e, j as u32) };
+                            // SAFETY: as above (the pair index is found in pass 3; the top bit
+                            // marks the entry, n < 2³¹)
+                            unsafe { entry.write(e, j as u32 | LOWER) };
                         }
                         // SAFETY: entry e belongs to particle i alone
                         unsafe {
@@ -566,6 +565,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                                 gb.write(e, sc.vals_b[k].1);
                             }
                         }
+                        e += 1;
                     }
                 }
                 Ok(())
@@ -575,10 +575,13 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         let (start, upper, ab) = (&st.start, &st.upper, &st.ab);
         let entry = Shared(st.entry.as_mut_ptr());
         (0..n).into_par_iter().try_for_each(|i| -> Result<()> {
-            let e0 = start[i] as usize + (upper[i + 1] - upper[i]) as usize;
-            for e in e0..start[i + 1] as usize {
+            for e in start[i] as usize..start[i + 1] as usize {
                 // SAFETY: entry e belongs to particle i alone; it was written in pass 2
-                let j = unsafe { entry.read(e) } as usize;
+                let v = unsafe { entry.read(e) };
+                if v & LOWER == 0 {
+                    continue;
+                }
+                let j = (v & !LOWER) as usize;
                 let (p0, p1) = (upper[j] as usize, upper[j + 1] as usize);
                 let k = ab[p0..p1]
                     .iter()
