@@ -18,9 +18,10 @@ pub struct CellList<const D: usize = 2> {
     /// Periodic extents (rectangular box) or None.
     period: Option<[f64; D]>,
     start: Vec<usize>,
-    items: Vec<usize>,
+    /// Particle indices, cell by cell (32 bits: the solver's memory per particle).
+    items: Vec<u32>,
     /// Cell of each particle (construction buffer, kept for reuse).
-    cell: Vec<usize>,
+    cell: Vec<u32>,
     /// Fill pointers (construction buffer, kept for reuse).
     fill: Vec<usize>,
 }
@@ -47,6 +48,12 @@ impl<const D: usize> CellList<D> {
         let mut c = Self::default();
         c.rebuild(pts, radius, period);
         c
+    }
+
+    /// Bytes reserved by the list's buffers (capacities), for memory reports.
+    pub fn reserved_bytes(&self) -> usize {
+        (self.start.capacity() + self.fill.capacity()) * std::mem::size_of::<usize>()
+            + (self.items.capacity() + self.cell.capacity()) * std::mem::size_of::<u32>()
     }
 
     /// Linear index of the cell with integer coordinates `c` (row-major, last axis fastest).
@@ -95,6 +102,11 @@ impl<const D: usize> CellList<D> {
         self.dims = dims;
         self.period = period;
         let ncell: usize = dims.iter().product();
+        assert!(
+            ncell < u32::MAX as usize && pts.len() < u32::MAX as usize,
+            "cell list: {ncell} cells, {} particles (32-bit indices)",
+            pts.len()
+        );
         let count = &mut self.start;
         count.clear();
         count.resize(ncell + 1, 0);
@@ -112,11 +124,11 @@ impl<const D: usize> CellList<D> {
                     None => ((x / size) as usize).min(dims[a] - 1),
                 };
             }
-            self.linear(c)
+            self.linear(c) as u32
         }));
         let count = &mut self.start;
         for &c in &cell {
-            count[c + 1] += 1;
+            count[c as usize + 1] += 1;
         }
         for i in 0..ncell {
             count[i + 1] += count[i];
@@ -126,7 +138,8 @@ impl<const D: usize> CellList<D> {
         self.items.clear();
         self.items.resize(pts.len(), 0);
         for (i, &c) in cell.iter().enumerate() {
-            self.items[self.fill[c]] = i;
+            let c = c as usize;
+            self.items[self.fill[c]] = i as u32;
             self.fill[c] += 1;
         }
         self.cell = cell;
@@ -172,7 +185,7 @@ impl<const D: usize> CellList<D> {
                 cell = cell * self.dims[a] + ax[a][k[a]];
             }
             for &j in &self.items[self.start[cell]..self.start[cell + 1]] {
-                f(j);
+                f(j as usize);
             }
             let mut a = D;
             loop {

@@ -11,8 +11,9 @@
 //! one of each other: which run crosses a 63-job boundary of the injector depends on how many
 //! jobs were injected before it, not on N).
 //!
-//! Everything runs in one test function: the counter is global, and tests of one binary run in
-//! parallel.
+//! The same function then checks the memory held per particle by the `sphstab throughput`
+//! block (≤ 600 B, issue 13). Everything runs in one test function: the counter is global, and
+//! tests of one binary run in parallel.
 
 use sphstab::forms::{
     ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model2D, ModelParams2D,
@@ -20,33 +21,48 @@ use sphstab::forms::{
 };
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
+use sphstab::solver::throughput::{ThroughputConfig, build_block};
 use sphstab::solver::{BoundaryDensity, Run2D};
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
 /// The system allocator, counting allocations and reallocations.
 struct Counting;
 
 static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+/// Live bytes, and their peak.
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+fn grew(by: usize) {
+    let now = LIVE.fetch_add(by, Ordering::Relaxed) + by;
+    PEAK.fetch_max(now, Ordering::Relaxed);
+}
 
 // SAFETY: every call is forwarded unchanged to the system allocator.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        grew(layout.size());
         // SAFETY: same contract as the caller's.
         unsafe { System.alloc(layout) }
     }
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
         ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        grew(layout.size());
         // SAFETY: same contract as the caller's.
         unsafe { System.alloc_zeroed(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
         // SAFETY: same contract as the caller's.
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
         ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // old and new block both live for the copy
+        grew(new_size);
+        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
         // SAFETY: same contract as the caller's.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -185,4 +201,27 @@ fn time_loop_does_not_allocate() {
             "{name}: allocations grow with N"
         );
     }
+    memory_per_particle();
+}
+
+/// Issue 13: the `sphstab throughput` block (200 × 200, classical elastic, AV, artificial
+/// stress; `kdk`) holds at most 600 bytes per particle after its first steps, counted by
+/// [`Run::state_bytes`](sphstab::solver::Run::state_bytes) (capacities of every per-particle
+/// buffer) and by the counting allocator (peak of the live bytes from before the block is
+/// built, so transient copies count too). Run from the one test function: the counter is global.
+fn memory_per_particle() {
+    let cfg = ThroughputConfig::new(kernel::by_name("m4").unwrap());
+    let live0 = LIVE.load(Ordering::SeqCst);
+    PEAK.store(live0, Ordering::SeqCst);
+    let mut run = build_block(&cfg, 200).unwrap();
+    for _ in 0..3 {
+        run.step(cfg.dt).unwrap();
+    }
+    let n = run.z.x.len() as f64;
+    let held = run.state_bytes() as f64 / n;
+    let peak = (PEAK.load(Ordering::SeqCst) - live0) as f64 / n;
+    eprintln!("throughput block 200×200: {held:.1} B per particle held, peak {peak:.1} B");
+    assert!(held <= 600.0, "{held} B per particle held");
+    assert!(peak <= 600.0, "{peak} B per particle at the peak");
+    assert!(held > 300.0 && peak >= held - 1.0, "{held} {peak}");
 }

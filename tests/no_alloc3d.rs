@@ -6,7 +6,10 @@
 //!
 //! As in tests/no_alloc.rs (2D): inside one `ThreadPool::install` the count must be exactly
 //! zero; from the test thread on the global pool (where rayon's injector may take a block now
-//! and then) it must not depend on the number of particles (same count at 7³ and 9³).
+//! and then: a block every 63 injected jobs, a step injecting a fixed number of parallel loops)
+//! it must not depend on the number of particles: at most one block per step, and the counts
+//! at 7³ and 9³ within one of each other (which run crosses a 63-job boundary depends on how
+//! many jobs were injected before it, not on N).
 //! Everything runs in one test function: the counter is global.
 
 use sphstab::forms::{FormKind, ObjectiveRate};
@@ -125,6 +128,9 @@ fn time_loop_does_not_allocate_in_3d() {
             small <= 10 && large <= 10,
             "{name}: more than one allocation per step on the global pool"
         );
-        assert_eq!(small, large, "{name}: allocations grow with N");
+        assert!(
+            small.abs_diff(large) <= 1,
+            "{name}: allocations grow with N"
+        );
     }
 }

@@ -207,6 +207,9 @@ pub struct Model<const D: usize> {
     pub period: Option<[[f64; D]; D]>,
     /// Inverse of the periodic cell matrix (fractional coordinates s = d · period_inv).
     period_inv: [[f64; D]; D],
+    /// Whether the periodic cell is a rectangular box (off-diagonal entries of it and of its
+    /// inverse exactly zero): [`Model::rel`] then works per component.
+    period_diagonal: bool,
     /// Masses.
     pub mass: Vec<f64>,
     /// Reference positions.
@@ -566,10 +569,13 @@ impl<const D: usize> Model<D> {
             None => [[0.0; D]; D],
         };
         let mass = vol_ref.iter().map(|v| rho * v).collect();
+        let off_zero = |a: &[[f64; D]; D]| (0..D).all(|i| (0..D).all(|j| i == j || a[i][j] == 0.0));
+        let period_diagonal = period.is_some_and(|l| off_zero(&l) && off_zero(&period_inv));
         let mut m = Model {
             p,
             period,
             period_inv,
+            period_diagonal,
             mass,
             x_ref,
             vol_ref,
@@ -648,6 +654,17 @@ impl<const D: usize> Model<D> {
             d[c] = b[c] - a[c];
         }
         let Some(l) = self.period else { return d };
+        if self.period_diagonal {
+            // rectangular box: the same arithmetic as below without the zero terms (x + 0·y
+            // is x), one component at a time
+            for c in 0..D {
+                let f = d[c].re() * self.period_inv[c][c];
+                if f.abs() >= 0.5 {
+                    d[c] = d[c] - f.round() * l[c][c];
+                }
+            }
+            return d;
+        }
         let mut s = [0.0; D];
         let mut any = false;
         for i in 0..D {

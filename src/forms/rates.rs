@@ -24,24 +24,11 @@ use super::model_nd::{
     AuxRates, DensityDiffusion, DiffusionForm, Material, Model, ObjectiveRate, RateOut, State,
     StateView, Tensor,
 };
-use super::workspace::{NbD, RateWorkspace};
+use super::workspace::{NbD, RateWorkspace, Shared, Stencils};
 use crate::error::Result;
 use crate::kernel;
 use crate::scalar::Scalar;
 use rayon::prelude::*;
-
-fn vel_grad<S: Scalar, const D: usize>(v: &[[S; D]], i: usize, st: &[NbD<S, D>]) -> Tensor<S, D> {
-    let mut l = [[S::zero(); D]; D];
-    for nb in st {
-        for a in 0..D {
-            let dv = v[nb.j][a] - v[i][a];
-            for b in 0..D {
-                l[a][b] += dv * nb.g[b];
-            }
-        }
-    }
-    l
-}
 
 /// σ·g.
 #[inline]
@@ -57,54 +44,47 @@ fn dot<S: Scalar, const D: usize>(s: &Tensor<S, D>, g: [S; D]) -> [S; D] {
     f
 }
 
-fn div_sum<S: Scalar, const D: usize>(
-    s: &[Tensor<S, D>],
-    rho: &[S],
-    i: usize,
-    st: &[NbD<S, D>],
+/// (σ_I/ρ_I² + σ_J/ρ_J²) ρ_J · ∇φ_J, one term of the classical sum \[V21 eq 55\] (the
+/// quotients as divisions: the Swegle runs amplify a last-bit change of them to 1e-7).
+#[inline]
+fn sum_term<S: Scalar, const D: usize>(
+    si: &Tensor<S, D>,
+    ri2: S,
+    sj: &Tensor<S, D>,
+    rj: S,
+    g: [S; D],
 ) -> [S; D] {
-    let ri2 = rho[i] * rho[i];
-    let mut a = [S::zero(); D];
-    for nb in st {
-        let rj = rho[nb.j];
-        let mut t = [[S::zero(); D]; D];
-        // symmetric: the upper triangle, mirrored
-        for p in 0..D {
-            for q in p..D {
-                t[p][q] = s[i][p][q] / ri2 + s[nb.j][p][q] / (rj * rj);
-                t[q][p] = t[p][q];
-            }
-        }
-        let f = dot(&t, nb.g);
-        for c in 0..D {
-            a[c] += f[c] * rj;
+    let rj2 = rj * rj;
+    let mut t = [[S::zero(); D]; D];
+    // symmetric: the upper triangle, mirrored
+    for p in 0..D {
+        for q in p..D {
+            t[p][q] = si[p][q] / ri2 + sj[p][q] / rj2;
+            t[q][p] = t[p][q];
         }
     }
-    a
+    dot(&t, g).map(|f| f * rj)
 }
 
-fn div_difference<S: Scalar, const D: usize>(
-    s: &[Tensor<S, D>],
-    rho_i: S,
-    i: usize,
-    st: &[NbD<S, D>],
-) -> [S; D] {
-    let mut a = [S::zero(); D];
-    for nb in st {
-        let mut t = [[S::zero(); D]; D];
-        // symmetric: the upper triangle, mirrored
-        for p in 0..D {
-            for q in p..D {
-                t[p][q] = s[nb.j][p][q] - s[i][p][q];
-                t[q][p] = t[p][q];
-            }
-        }
-        let f = dot(&t, nb.g);
-        for c in 0..D {
-            a[c] += f[c];
+/// (σ_J − σ_I) · ∇φ_J, one term of the difference form \[V21 eq 54\] (before the 1/ρ_I).
+#[inline]
+fn diff_term<S: Scalar, const D: usize>(si: &Tensor<S, D>, sj: &Tensor<S, D>, g: [S; D]) -> [S; D] {
+    let mut t = [[S::zero(); D]; D];
+    // symmetric: the upper triangle, mirrored
+    for p in 0..D {
+        for q in p..D {
+            t[p][q] = sj[p][q] - si[p][q];
+            t[q][p] = t[p][q];
         }
     }
-    a.map(|x| x / rho_i)
+    dot(&t, g)
+}
+
+#[inline]
+fn add<S: Scalar, const D: usize>(a: &mut [S; D], f: [S; D]) {
+    for c in 0..D {
+        a[c] += f[c];
+    }
 }
 
 /// Hypo-elastic stress rate for velocity gradient L: λ tr(d) I + 2G d plus the objective
@@ -171,8 +151,8 @@ pub(crate) fn stress_rate<S: Scalar, const D: usize>(
 }
 
 /// −m_J Π_IJ ∇_I W_IJ of one pair (Monaghan viscosity), `d` = x_J − x_I, `dv` = v_I − v_J,
-/// ρ̄ the pair's mean density; zero for a receding pair when the viscosity acts on approaching
-/// pairs only.
+/// ρ̄ the pair's mean density, `grad` = ∇_I W_IJ (computed when `None`); zero for a receding
+/// pair when the viscosity acts on approaching pairs only.
 #[inline]
 fn av_pair<S: Scalar, const D: usize>(
     m: &Model<D>,
@@ -181,6 +161,7 @@ fn av_pair<S: Scalar, const D: usize>(
     dv: [S; D],
     rho_bar: S,
     mass_j: f64,
+    grad: Option<[S; D]>,
 ) -> [S; D] {
     let h = m.p.kp.h;
     // x_IJ = x_I − x_J = −d
@@ -196,35 +177,8 @@ fn av_pair<S: Scalar, const D: usize>(
     let mu = vx * h / (r2 + 0.01 * h * h);
     let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
     // ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
-    let (_, grad) = kernel::w_and_grad(m.p.kp.kernel, h, d);
+    let grad = grad.unwrap_or_else(|| kernel::w_and_grad(m.p.kp.kernel, h, d).1);
     grad.map(|g| -(pi * g * mass_j))
-}
-
-fn av_accel<S: Scalar, const D: usize>(
-    m: &Model<D>,
-    z: StateView<'_, S, D>,
-    i: usize,
-    st: &[NbD<S, D>],
-) -> [S; D] {
-    let Some(av) = m.p.av else {
-        return [S::zero(); D];
-    };
-    let mut a = [S::zero(); D];
-    for nb in st {
-        if nb.j == i {
-            continue;
-        }
-        let mut dv = [S::zero(); D];
-        for c in 0..D {
-            dv[c] = z.v[i][c] - z.v[nb.j][c];
-        }
-        let rho_bar = (z.rho[i] + z.rho[nb.j]) * 0.5;
-        let f = av_pair(m, &av, nb.d, dv, rho_bar, m.mass[nb.j]);
-        for c in 0..D {
-            a[c] += f[c];
-        }
-    }
-    a
 }
 
 /// Artificial-stress tensor R = −ε Σ_{λ>0} λ P_λ / ρ² of a stress (principal decomposition;
@@ -281,76 +235,24 @@ fn art_tensor<S: Scalar, const D: usize>(s: &Tensor<S, D>, rho: S, eps: f64) -> 
     r
 }
 
-/// Σ_J m_J (R_I + R_J) f_IJⁿ ∇_I W_IJ.
-fn art_accel<S: Scalar, const D: usize>(
-    m: &Model<D>,
-    r: &[Tensor<S, D>],
-    i: usize,
-    st: &[NbD<S, D>],
-) -> [S; D] {
-    let Some(a) = m.p.art_stress else {
-        return [S::zero(); D];
-    };
-    let h = m.p.kp.h;
-    let w_dp = kernel::w(m.p.kp.kernel, D, a.spacing, h);
-    let mut acc = [S::zero(); D];
-    for nb in st {
-        if nb.j == i {
-            continue;
-        }
-        // W(r) and ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
-        let (w, g) = kernel::w_and_grad(m.p.kp.kernel, h, nb.d);
-        let f = w / w_dp;
-        let mut fnn = S::cst(1.0);
-        for _ in 0..a.n {
-            fnn *= f;
-        }
-        let mut t = [[S::zero(); D]; D];
-        // symmetric: the upper triangle, mirrored
-        for p in 0..D {
-            for q in p..D {
-                t[p][q] = r[i][p][q] + r[nb.j][p][q];
-                t[q][p] = t[p][q];
-            }
-        }
-        let f2 = dot(&t, g);
-        for c in 0..D {
-            acc[c] += f2[c] * fnn * m.mass[nb.j];
-        }
-    }
-    acc
-}
-
-/// V_J ∇_I W_IJ (kernel gradient at x_JI = `d`) and |x_JI|², for the δ-SPH terms.
-#[inline]
-fn diffusion_pair<S: Scalar, const D: usize>(
-    m: &Model<D>,
-    z: StateView<'_, S, D>,
-    nb: &NbD<S, D>,
-) -> ([S; D], S) {
-    let (_, g) = kernel::w_and_grad(m.p.kp.kernel, m.p.kp.h, nb.d);
-    let vj = S::cst(m.mass[nb.j]) / z.rho[nb.j];
-    let mut r2 = nb.d[0] * nb.d[0];
-    for c in 1..D {
-        r2 += nb.d[c] * nb.d[c];
-    }
-    (g.map(|gc| gc * vj), r2)
-}
-
 /// Antuono's renormalised density gradient ⟨∇ρ⟩_I = M_I⁻¹ Σ_J (ρ_J − ρ_I) ∇_I W_IJ V_J,
 /// M_I = Σ_J ∇_I W_IJ ⊗ x_JI V_J (exact for a linear density field).
 fn renormalised_density_gradient<S: Scalar, const D: usize>(
     m: &Model<D>,
     z: StateView<'_, S, D>,
     i: usize,
-    st: &[NbD<S, D>],
+    st: &Stencils<S, D>,
+    vol: &[S],
 ) -> [S; D] {
     let mut mm = [[S::zero(); D]; D];
     let mut g = [S::zero(); D];
-    for nb in st {
-        let (gv, r2) = diffusion_pair(m, z, nb);
+    st.for_each::<false>(m, z.x, vol, i, |nb| {
+        if nb.j == i {
+            return;
+        }
+        let (gv, r2) = diffusion_pair(vol, &nb);
         if r2.re() == 0.0 {
-            continue;
+            return;
         }
         let dr = z.rho[nb.j] - z.rho[i];
         for a in 0..D {
@@ -359,7 +261,7 @@ fn renormalised_density_gradient<S: Scalar, const D: usize>(
                 mm[a][b] += gv[a] * nb.d[b];
             }
         }
-    }
+    });
     // M⁻¹ g = cof(M)ᵀ g / det M
     let det = det_s(&mm);
     let cof = cof_s(&mm);
@@ -373,23 +275,153 @@ fn renormalised_density_gradient<S: Scalar, const D: usize>(
     out
 }
 
-/// The δ-SPH term D_I of ρ̇_I ([`super::model_nd::DensityDiffusion`]); `grad` holds ⟨∇ρ⟩ for
-/// Antuono's form and is empty for Molteni–Colagrossi's.
-fn density_diffusion<S: Scalar, const D: usize>(
+/// V_J ∇_I W_IJ and |x_JI|² of a neighbour, for the δ-SPH terms.
+#[inline]
+fn diffusion_pair<S: Scalar, const D: usize>(vol: &[S], nb: &NbD<S, D>) -> ([S; D], S) {
+    let vj = vol[nb.j];
+    let mut r2 = nb.d[0] * nb.d[0];
+    for c in 1..D {
+        r2 += nb.d[c] * nb.d[c];
+    }
+    (nb.gw.map(|gc| gc * vj), r2)
+}
+
+/// The accelerations of the Eulerian forms, one pass over each particle's neighbours: the
+/// form's stress divergence, Monaghan's viscosity −Σ_J m_J Π_IJ ∇_I W_IJ and the artificial
+/// stress Σ_J m_J (R_I + R_J) f_IJⁿ ∇_I W_IJ, each summed on its own and added in that order.
+fn accelerations<S: Scalar, const D: usize>(
     m: &Model<D>,
     z: StateView<'_, S, D>,
-    i: usize,
-    st: &[NbD<S, D>],
-    grad: &[[S; D]],
-) -> S {
-    let Some(dd) = m.p.diffusion else {
-        return S::zero();
+    acc: &mut [[S; D]],
+    ws: &mut RateWorkspace<S, D>,
+    mixed: bool,
+) {
+    let form = m.p.form;
+    let c = m.p.c_partition;
+    ws.hydro.clear();
+    if let Material::Hydro { bulk } = m.p.material {
+        ws.hydro.extend(z.rho.iter().map(|&r| {
+            let sg = (r / m.p.rho0 - 1.0) * (-bulk);
+            let mut t = [[S::zero(); D]; D];
+            for (a, row) in t.iter_mut().enumerate() {
+                row[a] = sg;
+            }
+            t
+        }));
+    }
+    let (sig, tau): (&[Tensor<S, D>], &[Tensor<S, D>]) = match m.p.material {
+        Material::Hydro { .. } => (&ws.hydro, &ws.hydro),
+        _ => (z.sigma, if mixed { z.tau } else { z.sigma }),
     };
+    ws.art.clear();
+    if let (Some(a), FormKind::Classical | FormKind::Cll) = (m.p.art_stress, form) {
+        ws.art
+            .extend(sig.iter().zip(z.rho).map(|(s, &r)| art_tensor(s, r, a.eps)));
+    }
+    let (st, art, vol) = (&ws.st, &ws.art, &ws.vol);
+    let sum_form = matches!(form, FormKind::Classical | FormKind::Cll);
+    let diff_form = matches!(form, FormKind::Nonlocal | FormKind::Local | FormKind::Lnl);
+    let av = m.p.av;
+    // per-particle accelerations in parallel (rayon)
+    acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
+        let (rho_i, si) = (z.rho[i], &sig[i]);
+        let ri2 = rho_i * rho_i;
+        let (mut fa, mut fav, mut far) = ([S::zero(); D], [S::zero(); D], [S::zero(); D]);
+        st.for_each::<false>(m, z.x, vol, i, |nb| {
+            let j = nb.j;
+            if sum_form {
+                add(&mut fa, sum_term(si, ri2, &sig[j], z.rho[j], nb.g));
+            } else if diff_form {
+                add(&mut fa, diff_term(si, &sig[j], nb.g));
+            }
+            if j == i {
+                return;
+            }
+            if let Some(av) = &av {
+                let mut dv = [S::zero(); D];
+                for c in 0..D {
+                    dv[c] = z.v[i][c] - z.v[j][c];
+                }
+                let rho_bar = (rho_i + z.rho[j]) * 0.5;
+                add(
+                    &mut fav,
+                    av_pair(m, av, nb.d, dv, rho_bar, m.mass[j], Some(nb.gw)),
+                );
+            }
+            if !art.is_empty() {
+                let mut t = [[S::zero(); D]; D];
+                // symmetric: the upper triangle, mirrored
+                for p in 0..D {
+                    for q in p..D {
+                        t[p][q] = art[i][p][q] + art[j][p][q];
+                        t[q][p] = t[p][q];
+                    }
+                }
+                let f2 = dot(&t, nb.gw);
+                let fnn = st.fnn[nb.p];
+                for c in 0..D {
+                    far[c] += f2[c] * fnn * m.mass[j];
+                }
+            }
+        });
+        let mut a = match form {
+            FormKind::Classical => fa,
+            FormKind::Nonlocal | FormKind::Local => fa.map(|x| x / rho_i),
+            FormKind::Lnl | FormKind::Cll => {
+                let p = if form == FormKind::Lnl {
+                    fa.map(|x| x / rho_i)
+                } else {
+                    fa
+                };
+                let mut q = [S::zero(); D];
+                st.for_each::<true>(m, z.x, vol, i, |nb| {
+                    add(&mut q, diff_term(&tau[i], &tau[nb.j], nb.g));
+                });
+                let q = q.map(|x| x / rho_i);
+                let mut r = [S::zero(); D];
+                for k in 0..D {
+                    r[k] = p[k] * (1.0 - c) + q[k] * c;
+                }
+                r
+            }
+            _ => [S::zero(); D],
+        };
+        add(&mut a, fav);
+        if !art.is_empty() {
+            let w = if form == FormKind::Cll { 1.0 - c } else { 1.0 };
+            for k in 0..D {
+                a[k] += far[k] * w;
+            }
+        }
+        *out_a = a;
+    });
+}
+
+/// L_I = Σ_J (v_J − v_I) ⊗ ∇φ_J over stencil `B` of particle i, and with `diff` the δ-SPH
+/// sum Σ_J ψ_IJ · ∇_I W_IJ V_J (without its factor δ h c0).
+fn vel_grad_and_diffusion<S: Scalar, const D: usize, const B: bool>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    ws: &RateWorkspace<S, D>,
+    i: usize,
+    diff: bool,
+) -> (Tensor<S, D>, S) {
+    let (grad, vol) = (&ws.rho_grad, &ws.vol);
+    let mut l = [[S::zero(); D]; D];
     let mut sum = S::zero();
-    for nb in st {
-        let (gv, r2) = diffusion_pair(m, z, nb);
+    ws.st.for_each::<B>(m, z.x, vol, i, |nb| {
+        for a in 0..D {
+            let dv = z.v[nb.j][a] - z.v[i][a];
+            for b in 0..D {
+                l[a][b] += dv * nb.g[b];
+            }
+        }
+        if !diff || nb.j == i {
+            return;
+        }
+        let (gv, r2) = diffusion_pair(vol, &nb);
         if r2.re() == 0.0 {
-            continue;
+            return;
         }
         // ψ_IJ = 2(ρ_J − ρ_I) x_JI/|x_JI|² [− (⟨∇ρ⟩_I + ⟨∇ρ⟩_J)]
         let f = (z.rho[nb.j] - z.rho[i]) * 2.0 / r2;
@@ -400,8 +432,8 @@ fn density_diffusion<S: Scalar, const D: usize>(
             }
             sum += psi * gv[c];
         }
-    }
-    sum * (dd.delta * m.p.kp.h * dd.sound_speed)
+    });
+    (l, sum)
 }
 
 /// The rate of an Eulerian form, into the requested parts of `out`.
@@ -419,84 +451,44 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
         xo.copy_from_slice(z.v);
     }
     if let Some(acc) = out.v {
-        ws.hydro.clear();
-        if let Material::Hydro { bulk } = m.p.material {
-            ws.hydro.extend(z.rho.iter().map(|&r| {
-                let sg = (r / m.p.rho0 - 1.0) * (-bulk);
-                let mut t = [[S::zero(); D]; D];
-                for (a, row) in t.iter_mut().enumerate() {
-                    row[a] = sg;
-                }
-                t
-            }));
-        }
-        let (sig, tau): (&[Tensor<S, D>], &[Tensor<S, D>]) = match m.p.material {
-            Material::Hydro { .. } => (&ws.hydro, &ws.hydro),
-            _ => (z.sigma, if mixed { z.tau } else { z.sigma }),
-        };
-        ws.art.clear();
-        if let (Some(a), FormKind::Classical | FormKind::Cll) = (m.p.art_stress, form) {
-            ws.art
-                .extend(sig.iter().zip(z.rho).map(|(s, &r)| art_tensor(s, r, a.eps)));
-        }
-        let (st, art) = (&ws.stencils, &ws.art);
-        // per-particle accelerations in parallel (rayon)
-        acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
-            let (st_a, st_b) = (&st[i].a, &st[i].b);
-            let mut a = match form {
-                FormKind::Classical => div_sum(sig, z.rho, i, st_a),
-                FormKind::Nonlocal | FormKind::Local => div_difference(sig, z.rho[i], i, st_a),
-                FormKind::Lnl | FormKind::Cll => {
-                    let p = if form == FormKind::Lnl {
-                        div_difference(sig, z.rho[i], i, st_a)
-                    } else {
-                        div_sum(sig, z.rho, i, st_a)
-                    };
-                    let q = div_difference(tau, z.rho[i], i, st_b);
-                    let mut r = [S::zero(); D];
-                    for k in 0..D {
-                        r[k] = p[k] * (1.0 - c) + q[k] * c;
-                    }
-                    r
-                }
-                _ => [S::zero(); D],
-            };
-            let av = av_accel(m, z, i, st_a);
-            for k in 0..D {
-                a[k] += av[k];
-            }
-            if !art.is_empty() {
-                let ar = art_accel(m, art, i, st_a);
-                let w = if form == FormKind::Cll { 1.0 - c } else { 1.0 };
-                for k in 0..D {
-                    a[k] += ar[k] * w;
-                }
-            }
-            *out_a = a;
-        });
+        accelerations(m, z, acc, ws, mixed);
     }
     if let Some(AuxRates { rho, sigma, tau }) = out.aux {
-        let zero = [[S::zero(); D]; D];
-        ws.aux.resize(z.x.len(), (S::zero(), zero, zero));
+        let n = z.x.len();
         ws.rho_grad.clear();
         if let Some(DensityDiffusion {
             form: DiffusionForm::Antuono,
             ..
         }) = m.p.diffusion
         {
-            ws.rho_grad.resize(z.x.len(), [S::zero(); D]);
-            let st = &ws.stencils;
+            ws.rho_grad.resize(n, [S::zero(); D]);
+            let (st, vol) = (&ws.st, &ws.vol);
             ws.rho_grad
                 .par_iter_mut()
                 .enumerate()
-                .for_each(|(i, g)| *g = renormalised_density_gradient(m, z, i, &st[i].a));
+                .for_each(|(i, g)| *g = renormalised_density_gradient(m, z, i, st, vol));
         }
-        let (st, grad) = (&ws.stencils, &ws.rho_grad);
-        // per-particle auxiliary rates in parallel (rayon), then copied into `out`
-        ws.aux.par_iter_mut().enumerate().for_each(|(i, r)| {
-            let la = vel_grad(z.v, i, &st[i].a);
+        let ws = &*ws;
+        let diffusion = m.p.diffusion;
+        let zero = [[S::zero(); D]; D];
+        let (has_rho, has_sigma, has_tau) = (!rho.is_empty(), !sigma.is_empty(), !tau.is_empty());
+        assert!(
+            (!has_rho || rho.len() == n)
+                && (!has_sigma || sigma.len() == n)
+                && (!has_tau || tau.len() == n),
+            "auxiliary rate outputs: one entry per particle or none"
+        );
+        let (rho_o, sigma_o, tau_o) = (
+            Shared(rho.as_mut_ptr()),
+            Shared(sigma.as_mut_ptr()),
+            Shared(tau.as_mut_ptr()),
+        );
+        // per-particle auxiliary rates in parallel (rayon), written in place
+        (0..n).into_par_iter().for_each(|i| {
+            let (la, dsum) =
+                vel_grad_and_diffusion::<S, D, false>(m, z, ws, i, diffusion.is_some());
             let lb = if mixed {
-                vel_grad(z.v, i, &st[i].b)
+                vel_grad_and_diffusion::<S, D, true>(m, z, ws, i, false).0
             } else {
                 la
             };
@@ -505,13 +497,17 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
                 tra += la[k][k];
                 trb += lb[k][k];
             }
+            let dd = match diffusion {
+                Some(dd) => dsum * (dd.delta * m.p.kp.h * dd.sound_speed),
+                None => S::zero(),
+            };
             let rho_rate = -z.rho[i]
                 * if mixed {
                     tra * (1.0 - c) + trb * c
                 } else {
                     tra
                 }
-                + density_diffusion(m, z, i, &st[i].a, grad);
+                + dd;
             let sig_rate = if z.sigma.is_empty() {
                 zero
             } else {
@@ -522,12 +518,20 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
             } else {
                 stress_rate(&m.p.material, &z.tau[i], &lb)
             };
-            *r = (rho_rate, sig_rate, tau_rate);
+            // SAFETY: index i is written by this iteration only, and is in bounds of every
+            // non-empty output (checked above)
+            unsafe {
+                if has_rho {
+                    rho_o.write(i, rho_rate);
+                }
+                if has_sigma {
+                    sigma_o.write(i, sig_rate);
+                }
+                if has_tau {
+                    tau_o.write(i, tau_rate);
+                }
+            }
         });
-        let aux = &ws.aux;
-        rho.par_iter_mut().zip(aux).for_each(|(o, r)| *o = r.0);
-        sigma.par_iter_mut().zip(aux).for_each(|(o, r)| *o = r.1);
-        tau.par_iter_mut().zip(aux).for_each(|(o, r)| *o = r.2);
     }
     Ok(())
 }
@@ -733,7 +737,7 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
                     dv[c] = z.v[i][c] - z.v[k][c];
                 }
                 let rho_bar = S::cst((rho_i + m.mass[k] / m.vol_ref[k]) * 0.5);
-                let f = av_pair(m, &av, d, dv, rho_bar, m.mass[k]);
+                let f = av_pair(m, &av, d, dv, rho_bar, m.mass[k], None);
                 for c in 0..D {
                     acc[i][c] += f[c];
                 }

@@ -1,64 +1,156 @@
 //! Reusable buffers of the rate evaluation in D dimensions, so that a time loop does not
-//! allocate.
+//! allocate, and the compact neighbour stencils.
 //!
 //! A [`RateWorkspace`] holds everything [`Model::rate_with`](super::Model::rate_with) and
 //! [`Model::rate_into`](super::Model::rate_into) need besides the state and the output: the
 //! cell list, the volumes V_J = m_J/ρ_J, the hydrodynamic and artificial stresses, the
-//! neighbour stencils (one `Vec` per particle, cleared and refilled), per-chunk scratch for the
-//! shape-function evaluation, and the per-particle auxiliary rates. Every buffer is cleared and
-//! refilled, never freed: once the buffers have grown (the first evaluation, or the first in
-//! which a particle has more neighbours than ever before), an evaluation does not allocate.
+//! neighbour stencils and per-chunk scratch for the shape-function evaluation. Every buffer is
+//! cleared and refilled, never freed: once the buffers have grown (the first evaluation, or the
+//! first in which there are more neighbour pairs than ever before), an evaluation does not
+//! allocate.
+//!
+//! # Compact stencils
+//!
+//! Everything the rate needs of a neighbour pair that depends on its separation only is
+//! computed once per *unordered* pair {I, J} when the stencils are built, and stored once:
+//!
+//! - `ab = I xor J` (4 B): from either end, the other one is `ab xor I`;
+//! - `f = −W'(r)/r` (one scalar): the kernel gradient is ∇_I W_IJ = f (x_J − x_I), antisymmetric,
+//!   with x_J − x_I recomputed from the positions (a subtraction; minimum image in a periodic
+//!   box), bitwise the separation the stencil was built from;
+//! - with artificial stress, the factor fⁿ_IJ = (W(r)/W(Δp))ⁿ (one scalar).
+//!
+//! Each particle then lists its neighbours as 4-byte pair indices (CSR: `start`, `entry`), the
+//! pairs it owns (J ≥ I) first. The SPH shape functions need nothing more (∇φ_J = V_J ∇_I W_IJ
+//! with the current volumes); other shape families (Shepard, corrected, MLS) are not symmetric
+//! and store ∇φ_J per directed entry (`ga`), as do the corrected functions of the mixed forms
+//! (`gb`). The particle itself is listed only where its ∇φ can be nonzero (non-SPH families).
+//! No kernel is evaluated inside a rate evaluation besides the stencil build.
 //!
 //! Results do not depend on what the workspace was used for before, so one workspace may serve
-//! several models. The stencils are a function of the positions, the volumes and the kernel,
-//! shape family and period only; an evaluation whose positions, densities, masses and those
-//! parameters are *exactly* (bitwise) those of the previous one reuses them instead of
-//! rebuilding them. The solver meets this case once per step with artificial viscosity: the
-//! first kick's acceleration is evaluated where the previous step's last one was (same x and ρ,
-//! other v), so one stencil build of three is saved.
+//! several models. The stencils are a function of the positions (and, for the non-SPH shape
+//! families, of the volumes), the kernel, shape family, artificial-stress factor and period
+//! only; an evaluation whose inputs are *exactly* (bitwise) those of the previous one reuses
+//! them instead of rebuilding them. The solver meets this case once per step with artificial
+//! viscosity: the first kick's acceleration is evaluated where the previous step's last one
+//! was (same x and ρ, other v), so one stencil build of three is saved.
 
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
 use super::model_nd::{Model, StateView, Tensor};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::kernel;
 use crate::neighbours::CellList;
 use crate::scalar::Scalar;
 use crate::shape::{ShapeFamily, eval_d};
 use rayon::prelude::*;
 
-/// Neighbour J of an evaluation point: index, d = x_J − x, ∇φ_J.
+/// One neighbour J of particle I as the rate loops see it (expanded from the compact stencil,
+/// never stored): index, d = x_J − x_I, ∇_I W_IJ, ∇φ_J(x_I) of the form's shape family, and
+/// the pair's index in the pair arrays.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NbD<S, const D: usize> {
     pub j: usize,
     pub d: [S; D],
+    /// ∇_I W_IJ = −W'(r) d/r.
+    pub gw: [S; D],
+    /// ∇φ_J(x_I).
     pub g: [S; D],
+    pub p: usize,
 }
 
-/// The stencils of one particle: `a` with the form's shape family, `b` with corrected shape
-/// functions (mixed forms only; empty otherwise).
+/// The compact stencils of every particle (module docs).
 #[derive(Clone, Debug)]
-pub(crate) struct Stencil<S, const D: usize> {
-    pub a: Vec<NbD<S, D>>,
-    pub b: Vec<NbD<S, D>>,
+pub(crate) struct Stencils<S, const D: usize> {
+    /// Directed entries of particle I: `entry[start[I]..start[I + 1]]` (n + 1 offsets).
+    start: Vec<u32>,
+    /// Pairs owned by I (J ≥ I): `upper[I]..upper[I + 1]`.
+    upper: Vec<u32>,
+    /// Pair index of each directed entry.
+    entry: Vec<u32>,
+    /// I xor J of each pair.
+    ab: Vec<u32>,
+    /// −W'(r)/r of each pair.
+    pub f: Vec<S>,
+    /// Artificial-stress factor (W(r)/W(Δp))ⁿ of each pair (empty without artificial stress).
+    pub fnn: Vec<S>,
+    /// ∇φ_J of the form's family per directed entry (empty for the SPH family).
+    ga: Vec<[S; D]>,
+    /// Corrected ∇φ_J per directed entry (mixed forms only; empty otherwise).
+    gb: Vec<[S; D]>,
+    /// Whether a particle lists itself.
+    with_self: bool,
 }
 
-impl<S, const D: usize> Default for Stencil<S, D> {
+impl<S, const D: usize> Default for Stencils<S, D> {
     fn default() -> Self {
         Self {
-            a: Vec::new(),
-            b: Vec::new(),
+            start: Vec::new(),
+            upper: Vec::new(),
+            entry: Vec::new(),
+            ab: Vec::new(),
+            f: Vec::new(),
+            fnn: Vec::new(),
+            ga: Vec::new(),
+            gb: Vec::new(),
+            with_self: false,
         }
     }
 }
 
-/// Scratch of the shape-function evaluation of one chunk of particles: (relative position,
-/// volume), neighbour indices, (φ, ∇φ).
+impl<S: Scalar, const D: usize> Stencils<S, D> {
+    /// Number of particles of the last build.
+    fn len(&self) -> usize {
+        self.start.len().saturating_sub(1)
+    }
+
+    /// Calls `visit` for every neighbour of particle `i` in stencil `a` (`b`: the corrected
+    /// one of the mixed forms), with the separation recomputed from `x` by `m.rel` and the
+    /// volumes `vol` (∇φ of the SPH family).
+    #[inline]
+    pub(crate) fn for_each<const B: bool>(
+        &self,
+        m: &Model<D>,
+        x: &[[S; D]],
+        vol: &[S],
+        i: usize,
+        mut visit: impl FnMut(NbD<S, D>),
+    ) {
+        let (e0, e1) = (self.start[i] as usize, self.start[i + 1] as usize);
+        let xi = x[i];
+        for e in e0..e1 {
+            let p = self.entry[e] as usize;
+            let j = (self.ab[p] ^ i as u32) as usize;
+            let d = m.rel(xi, x[j]);
+            let f = self.f[p];
+            let gw = d.map(|c| f * c);
+            let g = if B {
+                self.gb[e]
+            } else if self.ga.is_empty() {
+                let vj = vol[j];
+                gw.map(|c| vj * c)
+            } else {
+                self.ga[e]
+            };
+            visit(NbD { j, d, gw, g, p });
+        }
+    }
+
+    /// Directed entries in total.
+    fn entries(&self) -> usize {
+        self.entry.len()
+    }
+}
+
+/// Scratch of the stencil build of one chunk of particles: (relative position, volume),
+/// neighbour indices, (φ, ∇φ) of the family and of the corrected functions.
 #[derive(Clone, Debug)]
 struct ShapeScratch<S, const D: usize> {
     nodes: Vec<([S; D], S)>,
     idx: Vec<usize>,
     vals: Vec<(S, [S; D])>,
+    vals_b: Vec<(S, [S; D])>,
 }
 
 impl<S, const D: usize> Default for ShapeScratch<S, D> {
@@ -67,12 +159,13 @@ impl<S, const D: usize> Default for ShapeScratch<S, D> {
             nodes: Vec::new(),
             idx: Vec::new(),
             vals: Vec::new(),
+            vals_b: Vec::new(),
         }
     }
 }
 
-/// Per-particle auxiliary rates (ρ̇, σ̇, τ̇).
-pub(crate) type AuxRate<S, const D: usize> = (S, Tensor<S, D>, Tensor<S, D>);
+/// Top bit of a directed entry between passes 2 and 3: a neighbour index, not yet a pair.
+const LOWER: u32 = 1 << 31;
 
 /// Particles per parallel work item of the stencil build (each item owns one scratch).
 const CHUNK: usize = 128;
@@ -82,30 +175,31 @@ const CHUNK: usize = 128;
 /// dimension (2 by default).
 #[derive(Clone, Debug)]
 pub struct RateWorkspace<S, const D: usize = 2> {
-    /// Positions' values (for the cell list).
+    /// Positions' values (for the cell list; for a value-only `S`, the key of the stencils).
     pos: Vec<[f64; D]>,
     cells: CellList<D>,
     /// V_J = m_J / ρ_J.
-    vol: Vec<S>,
-    pub(crate) stencils: Vec<Stencil<S, D>>,
+    pub(crate) vol: Vec<S>,
+    pub(crate) st: Stencils<S, D>,
     scratch: Vec<ShapeScratch<S, D>>,
     /// Hydrodynamic stress −p I from the density.
     pub(crate) hydro: Vec<Tensor<S, D>>,
     /// Artificial-stress tensors R_I.
     pub(crate) art: Vec<Tensor<S, D>>,
-    pub(crate) aux: Vec<AuxRate<S, D>>,
     /// Displacements (total-Lagrangian forms).
     pub(crate) disp: Vec<[S; D]>,
     /// Antuono's renormalised density gradients ⟨∇ρ⟩_I (δ-SPH).
     pub(crate) rho_grad: Vec<[S; D]>,
     /// What the current stencils were built for (`None`: nothing valid).
     key: Option<StencilKey<D>>,
+    /// Positions of the build, for scalars with a tangent (value-only ones use `pos`).
     key_x: Vec<[S; D]>,
+    /// Densities and masses of the build (non-SPH shape families only).
     key_rho: Vec<S>,
     key_mass: Vec<f64>,
 }
 
-/// The parameters the stencils depend on besides x, ρ and m.
+/// The parameters the stencils depend on besides x (and ρ, m for non-SPH families).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct StencilKey<const D: usize> {
     family: ShapeFamily,
@@ -113,6 +207,8 @@ struct StencilKey<const D: usize> {
     kernel: &'static str,
     h: f64,
     period: Option<[[f64; D]; D]>,
+    /// (n, Δp) of the artificial-stress factor.
+    art: Option<(i32, f64)>,
 }
 
 impl<S, const D: usize> Default for RateWorkspace<S, D> {
@@ -121,11 +217,10 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             pos: Vec::new(),
             cells: CellList::default(),
             vol: Vec::new(),
-            stencils: Vec::new(),
+            st: Stencils::default(),
             scratch: Vec::new(),
             hydro: Vec::new(),
             art: Vec::new(),
-            aux: Vec::new(),
             disp: Vec::new(),
             rho_grad: Vec::new(),
             key: None,
@@ -133,6 +228,42 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             key_rho: Vec::new(),
             key_mass: Vec::new(),
         }
+    }
+}
+
+/// Raw pointer to a buffer written in parallel at disjoint indices.
+pub(crate) struct Shared<T>(pub(crate) *mut T);
+impl<T> Clone for Shared<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<T> Copy for Shared<T> {}
+// SAFETY: used only to write disjoint elements from different threads (see each use).
+unsafe impl<T> Send for Shared<T> {}
+// SAFETY: as above.
+unsafe impl<T> Sync for Shared<T> {}
+
+impl<T> Shared<T> {
+    /// Writes element `k`.
+    ///
+    /// # Safety
+    /// `k` is in bounds of the buffer and no other thread reads or writes element `k`
+    /// meanwhile.
+    #[inline]
+    pub(crate) unsafe fn write(self, k: usize, v: T) {
+        // SAFETY: the caller's contract.
+        unsafe { self.0.add(k).write(v) }
+    }
+
+    /// Reads element `k`.
+    ///
+    /// # Safety
+    /// `k` is in bounds, initialised, and no other thread writes element `k` meanwhile.
+    #[inline]
+    pub(crate) unsafe fn read(self, k: usize) -> T {
+        // SAFETY: the caller's contract.
+        unsafe { self.0.add(k).read() }
     }
 }
 
@@ -145,37 +276,39 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     /// Mean number of neighbours per particle (the particle itself included) in the stencils
     /// of the last Eulerian evaluation; `None` before any.
     pub fn mean_neighbours(&self) -> Option<f64> {
-        if self.stencils.is_empty() {
+        let n = self.st.len();
+        if n == 0 {
             return None;
         }
-        let total: usize = self.stencils.iter().map(|s| s.a.len()).sum();
-        Some(total as f64 / self.stencils.len() as f64)
+        let own = if self.st.with_self { 0 } else { n };
+        Some((self.st.entries() + own) as f64 / n as f64)
     }
 
     /// Bytes reserved by the buffers (capacities, not lengths), for memory reports.
     pub fn reserved_bytes(&self) -> usize {
         use std::mem::size_of;
-        let st: usize = self
-            .stencils
-            .iter()
-            .map(|s| (s.a.capacity() + s.b.capacity()) * size_of::<NbD<S, D>>())
-            .sum();
+        let st = &self.st;
+        let stencils =
+            (st.start.capacity() + st.upper.capacity() + st.entry.capacity() + st.ab.capacity())
+                * size_of::<u32>()
+                + (st.f.capacity() + st.fnn.capacity()) * size_of::<S>()
+                + (st.ga.capacity() + st.gb.capacity()) * size_of::<[S; D]>();
         let sc: usize = self
             .scratch
             .iter()
             .map(|s| {
                 s.nodes.capacity() * size_of::<([S; D], S)>()
                     + s.idx.capacity() * size_of::<usize>()
-                    + s.vals.capacity() * size_of::<(S, [S; D])>()
+                    + (s.vals.capacity() + s.vals_b.capacity()) * size_of::<(S, [S; D])>()
             })
             .sum();
-        st + sc
-            + self.stencils.capacity() * size_of::<Stencil<S, D>>()
+        stencils
+            + sc
             + self.scratch.capacity() * size_of::<ShapeScratch<S, D>>()
+            + self.cells.reserved_bytes()
             + self.pos.capacity() * size_of::<[f64; D]>()
             + self.vol.capacity() * size_of::<S>()
             + (self.hydro.capacity() + self.art.capacity()) * size_of::<Tensor<S, D>>()
-            + self.aux.capacity() * size_of::<AuxRate<S, D>>()
             + self.disp.capacity() * size_of::<[S; D]>()
             + self.rho_grad.capacity() * size_of::<[S; D]>()
             + self.key_x.capacity() * size_of::<[S; D]>()
@@ -183,28 +316,37 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             + self.key_mass.capacity() * size_of::<f64>()
     }
 
-    /// Rebuilds the stencils of every particle of `z`: the neighbours within the support
-    /// (cell list for open domains and rectangular periodic boxes, direct scan otherwise) with
-    /// ∇φ_J of the model's shape family, and with corrected shape functions in `b` when
-    /// `with_corrected`. In parallel over chunks of particles (rayon). Kept as they are when
-    /// built for exactly the same inputs (module docs).
+    /// Fills the volumes V_J = m_J/ρ_J and (re)builds the stencils of every particle of `z`:
+    /// the neighbours within the support (cell list for open domains and rectangular periodic
+    /// boxes, direct scan otherwise), the pair data, and ∇φ_J of the model's shape family
+    /// (non-SPH families) and of the corrected functions when `with_corrected`. In parallel
+    /// (rayon). Kept as they are when built for exactly the same inputs (module docs).
     pub(crate) fn build_stencils(
         &mut self,
         m: &Model<D>,
         z: StateView<'_, S, D>,
         with_corrected: bool,
     ) -> Result<()> {
+        self.vol.clear();
+        self.vol.extend(
+            z.rho
+                .iter()
+                .zip(&m.mass)
+                .map(|(&rho, &ms)| S::cst(ms) / rho),
+        );
         let key = StencilKey {
             family: m.p.shape,
             with_corrected,
             kernel: m.p.kp.kernel.name(),
             h: m.p.kp.h,
             period: m.period,
+            art: m.p.art_stress.map(|a| (a.n, a.spacing)),
         };
+        let sph = m.p.shape == ShapeFamily::Sph && !with_corrected;
         if self.key == Some(key)
-            && self.key_x == z.x
-            && self.key_rho == z.rho
-            && self.key_mass == m.mass
+            && self.st.len() == z.x.len()
+            && self.same_positions(z.x)
+            && (sph || (self.key_rho == z.rho && self.key_mass == m.mass))
         {
             return Ok(());
         }
@@ -212,12 +354,31 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         self.rebuild_stencils(m, z, with_corrected)?;
         self.key = Some(key);
         self.key_x.clear();
-        self.key_x.extend_from_slice(z.x);
+        if S::TANGENT {
+            self.key_x.extend_from_slice(z.x);
+        }
         self.key_rho.clear();
-        self.key_rho.extend_from_slice(z.rho);
         self.key_mass.clear();
-        self.key_mass.extend_from_slice(&m.mass);
+        if !sph {
+            self.key_rho.extend_from_slice(z.rho);
+            self.key_mass.extend_from_slice(&m.mass);
+        }
         Ok(())
+    }
+
+    /// Whether `x` is bitwise the positions of the last build.
+    fn same_positions(&self, x: &[[S; D]]) -> bool {
+        if S::TANGENT {
+            self.key_x == x
+        } else {
+            // a value-only scalar is its value: `pos` holds the positions of the build
+            self.pos.len() == x.len()
+                && self
+                    .pos
+                    .iter()
+                    .zip(x)
+                    .all(|(p, q)| (0..D).all(|c| p[c].to_bits() == q[c].re().to_bits()))
+        }
     }
 
     fn rebuild_stencils(
@@ -227,18 +388,16 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         with_corrected: bool,
     ) -> Result<()> {
         let n = z.x.len();
+        if n >= u32::MAX as usize / 2 {
+            return Err(Error::Incompatible(format!(
+                "{n} particles: the stencils index particles with 32 bits"
+            )));
+        }
         let r = m.p.kp.support();
         // |d| < r tested as |d|² < r² (no hypot: a quarter of the time of the whole rate went
         // into libm's hypot). The two can differ only within an ulp of the support radius,
         // where W and ∇W vanish.
         let r2 = r * r;
-        self.vol.clear();
-        self.vol.extend(
-            z.rho
-                .iter()
-                .zip(&m.mass)
-                .map(|(&rho, &ms)| S::cst(ms) / rho),
-        );
         self.pos.clear();
         self.pos.extend(z.x.iter().map(|p| p.map(|c| c.re())));
         let grid = match m.period {
@@ -256,79 +415,261 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             }
             Some(_) => false,
         };
-        if self.stencils.len() < n {
-            self.stencils.resize_with(n, Stencil::default);
+        let family = m.p.shape;
+        let sph_a = family == ShapeFamily::Sph;
+        let with_self = !sph_a;
+        let (pos, cells) = (&self.pos, &self.cells);
+        // the neighbours of i within the support, in a fixed order (cell list or index order)
+        let scan = |i: usize, visit: &mut dyn FnMut(usize, [S; D])| {
+            let xi = z.x[i];
+            let mut test = |j: usize| {
+                let d = m.rel(xi, z.x[j]);
+                let mut d2 = d[0].re() * d[0].re();
+                for c in 1..D {
+                    d2 += d[c].re() * d[c].re();
+                }
+                if d2 < r2 {
+                    visit(j, d);
+                }
+            };
+            if grid {
+                cells.for_candidates(pos[i], &mut test);
+            } else {
+                (0..n).for_each(&mut test);
+            }
+        };
+
+        // pass 1: directed entries and owned pairs of each particle
+        let st = &mut self.st;
+        st.with_self = with_self;
+        st.start.resize(n + 1, 0);
+        st.upper.resize(n + 1, 0);
+        st.start[0] = 0;
+        st.upper[0] = 0;
+        st.start[1..]
+            .par_iter_mut()
+            .zip(st.upper[1..].par_iter_mut())
+            .enumerate()
+            .for_each(|(i, (s, u))| {
+                let (mut all, mut own) = (0u32, 0u32);
+                scan(i, &mut |j, _| {
+                    if j != i || with_self {
+                        all += 1;
+                        own += u32::from(j >= i);
+                    }
+                });
+                *s = all;
+                *u = own;
+            });
+        for i in 0..n {
+            st.start[i + 1] += st.start[i];
+            st.upper[i + 1] += st.upper[i];
         }
-        self.stencils.truncate(n);
+        let (entries, pairs) = (st.start[n] as usize, st.upper[n] as usize);
+        fit(&mut st.entry, entries, 0);
+        fit(&mut st.ab, pairs, 0);
+        fit(&mut st.f, pairs, S::zero());
+        let art = m.p.art_stress;
+        fit(
+            &mut st.fnn,
+            if art.is_some() { pairs } else { 0 },
+            S::zero(),
+        );
+        fit(&mut st.ga, if sph_a { 0 } else { entries }, [S::zero(); D]);
+        fit(
+            &mut st.gb,
+            if with_corrected { entries } else { 0 },
+            [S::zero(); D],
+        );
+
+        // pass 2: pair data, owned pairs' indices, the other entries' neighbour index (for
+        // pass 3), and ∇φ of the non-SPH families
         let chunks = n.div_ceil(CHUNK);
         if self.scratch.len() < chunks {
             self.scratch.resize_with(chunks, ShapeScratch::default);
         }
-        let (pos, vol, cells) = (&self.pos, &self.vol, &self.cells);
-        let family = m.p.shape;
-        let kp = crate::shape::KernelParams {
-            kernel: m.p.kp.kernel,
-            h: m.p.kp.h,
-        };
-        self.stencils
-            .par_chunks_mut(CHUNK)
-            .zip(self.scratch[..chunks].par_iter_mut())
+        let (kern, h) = (m.p.kp.kernel, m.p.kp.h);
+        let kp = crate::shape::KernelParams { kernel: kern, h };
+        let w_dp = art.map(|a| kernel::w(kern, D, a.spacing, h));
+        let pk = PairKernel::new::<D>(kern, h);
+        let art_n = art.map_or(0, |a| a.n);
+        let (start, upper) = (&st.start, &st.upper);
+        let entry = Shared(st.entry.as_mut_ptr());
+        let ab = Shared(st.ab.as_mut_ptr());
+        let fp = Shared(st.f.as_mut_ptr());
+        let fnn = Shared(st.fnn.as_mut_ptr());
+        let ga = Shared(st.ga.as_mut_ptr());
+        let gb = Shared(st.gb.as_mut_ptr());
+        let vol = &self.vol;
+        self.scratch[..chunks]
+            .par_iter_mut()
             .enumerate()
-            .try_for_each(|(c, (chunk, sc))| -> Result<()> {
-                for (k, st) in chunk.iter_mut().enumerate() {
-                    let i = c * CHUNK + k;
+            .try_for_each(|(c, sc)| -> Result<()> {
+                for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                     sc.nodes.clear();
                     sc.idx.clear();
-                    let xi = z.x[i];
-                    let mut visit = |j: usize| {
-                        let d = m.rel(xi, z.x[j]);
-                        let mut d2 = d[0].re() * d[0].re();
-                        for c in 1..D {
-                            d2 += d[c].re() * d[c].re();
-                        }
-                        if d2 < r2 {
-                            sc.nodes.push((d, vol[j]));
-                            sc.idx.push(j);
-                        }
-                    };
-                    if grid {
-                        cells.for_candidates(pos[i], &mut visit);
-                    } else {
-                        (0..n).for_each(&mut visit);
+                    scan(i, &mut |j, d| {
+                        sc.nodes.push((d, vol[j]));
+                        sc.idx.push(j);
+                    });
+                    if !sph_a {
+                        eval_d(family, kp, &sc.nodes, pos[i][0], &mut sc.vals)?;
                     }
-                    eval_d(family, kp, &sc.nodes, pos[i][0], &mut sc.vals)?;
-                    fill(&mut st.a, sc);
                     if with_corrected {
                         eval_d(
                             ShapeFamily::Corrected,
                             kp,
                             &sc.nodes,
                             pos[i][0],
-                            &mut sc.vals,
+                            &mut sc.vals_b,
                         )?;
-                        fill(&mut st.b, sc);
+                    }
+                    // entries in the order of the scan (the summation order of every rate
+                    // term: an unstable run amplifies a reordering's last bits), owned pairs
+                    // numbered in that order
+                    let mut e = start[i] as usize;
+                    let mut p = upper[i] as usize;
+                    for (k, (&j, &(d, _))) in sc.idx.iter().zip(&sc.nodes).enumerate() {
+                        if j == i && !with_self {
+                            continue;
+                        }
+                        if j >= i {
+                            let (w, f) = pk.eval(d);
+                            // SAFETY: pair p and entry e belong to particle i alone (the
+                            // offsets of pass 1 partition both arrays by particle)
+                            unsafe {
+                                entry.write(e, p as u32);
+                                ab.write(p, (i ^ j) as u32);
+                                fp.write(p, f);
+                                if let Some(wd) = w_dp {
+                                    let q = w / wd;
+                                    let mut qn = S::cst(1.0);
+                                    for _ in 0..art_n {
+                                        qn *= q;
+                                    }
+                                    fnn.write(p, qn);
+                                }
+                            }
+                            p += 1;
+                        } else {
+                            // SAFETY: as above (the pair index is found in pass 3; the top bit
+                            // marks the entry, n < 2³¹)
+                            unsafe { entry.write(e, j as u32 | LOWER) };
+                        }
+                        // SAFETY: entry e belongs to particle i alone
+                        unsafe {
+                            if !sph_a {
+                                ga.write(e, sc.vals[k].1);
+                            }
+                            if with_corrected {
+                                gb.write(e, sc.vals_b[k].1);
+                            }
+                        }
+                        e += 1;
                     }
                 }
                 Ok(())
-            })
+            })?;
+
+        // pass 3: the pair index of each entry J < I, from J's owned pairs
+        let (start, upper, ab) = (&st.start, &st.upper, &st.ab);
+        let entry = Shared(st.entry.as_mut_ptr());
+        (0..n).into_par_iter().try_for_each(|i| -> Result<()> {
+            for e in start[i] as usize..start[i + 1] as usize {
+                // SAFETY: entry e belongs to particle i alone; it was written in pass 2
+                let v = unsafe { entry.read(e) };
+                if v & LOWER == 0 {
+                    continue;
+                }
+                let j = (v & !LOWER) as usize;
+                let (p0, p1) = (upper[j] as usize, upper[j + 1] as usize);
+                let k = ab[p0..p1]
+                    .iter()
+                    .position(|&x| (x ^ j as u32) as usize == i)
+                    .ok_or_else(|| {
+                        Error::Incompatible(format!(
+                            "neighbour search: particle {i} sees {j} but not the reverse"
+                        ))
+                    })?;
+                // SAFETY: as above
+                unsafe { entry.write(e, (p0 + k) as u32) };
+            }
+            Ok(())
+        })
     }
 }
 
-/// Refills a stencil from the scratch; on growth it reserves a quarter more than needed, so
-/// that small changes of the neighbour count in a time loop do not reallocate.
-fn fill<S: Scalar, const D: usize>(st: &mut Vec<NbD<S, D>>, sc: &ShapeScratch<S, D>) {
-    st.clear();
-    let k = sc.idx.len();
-    if st.capacity() < k {
-        st.reserve_exact(k + k / 4);
+/// The kernel's constants of one stencil build, so that a pair costs one evaluation of the
+/// kernel's shape and its derivative (no normalisation or power of h per pair).
+#[derive(Clone, Copy)]
+struct PairKernel<'a> {
+    k: &'a dyn kernel::Kernel,
+    h: f64,
+    /// ζh: W = W' = 0 from here on (the test of `kernel::w`).
+    support: f64,
+    /// σ/h^D and σ/h^(D+1), as `kernel::w` and `kernel::dw` compute them.
+    s0: f64,
+    s1: f64,
+    /// W(0) and −W''(0).
+    w0: f64,
+    f0: f64,
+}
+
+impl<'a> PairKernel<'a> {
+    fn new<const D: usize>(k: &'a dyn kernel::Kernel, h: f64) -> Self {
+        Self {
+            k,
+            h,
+            support: k.zeta() * h,
+            s0: k.sigma(D) / h.powi(D as i32),
+            s1: k.sigma(D) / h.powi(D as i32 + 1),
+            w0: kernel::w(k, D, 0.0f64, h),
+            f0: -kernel::d2w(k, D, 0.0, h),
+        }
     }
-    st.extend(
-        sc.idx
-            .iter()
-            .zip(&sc.nodes)
-            .zip(&sc.vals)
-            .map(|((&j, &(d, _)), &(_, g))| NbD { j, d, g }),
-    );
+
+    /// W(r) and f = −W'(r)/r of a separation d (so that ∇_x W(|x − x_J|) = f d), exactly as
+    /// [`kernel::w_and_grad`] computes them (same values and tangents), including the limit
+    /// −W''(0) at d = 0.
+    #[inline]
+    fn eval<S: Scalar, const D: usize>(&self, d: [S; D]) -> (S, S) {
+        let mut r2 = S::zero();
+        for a in d {
+            r2 += a * a;
+        }
+        if r2.re() == 0.0 {
+            return (S::cst(self.w0), S::cst(self.f0));
+        }
+        let r = r2.sqrt();
+        let rv = r.re().abs();
+        if rv >= self.support {
+            return (r.lift(0.0, 0.0), -r.lift(0.0, 0.0) / r);
+        }
+        let q = rv / self.h;
+        let (k, h) = (self.k, self.h);
+        // the tangents only for types that carry one, as in `kernel::w` and `kernel::dw`
+        let (g0, g1) = if S::TANGENT {
+            (self.s0 * k.df(D, q) / h, self.s1 * k.d2f(D, q) / h)
+        } else {
+            (0.0, 0.0)
+        };
+        let w = r.lift(self.s0 * k.f(D, q), g0);
+        let dw = r.lift(self.s1 * k.df(D, q), g1);
+        (w, -dw / r)
+    }
+}
+
+/// Resizes `v` to `len`, contents unspecified (every entry is rewritten by the build). On
+/// growth it frees the old buffer before allocating the new one (no copy, and no moment with
+/// both alive) and reserves 1/32 more than needed instead of `Vec`'s doubling, so that the pair
+/// count of a moving block, which changes by a few between steps, neither reallocates every
+/// step nor doubles the largest buffers.
+fn fit<T: Clone>(v: &mut Vec<T>, len: usize, fill: T) {
+    if v.capacity() < len {
+        *v = Vec::new();
+        v.reserve_exact(len + len / 32);
+    }
+    v.resize(len, fill);
 }
 
 /// Whether a periodic cell is a rectangular box (off-diagonal entries exactly zero).

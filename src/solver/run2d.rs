@@ -8,7 +8,7 @@ use std::cell::RefCell;
 
 use crate::error::{Error, Result};
 use crate::forms::{AuxRates, Comp, Model, RateOut, RateWorkspace, State, StateView, Tensor};
-use crate::integrator::{Integrator, SecondOrderSystem, Stepper};
+use crate::integrator::{Integrator, Scratch, SecondOrderSystem, Stepper, kdk_step};
 
 /// Treatment of the boundary particles' auxiliary state.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -65,6 +65,10 @@ struct StepBuffers<const D: usize> {
     q: Vec<f64>,
     /// Rate-function workspace.
     ws: RateWorkspace<f64, D>,
+    /// The `kdk` work arrays: the default scheme is stepped here directly, so that the
+    /// general [`Stepper`]'s four state-sized work triples (which `kdk` never uses) are not
+    /// allocated (288 B per particle in 2D).
+    kdk: Scratch<f64>,
 }
 
 impl AuxLayout {
@@ -268,6 +272,7 @@ impl<const D: usize> Run<D> {
     pub fn set_integrator(&mut self, integrator: Integrator) {
         if self.stepper.integrator != integrator {
             self.stepper = Stepper::new(integrator);
+            self.bufs.kdk = Scratch::default();
         }
     }
 
@@ -304,8 +309,13 @@ impl<const D: usize> Run<D> {
             lens,
             ws: RefCell::new(&mut self.bufs.ws),
         };
-        self.stepper
-            .step(&sys, z.x.as_flattened_mut(), z.v.as_flattened_mut(), q, dt);
+        let (x, v) = (z.x.as_flattened_mut(), z.v.as_flattened_mut());
+        if self.stepper.integrator == Integrator::Kdk {
+            // what `Stepper::step` does for kdk, without its unused work arrays
+            kdk_step(&sys, x, v, q, dt, &mut self.bufs.kdk);
+        } else {
+            self.stepper.step(&sys, x, v, q, dt);
+        }
         let (rho, sigma, tau) = split_aux(q, lens);
         if self.layout.rho {
             z.rho.copy_from_slice(rho);
@@ -328,6 +338,44 @@ impl<const D: usize> Run<D> {
     /// stencils (Eulerian forms; `None` before the first step and for total-Lagrangian forms).
     pub fn mean_neighbours(&self) -> Option<f64> {
         self.bufs.ws.mean_neighbours()
+    }
+
+    /// Bytes the run holds for its particles (capacities of every per-particle buffer): the
+    /// state (x, v, ρ, σ, τ), the boundary mask, the model's masses, reference positions and
+    /// volumes (and total-Lagrangian reference stencils), the flat auxiliary state of the step,
+    /// the rate workspace ([`RateWorkspace::reserved_bytes`]: stencils, cell list, volumes,
+    /// stresses, scratch) and the `kdk` integrator's work arrays (a, x½, q̇, and the end state
+    /// when the forces do not depend on v), which it sizes to exactly these lengths (its
+    /// capacities are private to it; other integrators' arrays are not counted).
+    pub fn state_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let z = &self.z;
+        let m = &self.model;
+        let vec = size_of::<[f64; D]>();
+        let ten = size_of::<Tensor<f64, D>>();
+        let state = (z.x.capacity() + z.v.capacity()) * vec
+            + z.rho.capacity() * 8
+            + (z.sigma.capacity() + z.tau.capacity()) * ten
+            + self.fixed.capacity();
+        let model = (m.mass.capacity() + m.vol_ref.capacity()) * 8
+            + m.x_ref.capacity() * vec
+            + m.ref_master
+                .iter()
+                .map(|s| s.capacity() * size_of::<(usize, f64, [f64; D])>())
+                .sum::<usize>();
+        let n = z.x.len();
+        let nq = self.bufs.q.len();
+        let kdk = if self.stepper.integrator == Integrator::Kdk && self.steps > 0 {
+            let end = if self.model.p.av.is_some() {
+                0
+            } else {
+                2 * n * D + nq
+            };
+            (2 * n * D + nq + end) * 8
+        } else {
+            0
+        };
+        state + model + self.bufs.q.capacity() * 8 + self.bufs.ws.reserved_bytes() + kdk
     }
 
     /// Largest |v| over the free particles.

@@ -339,6 +339,9 @@ pub struct BlockTiming {
     /// Measured peak bytes while building and running the block, per particle (null without
     /// a memory probe).
     pub bytes_per_particle: Option<f64>,
+    /// Bytes per particle held by the run at the end ([`Run::state_bytes`]: state, model,
+    /// step buffers, rate workspace with its stencils, integrator arrays; capacities).
+    pub state_bytes_per_particle: f64,
     /// Allocations per timed step (null without a memory probe).
     pub allocations_per_step: Option<f64>,
     /// max |v| at the end (c), a sanity check that the run stayed small and finite.
@@ -436,6 +439,7 @@ fn time_block_nd<const D: usize>(
         particle_steps_per_second: n as f64 / median,
         neighbours_per_particle: mean_neighbours(&run),
         bytes_per_particle,
+        state_bytes_per_particle: run.state_bytes() as f64 / n as f64,
         allocations_per_step,
         max_speed_end: run.max_free_speed(),
     })
@@ -510,10 +514,11 @@ pub fn run_throughput(
             "--sizes: give at least one size".into(),
         ));
     }
-    // resources of the largest block and of all runs together (crate::budget): stencil
-    // entries of 8 + 16D B with a quarter spare and ~400 B (2D) or ~1,000 B (3D) of state per
-    // particle (measured: 1,439 B at 20.8 neighbours in 2D, README; 6,395 B at 81 neighbours
-    // in 3D), and 1 warm-up + steps × repeats steps per size
+    // resources of the largest block and of all runs together (crate::budget): compact
+    // stencils of a 4-byte entry per neighbour plus half a pair (4 + 8 + 8 B) with 1/32 spare,
+    // 8D bytes more per entry and stencil for the non-SPH shape families, and ~350 B (2D) or
+    // ~800 B (3D) of state per particle (measured: 586 B at 20.8 neighbours in 2D; 1,787 B at
+    // 81 neighbours in 3D), and 1 warm-up + steps × repeats steps per size
     let r = cfg.kernel.zeta() * cfg.h_over_dx;
     let dim = cfg.dim as i32;
     let neighbours = if cfg.dim == 3 {
@@ -521,13 +526,16 @@ pub fn run_throughput(
     } else {
         std::f64::consts::PI * r * r + 1.0
     };
-    let entry = (8.0 + 16.0 * cfg.dim as f64) * 1.25;
-    let state = if cfg.dim == 3 { 1000.0 } else { 400.0 };
-    let stencils = if matches!(cfg.form, FormKind::Lnl | FormKind::Cll) {
-        2.0
-    } else {
-        1.0
-    };
+    let mixed = matches!(cfg.form, FormKind::Lnl | FormKind::Cll);
+    let per_stencil = 8.0 * cfg.dim as f64;
+    let entry = (4.0 + 10.0) * 1.04
+        + if cfg.shape != ShapeFamily::Sph {
+            per_stencil
+        } else {
+            0.0
+        }
+        + if mixed { per_stencil } else { 0.0 };
+    let state = if cfg.dim == 3 { 800.0 } else { 350.0 };
     let flag = if sizes.len() > 1 { "--sizes" } else { "--size" };
     for &n in sizes {
         check_size(flag, n, cfg.dim, cfg.domain, r)?;
@@ -539,7 +547,7 @@ pub fn run_throughput(
             "the {} block (~{neighbours:.0} neighbours per particle)",
             vec![largest.to_string(); cfg.dim].join(" × ")
         ),
-        largest.powi(dim) * (neighbours * entry * stencils + state),
+        largest.powi(dim) * (neighbours * entry + state),
     )?;
     let steps = (1 + cfg.steps * cfg.repeats) as f64;
     let particle_steps: f64 = sizes.iter().map(|&n| (n as f64).powi(dim) * steps).sum();
@@ -616,6 +624,7 @@ mod tests {
             particle_steps_per_second: 0.0,
             neighbours_per_particle: 0.0,
             bytes_per_particle: None,
+            state_bytes_per_particle: 0.0,
             allocations_per_step: None,
             max_speed_end: 0.0,
         }

@@ -1,0 +1,42 @@
+//! Criterion benches of the 2D/3D solver (issue 13, item 4): one `kdk` step of the open 200×200
+//! elastic block of `sphstab throughput` (classical m4, Jaumann, AV, artificial stress) on one
+//! thread and on two, and one step of the 3D periodic 22³ box (classical m4, elastic, AV) on
+//! one thread. `cargo bench --bench solver2d`; divide the time per step by the particle count
+//! (40,000 and 10,648) for the time per particle-step of `sphstab throughput`.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use sphstab::kernel;
+use sphstab::solver::throughput::{ThroughputConfig, build_block, build_block_nd};
+
+fn benches(c: &mut Criterion) {
+    let m4 = kernel::by_name("m4").unwrap();
+    let cfg = ThroughputConfig::new(m4);
+    let mut g = c.benchmark_group("solver");
+    g.sample_size(10);
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut run = build_block(&cfg, 200).unwrap();
+        pool.install(|| run.step(cfg.dt).unwrap());
+        g.bench_function(
+            format!("step 2D, open 200x200 elastic block, AV + art. stress, {threads} thread(s)"),
+            |b| b.iter(|| pool.install(|| run.step(cfg.dt).unwrap())),
+        );
+    }
+    let cfg3 = ThroughputConfig::new(m4).with_dim(3);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let mut run3 = build_block_nd::<3>(&cfg3, 22).unwrap();
+    pool.install(|| run3.step(cfg3.dt).unwrap());
+    g.bench_function("step 3D, periodic 22^3 elastic box, AV, 1 thread", |b| {
+        b.iter(|| pool.install(|| run3.step(cfg3.dt).unwrap()))
+    });
+    g.finish();
+}
+
+criterion_group!(solver2d, benches);
+criterion_main!(solver2d);
