@@ -189,56 +189,59 @@ pub fn grid(cfg: &AtlasConfig) -> Result<Vec<CellSpec>> {
 /// units of rounding (~1e-16).
 pub const AFFINE_TOL: f64 = 1e-13;
 
-/// The cells of one (form, kernel, h/Δx) at their σ̄ values (sweep order). The pre-stress
-/// enters the rate functions linearly, so the Jacobian columns are affine in σ̄: with five or
-/// more cells the group is linearised at its first and last σ̄, the affine interpolation is
-/// checked against direct linearisations at two interior σ̄ (1/3 and 2/3 along), and only if
-/// both agree to [`AFFINE_TOL`] are the other cells interpolated ([`Linearisation::lerp`]);
-/// otherwise (and for the consistent-mass form) every cell is linearised directly.
-fn group(cells: &[(usize, CellSpec)], table: &mut PhaseTable) -> Vec<Cell> {
+/// The cells of one (form, kernel, h/Δx) in this shard, at σ̄ values of the sweep's σ̄ grid
+/// `sgrid`. The pre-stress enters the rate functions linearly, so the Jacobian columns are
+/// affine in σ̄: with five or more σ̄ values the group is linearised directly at four probes of
+/// the grid (first, 1/3, 2/3, last), the affine interpolation between first and last is checked
+/// against the two interior probes, and only if both agree to [`AFFINE_TOL`] are the other
+/// cells interpolated ([`Linearisation::lerp`]); otherwise (and for the consistent-mass form)
+/// every cell is linearised directly. Probes and decision depend on the grid, not on the
+/// shard, so sharded atlases merge bit-identical to the unsharded one.
+fn group(cells: &[(usize, CellSpec)], sgrid: &[f64], table: &mut PhaseTable) -> Vec<Cell> {
     let points = table.kappas().len();
-    let lin = |&(_, (form, k, h, s)): &(usize, CellSpec)| {
+    let (form, k, h, _) = cells[0].1;
+    let lin = |s: f64| {
         let mut q = Query1D::new(form, k, h, s);
         q.points = points;
         q.linearise()
     };
-    let n = cells.len();
-    let stress = |i: usize| cells[i].1.3;
-    let mut direct: Vec<Option<Result<Linearisation>>> = (0..n).map(|_| None).collect();
+    let n = sgrid.len();
+    let mut probes: Vec<(f64, Result<Linearisation>)> = Vec::new();
     let mut affine = None;
     // not for a consistent mass: near κ = π its symbol M̂(κ) nearly vanishes and the growth
     // there changes at O(1) with a rounding-level change of the columns (pre-existing
     // ill-conditioning), so those cells keep their exact direct linearisation
-    if n >= 5 && !has_consistent_mass(cells[0].1.0) {
-        let probes = [0, n / 3, 2 * n / 3, n - 1];
-        for &i in &probes {
-            direct[i] = Some(lin(&cells[i]));
-        }
-        if let [Some(Ok(la)), Some(Ok(l1)), Some(Ok(l2)), Some(Ok(lb))] =
-            probes.map(|i| direct[i].as_ref())
-        {
-            let t = |i: usize| (stress(i) - stress(0)) / (stress(n - 1) - stress(0));
-            let ok = |l: &Linearisation, i: usize| {
-                la.lerp(lb, t(i))
+    if n >= 5 && !has_consistent_mass(form) {
+        probes = [0, n / 3, 2 * n / 3, n - 1]
+            .iter()
+            .map(|&i| (sgrid[i], lin(sgrid[i])))
+            .collect();
+        if let [(_, Ok(la)), (s1, Ok(l1)), (s2, Ok(l2)), (_, Ok(lb))] = &probes[..] {
+            let t = |s: f64| (s - sgrid[0]) / (sgrid[n - 1] - sgrid[0]);
+            let ok = |l: &Linearisation, s: f64| {
+                la.lerp(lb, t(s))
                     .and_then(|m| m.distance(l))
                     .is_some_and(|d| d <= AFFINE_TOL)
             };
-            if ok(l1, probes[1]) && ok(l2, probes[2]) {
+            if ok(l1, *s1) && ok(l2, *s2) {
                 affine = Some((la.clone(), lb.clone()));
             }
         }
     }
-    (0..n)
-        .map(|i| {
-            let l = match (direct[i].take(), &affine) {
-                (Some(l), _) => l,
+    cells
+        .iter()
+        .map(|&c| {
+            let s = c.1.3;
+            let probe = probes.iter().find(|p| p.0.to_bits() == s.to_bits());
+            let l = match (probe, &affine) {
+                (Some((_, l)), _) => l.clone(),
                 (None, Some((la, lb))) => {
-                    let t = (stress(i) - stress(0)) / (stress(n - 1) - stress(0));
+                    let t = (s - sgrid[0]) / (sgrid[n - 1] - sgrid[0]);
                     la.lerp(lb, t).ok_or(Error::NonFinite("σ̄ interpolation"))
                 }
-                (None, None) => lin(&cells[i]),
+                (None, None) => lin(s),
             };
-            evaluate(cells[i], l, table)
+            evaluate(c, l, table)
         })
         .collect()
 }
@@ -295,6 +298,8 @@ pub fn run(
 ) -> Result<AtlasReport> {
     let all = grid(cfg)?;
     let total_cells = all.len();
+    // the σ̄ grid (the same for every form, kernel and h: the innermost loop of the sweep)
+    let sgrid: Vec<f64> = all[..cfg.stress_points].iter().map(|c| c.3).collect();
     let mine: Vec<(usize, _)> = all
         .into_iter()
         .enumerate()
@@ -321,7 +326,7 @@ pub fn run(
         .map_init(
             || PhaseTable::new(&kappas, 0),
             |table, g| {
-                let out = group(g, table);
+                let out = group(g, &sgrid, table);
                 let d = done.fetch_add(out.len(), std::sync::atomic::Ordering::Relaxed) + out.len();
                 if d / 256 != (d - out.len()) / 256 || d == n {
                     progress(d, n);

@@ -281,9 +281,15 @@ fn golden_outputs_are_reproduced() {
     let (g_rows, w_rows) = (rows(&mut got), rows(&mut want["data"]));
     for (i, (g, w)) in g_rows.iter().zip(&w_rows).enumerate() {
         if w["critical_dt"].is_null() {
-            assert!(g["critical_dt"].is_null(), "tradeoff[{i}] is no longer unstable");
+            assert!(
+                g["critical_dt"].is_null(),
+                "tradeoff[{i}] is no longer unstable"
+            );
             let (a, b) = (g["l2"].as_f64().unwrap(), w["l2"].as_f64().unwrap());
-            assert!(b > 1e3 && (a / b).log2().abs() < 1.0, "tradeoff[{i}].l2: {a:e} vs {b:e}");
+            assert!(
+                b > 1e3 && (a / b).log2().abs() < 1.0,
+                "tradeoff[{i}].l2: {a:e} vs {b:e}"
+            );
             got["tradeoff"][i]["l2"] = Value::Null;
             want["data"]["tradeoff"][i]["l2"] = Value::Null;
         }
