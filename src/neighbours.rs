@@ -149,7 +149,21 @@ impl<const D: usize> CellList<D> {
     /// those within the radius; callers test the distance). Cells are visited first axis
     /// slowest, offsets −1, 0, 1 per axis; a cell is visited once even when a small periodic box
     /// (fewer than 3 cells on an axis) wraps onto it again.
+    #[inline]
     pub fn for_candidates(&self, p: [f64; D], mut f: impl FnMut(usize)) {
+        self.for_candidate_runs(p, |run| {
+            for &j in run {
+                f(j as usize);
+            }
+        });
+    }
+
+    /// The candidates of [`CellList::for_candidates`], in the same order, as contiguous runs of
+    /// the cell-sorted particle indices: cells adjacent along the last axis are adjacent in
+    /// memory, so a 3^D block is 3^(D−1) runs (more only where a periodic box wraps). A tight
+    /// loop over a run is what the neighbour search spends its time in.
+    #[inline]
+    pub fn for_candidate_runs(&self, p: [f64; D], mut f: impl FnMut(&[u32])) {
         // per axis: the distinct cell coordinates of offsets −1, 0, 1, in that order
         let mut ax = [[0usize; 3]; D];
         let mut cnt = [0usize; D];
@@ -177,17 +191,30 @@ impl<const D: usize> CellList<D> {
                 }
             }
         }
-        // odometer over the per-axis lists, last axis fastest
+        // the last axis' cells as runs of consecutive coordinates (one run unless it wraps)
+        let last = D - 1;
+        let mut runs = [(0usize, 0usize); 3];
+        let mut nruns = 0;
+        for &ci in &ax[last][..cnt[last]] {
+            if nruns > 0 && runs[nruns - 1].1 == ci {
+                runs[nruns - 1].1 = ci + 1;
+            } else {
+                runs[nruns] = (ci, ci + 1);
+                nruns += 1;
+            }
+        }
+        // odometer over the leading axes, last leading axis fastest
         let mut k = [0usize; D];
         loop {
-            let mut cell = 0;
-            for a in 0..D {
-                cell = cell * self.dims[a] + ax[a][k[a]];
+            let mut row = 0;
+            for a in 0..last {
+                row = row * self.dims[a] + ax[a][k[a]];
             }
-            for &j in &self.items[self.start[cell]..self.start[cell + 1]] {
-                f(j as usize);
+            let row = row * self.dims[last];
+            for &(c0, c1) in &runs[..nruns] {
+                f(&self.items[self.start[row + c0]..self.start[row + c1]]);
             }
-            let mut a = D;
+            let mut a = last;
             loop {
                 if a == 0 {
                     return;

@@ -44,12 +44,25 @@ fn dot<S: Scalar, const D: usize>(s: &Tensor<S, D>, g: [S; D]) -> [S; D] {
     f
 }
 
-/// (σ_I/ρ_I² + σ_J/ρ_J²) ρ_J · ∇φ_J, one term of the classical sum \[V21 eq 55\] (the
-/// quotients as divisions: the Swegle runs amplify a last-bit change of them to 1e-7).
+/// σ_I/ρ_I² (the upper triangle; the lower is not read), the particle's part of
+/// [`sum_term`], computed once per particle.
+#[inline]
+fn over_rho2<S: Scalar, const D: usize>(si: &Tensor<S, D>, ri2: S) -> Tensor<S, D> {
+    let mut t = [[S::zero(); D]; D];
+    for p in 0..D {
+        for q in p..D {
+            t[p][q] = si[p][q] / ri2;
+        }
+    }
+    t
+}
+
+/// (σ_I/ρ_I² + σ_J/ρ_J²) ρ_J · ∇φ_J, one term of the classical sum \[V21 eq 55\], with
+/// `si_r` = σ_I/ρ_I² from [`over_rho2`] (the quotients as divisions: the Swegle runs amplify
+/// a last-bit change of them to 1e-7).
 #[inline]
 fn sum_term<S: Scalar, const D: usize>(
-    si: &Tensor<S, D>,
-    ri2: S,
+    si_r: &Tensor<S, D>,
     sj: &Tensor<S, D>,
     rj: S,
     g: [S; D],
@@ -59,7 +72,7 @@ fn sum_term<S: Scalar, const D: usize>(
     // symmetric: the upper triangle, mirrored
     for p in 0..D {
         for q in p..D {
-            t[p][q] = si[p][q] / ri2 + sj[p][q] / rj2;
+            t[p][q] = si_r[p][q] + sj[p][q] / rj2;
             t[q][p] = t[p][q];
         }
     }
@@ -153,7 +166,7 @@ pub(crate) fn stress_rate<S: Scalar, const D: usize>(
 /// −m_J Π_IJ ∇_I W_IJ of one pair (Monaghan viscosity), `d` = x_J − x_I, `dv` = v_I − v_J,
 /// ρ̄ the pair's mean density, `grad` = ∇_I W_IJ (computed when `None`); zero for a receding
 /// pair when the viscosity acts on approaching pairs only.
-#[inline]
+#[inline(always)]
 fn av_pair<S: Scalar, const D: usize>(
     m: &Model<D>,
     av: &super::ArtificialViscosity,
@@ -171,10 +184,20 @@ fn av_pair<S: Scalar, const D: usize>(
         vx -= dv[c] * d[c];
         r2 += d[c] * d[c];
     }
-    if av.approaching_only && vx.re() >= 0.0 {
-        return [S::zero(); D];
+    let mut mu = vx * h / (r2 + 0.01 * h * h);
+    if av.approaching_only {
+        if S::TANGENT {
+            if vx.re() >= 0.0 {
+                return [S::zero(); D];
+            }
+        } else {
+            // a receding pair: μ = 0, so Π = 0 and the pair adds ±0 (bitwise what returning
+            // zero adds to a sum that starts at +0). A select, not a branch: whether a pair
+            // approaches is a coin flip, and the mispredicted branch cost a quarter of a
+            // solver step.
+            mu = mu * S::cst(if vx.re() < 0.0 { 1.0 } else { 0.0 });
+        }
     }
-    let mu = vx * h / (r2 + 0.01 * h * h);
     let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;
     // ∇_I W(x_I − x_J) = −W'(r) d/r, differentiable through d = 0
     let grad = grad.unwrap_or_else(|| kernel::w_and_grad(m.p.kp.kernel, h, d).1);
@@ -325,12 +348,12 @@ fn accelerations<S: Scalar, const D: usize>(
     // per-particle accelerations in parallel (rayon)
     acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
         let (rho_i, si) = (z.rho[i], &sig[i]);
-        let ri2 = rho_i * rho_i;
+        let si_r = over_rho2(si, rho_i * rho_i);
         let (mut fa, mut fav, mut far) = ([S::zero(); D], [S::zero(); D], [S::zero(); D]);
         st.for_each::<false>(m, z.x, vol, i, |nb| {
             let j = nb.j;
             if sum_form {
-                add(&mut fa, sum_term(si, ri2, &sig[j], z.rho[j], nb.g));
+                add(&mut fa, sum_term(&si_r, &sig[j], z.rho[j], nb.g));
             } else if diff_form {
                 add(&mut fa, diff_term(si, &sig[j], nb.g));
             }

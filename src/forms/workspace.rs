@@ -433,10 +433,40 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                 }
             };
             if grid {
-                cells.for_candidates(pos[i], &mut test);
+                cells.for_candidate_runs(pos[i], |run| {
+                    for &j in run {
+                        test(j as usize);
+                    }
+                });
             } else {
                 (0..n).for_each(&mut test);
             }
+        };
+        // (entries, owned pairs) of i: the neighbours `scan` visits, counted without visiting
+        // them (the same distance test on the positions' values, branch-free)
+        let count = |i: usize| -> (u32, u32) {
+            let pi = pos[i];
+            let (mut all, mut own) = (0u32, 0u32);
+            let mut test = |j: usize| {
+                let d = m.rel(pi, pos[j]);
+                let mut d2 = d[0] * d[0];
+                for c in 1..D {
+                    d2 += d[c] * d[c];
+                }
+                let listed = u32::from(d2 < r2) & u32::from(j != i || with_self);
+                all += listed;
+                own += listed & u32::from(j >= i);
+            };
+            if grid {
+                cells.for_candidate_runs(pi, |run| {
+                    for &j in run {
+                        test(j as usize);
+                    }
+                });
+            } else {
+                (0..n).for_each(&mut test);
+            }
+            (all, own)
         };
 
         // pass 1: directed entries and owned pairs of each particle
@@ -450,17 +480,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             .par_iter_mut()
             .zip(st.upper[1..].par_iter_mut())
             .enumerate()
-            .for_each(|(i, (s, u))| {
-                let (mut all, mut own) = (0u32, 0u32);
-                scan(i, &mut |j, _| {
-                    if j != i || with_self {
-                        all += 1;
-                        own += u32::from(j >= i);
-                    }
-                });
-                *s = all;
-                *u = own;
-            });
+            .for_each(|(i, (s, u))| (*s, *u) = count(i));
         for i in 0..n {
             st.start[i + 1] += st.start[i];
             st.upper[i + 1] += st.upper[i];
