@@ -56,19 +56,12 @@ impl<const D: usize> CellList<D> {
             + (self.items.capacity() + self.cell.capacity()) * std::mem::size_of::<u32>()
     }
 
-    /// Linear index of the cell with integer coordinates `c` (row-major, last axis fastest).
-    #[inline]
-    fn linear(&self, c: [usize; D]) -> usize {
-        let mut k = 0;
-        for a in 0..D {
-            k = k * self.dims[a] + c[a];
-        }
-        k
-    }
-
-    /// Rebuilds the list for `pts` in place, reusing its buffers (same result as
-    /// [`CellList::new`]). O(N + number of cells).
-    pub fn rebuild(&mut self, pts: &[[f64; D]], radius: f64, period: Option<[f64; D]>) {
+    /// The grid a list for `pts` would have: origin, cell side, cells per axis.
+    fn grid(
+        pts: &[[f64; D]],
+        radius: f64,
+        period: Option<[f64; D]>,
+    ) -> ([f64; D], f64, [usize; D]) {
         let (origin, ext) = match period {
             Some(l) => ([0.0; D], l),
             None => {
@@ -97,6 +90,37 @@ impl<const D: usize> CellList<D> {
             // periodic: cells must be at least `radius` wide, so use floor; open: one more cell
             dims[a] = ((ext[a] / size).floor() as usize).max(1) + usize::from(period.is_none());
         }
+        (origin, size, dims)
+    }
+
+    /// Linear index of the cell of `p` in the grid (`origin`, `size`, `dims`, `period`).
+    #[inline]
+    fn cell_of(
+        origin: [f64; D],
+        size: f64,
+        dims: [usize; D],
+        period: Option<[f64; D]>,
+        p: [f64; D],
+    ) -> u32 {
+        let mut k = 0;
+        for a in 0..D {
+            let x = p[a] - origin[a];
+            let c = match period {
+                Some(l) => {
+                    let x = x.rem_euclid(l[a]);
+                    ((x / l[a] * dims[a] as f64) as usize).min(dims[a] - 1)
+                }
+                None => ((x / size) as usize).min(dims[a] - 1),
+            };
+            k = k * dims[a] + c;
+        }
+        k as u32
+    }
+
+    /// Rebuilds the list for `pts` in place, reusing its buffers (same result as
+    /// [`CellList::new`]). O(N + number of cells).
+    pub fn rebuild(&mut self, pts: &[[f64; D]], radius: f64, period: Option<[f64; D]>) {
+        let (origin, size, dims) = Self::grid(pts, radius, period);
         self.origin = origin;
         self.size = size;
         self.dims = dims;
@@ -112,20 +136,10 @@ impl<const D: usize> CellList<D> {
         count.resize(ncell + 1, 0);
         let mut cell = std::mem::take(&mut self.cell);
         cell.clear();
-        cell.extend(pts.iter().map(|p| {
-            let mut c = [0usize; D];
-            for a in 0..D {
-                let x = p[a] - origin[a];
-                c[a] = match period {
-                    Some(l) => {
-                        let x = x.rem_euclid(l[a]);
-                        ((x / l[a] * dims[a] as f64) as usize).min(dims[a] - 1)
-                    }
-                    None => ((x / size) as usize).min(dims[a] - 1),
-                };
-            }
-            self.linear(c) as u32
-        }));
+        cell.extend(
+            pts.iter()
+                .map(|&p| Self::cell_of(origin, size, dims, period, p)),
+        );
         let count = &mut self.start;
         for &c in &cell {
             count[c as usize + 1] += 1;
@@ -143,6 +157,22 @@ impl<const D: usize> CellList<D> {
             self.fill[c] += 1;
         }
         self.cell = cell;
+    }
+
+    /// Whether a rebuild for `pts` would give exactly this list: the same grid (cells per
+    /// axis; the origin of an open domain may have moved) and every particle in the same cell.
+    /// Then the candidates of every particle, and their order, are those of the current list.
+    pub fn same_cells(&self, pts: &[[f64; D]], radius: f64, period: Option<[f64; D]>) -> bool {
+        use rayon::prelude::*;
+        let (origin, size, dims) = Self::grid(pts, radius, period);
+        dims == self.dims
+            && size == self.size
+            && period == self.period
+            && pts.len() == self.cell.len()
+            && pts
+                .par_iter()
+                .zip(&self.cell)
+                .all(|(&p, &c)| Self::cell_of(origin, size, dims, period, p) == c)
     }
 
     /// Calls `f(j)` for every particle j in the 3^D block of cells around `p` (a superset of

@@ -34,6 +34,28 @@
 //! them instead of rebuilding them. The solver meets this case once per step with artificial
 //! viscosity: the first kick's acceleration is evaluated where the previous step's last one
 //! was (same x and ρ, other v), so one stencil build of three is saved.
+//!
+//! # Reusing the pairs
+//!
+//! Between two builds the particles of a run move by a small fraction of the support, and the
+//! pairs rarely change. A build at new positions keeps the pairs of the last full build and
+//! only recomputes their data (−W'/r, fⁿ) when it can prove that a full build would find
+//! exactly the same pairs in exactly the same order:
+//!
+//! - the full build records a margin δ, a lower bound on | |d| − ζh | over every candidate pair
+//!   of the cell search (|d² − r²|/(3r), capped at r: no square root per candidate);
+//! - each later build adds the largest displacement since the previous build to a drift bound
+//!   Δ; a pair's separation has changed by at most 2Δ, so while Δ < δ/4 no candidate pair has
+//!   crossed the support radius;
+//! - the cell list at the new positions would put every particle in the same cell (same grid),
+//!   so the candidates of every particle, and the order in which the search visits them (the
+//!   summation order of every rate term), are unchanged.
+//!
+//! Otherwise (and for non-SPH shape families, whose ∇φ depend on every neighbour, and for
+//! scalars with a tangent) the build is a full one. The results are bitwise those of a full
+//! build at every evaluation (tested on stable and unstable runs,
+//! [`RateWorkspace::set_pair_reuse`]); the saving is the neighbour search, about half of a
+//! solver step. A diverging run (non-finite positions) makes Δ NaN and every build full.
 
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
@@ -197,6 +219,17 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     /// Densities and masses of the build (non-SPH shape families only).
     key_rho: Vec<S>,
     key_mass: Vec<f64>,
+    /// Lower bound, at the last full build, on | |d| − ζh | over every candidate pair of the
+    /// neighbour search: while the particles have moved less than a quarter of it in total,
+    /// no pair has crossed the support radius (module docs, "Reusing the pairs").
+    margin: f64,
+    /// Upper bound on how far any particle has moved since the last full build (the sum of
+    /// the largest displacement between consecutive builds).
+    drift: f64,
+    /// Whether valid pairs are reused (default; off: every build is a full one).
+    reuse: bool,
+    /// Full builds and pair refreshes so far.
+    builds: (u64, u64),
 }
 
 /// The parameters the stencils depend on besides x (and ρ, m for non-SPH families).
@@ -227,6 +260,10 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             key_x: Vec::new(),
             key_rho: Vec::new(),
             key_mass: Vec::new(),
+            margin: 0.0,
+            drift: f64::INFINITY,
+            reuse: true,
+            builds: (0, 0),
         }
     }
 }
@@ -282,6 +319,19 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         }
         let own = if self.st.with_self { 0 } else { n };
         Some((self.st.entries() + own) as f64 / n as f64)
+    }
+
+    /// Whether stencil builds reuse the pairs of the last full build while they are provably
+    /// unchanged (default `true`; module docs, "Reusing the pairs"). Results are bitwise the
+    /// same either way; `false` makes every build a full one (for measuring what the reuse
+    /// saves, and for testing it).
+    pub fn set_pair_reuse(&mut self, on: bool) {
+        self.reuse = on;
+    }
+
+    /// (full builds, pair refreshes) of the stencils since the workspace was created.
+    pub fn stencil_builds(&self) -> (u64, u64) {
+        self.builds
     }
 
     /// Bytes reserved by the buffers (capacities, not lengths), for memory reports.
@@ -350,8 +400,20 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         {
             return Ok(());
         }
+        let refresh = self.reuse
+            && !S::TANGENT
+            && sph
+            && self.key == Some(key)
+            && self.st.len() == z.x.len()
+            && self.pairs_still_valid(m, z.x);
         self.key = None;
-        self.rebuild_stencils(m, z, with_corrected)?;
+        if refresh {
+            self.refresh_pairs(m, z);
+            self.builds.1 += 1;
+        } else {
+            self.rebuild_stencils(m, z, with_corrected)?;
+            self.builds.0 += 1;
+        }
         self.key = Some(key);
         self.key_x.clear();
         if S::TANGENT {
@@ -364,6 +426,91 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             self.key_mass.extend_from_slice(&m.mass);
         }
         Ok(())
+    }
+
+    /// Whether the pairs of the last full build are exactly the pairs, in the same order, that
+    /// a rebuild at `x` would find (module docs, "Reusing the pairs"); updates the drift bound
+    /// and the positions of the build.
+    fn pairs_still_valid(&mut self, m: &Model<D>, x: &[[S; D]]) -> bool {
+        if self.pos.len() != x.len() || !(self.margin > 0.0) {
+            return false;
+        }
+        // the largest displacement since the last build; NaN (a diverged run) propagates
+        let step2 = self
+            .pos
+            .par_iter()
+            .zip(x)
+            .map(|(p, q)| {
+                let mut e2 = 0.0;
+                for c in 0..D {
+                    let e = q[c].re() - p[c];
+                    e2 += e * e;
+                }
+                e2
+            })
+            .reduce(
+                || 0.0,
+                |a, b| {
+                    if a.is_nan() || b.is_nan() {
+                        f64::NAN
+                    } else {
+                        a.max(b)
+                    }
+                },
+            );
+        self.drift += step2.sqrt();
+        self.pos.clear();
+        self.pos.extend(x.iter().map(|p| p.map(|c| c.re())));
+        let r = m.p.kp.support();
+        // two particles approach each other by at most 2 × drift; the factor 2 more covers the
+        // rounding of the distances and of this bound by far (the margin must exceed 1e-9 r)
+        if !(self.drift < 0.25 * self.margin && self.margin > 1e-9 * r) {
+            return false;
+        }
+        match m.period {
+            None => self.cells.same_cells(&self.pos, r, None),
+            Some(l) if is_diagonal(&l) => {
+                let mut ext = [0.0; D];
+                for (a, e) in ext.iter_mut().enumerate() {
+                    *e = l[a][a];
+                }
+                self.cells.same_cells(&self.pos, r, Some(ext))
+            }
+            // direct scan in index order: the order does not depend on the positions
+            Some(_) => true,
+        }
+    }
+
+    /// Recomputes the pair data (−W'/r and the artificial-stress factor) of the current pairs
+    /// at the positions of `z`, as the full build computes them.
+    fn refresh_pairs(&mut self, m: &Model<D>, z: StateView<'_, S, D>) {
+        let n = z.x.len();
+        let (kern, h) = (m.p.kp.kernel, m.p.kp.h);
+        let art = m.p.art_stress;
+        let w_dp = art.map(|a| kernel::w(kern, D, a.spacing, h));
+        let art_n = art.map_or(0, |a| a.n);
+        let pk = PairKernel::new::<D>(kern, h);
+        let st = &mut self.st;
+        let (upper, ab) = (&st.upper, &st.ab);
+        let fp = Shared(st.f.as_mut_ptr());
+        let fnn = Shared(st.fnn.as_mut_ptr());
+        (0..n.div_ceil(CHUNK)).into_par_iter().for_each(|c| {
+            for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
+                let xi = z.x[i];
+                for p in upper[i] as usize..upper[i + 1] as usize {
+                    let j = (ab[p] ^ i as u32) as usize;
+                    let (w, f) = pk.eval(m.rel(xi, z.x[j]));
+                    // SAFETY: pair p is owned by particle i alone, and p < the pair count
+                    // (the lengths of f and, with artificial stress, fnn)
+                    unsafe {
+                        fp.write(p, f);
+                        if let Some(wd) = w_dp {
+                            fnn.write(p, art_factor(w, wd, art_n));
+                        }
+                    }
+                }
+            }
+        });
     }
 
     /// Whether `x` is bitwise the positions of the last build.
@@ -444,9 +591,11 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         };
         // (entries, owned pairs) of i: the neighbours `scan` visits, counted without visiting
         // them (the same distance test on the positions' values, branch-free)
-        let count = |i: usize| -> (u32, u32) {
+        // and the smallest |d² − r²| over every candidate (for the margin)
+        let count = |i: usize| -> (u32, u32, f64) {
             let pi = pos[i];
             let (mut all, mut own) = (0u32, 0u32);
+            let mut gap = f64::INFINITY;
             let mut test = |j: usize| {
                 let d = m.rel(pi, pos[j]);
                 let mut d2 = d[0] * d[0];
@@ -456,6 +605,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                 let listed = u32::from(d2 < r2) & u32::from(j != i || with_self);
                 all += listed;
                 own += listed & u32::from(j >= i);
+                gap = gap.min((d2 - r2).abs());
             };
             if grid {
                 cells.for_candidate_runs(pi, |run| {
@@ -466,7 +616,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             } else {
                 (0..n).for_each(&mut test);
             }
-            (all, own)
+            (all, own, gap)
         };
 
         // pass 1: directed entries and owned pairs of each particle
@@ -476,11 +626,19 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         st.upper.resize(n + 1, 0);
         st.start[0] = 0;
         st.upper[0] = 0;
-        st.start[1..]
+        let gap = st.start[1..]
             .par_iter_mut()
             .zip(st.upper[1..].par_iter_mut())
             .enumerate()
-            .for_each(|(i, (s, u))| (*s, *u) = count(i));
+            .map(|(i, (s, u))| {
+                let (all, own, gap) = count(i);
+                (*s, *u) = (all, own);
+                gap
+            })
+            .reduce(|| f64::INFINITY, f64::min);
+        // |d − r| = |d² − r²|/(d + r) ≥ |d² − r²|/(3r) when d < 2r, and ≥ r otherwise
+        self.margin = (gap / (3.0 * r)).min(r);
+        self.drift = 0.0;
         for i in 0..n {
             st.start[i + 1] += st.start[i];
             st.upper[i + 1] += st.upper[i];
@@ -562,12 +720,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                                 ab.write(p, (i ^ j) as u32);
                                 fp.write(p, f);
                                 if let Some(wd) = w_dp {
-                                    let q = w / wd;
-                                    let mut qn = S::cst(1.0);
-                                    for _ in 0..art_n {
-                                        qn *= q;
-                                    }
-                                    fnn.write(p, qn);
+                                    fnn.write(p, art_factor(w, wd, art_n));
                                 }
                             }
                             p += 1;
@@ -677,6 +830,17 @@ impl<'a> PairKernel<'a> {
         let dw = r.lift(self.s1 * k.df(D, q), g1);
         (w, -dw / r)
     }
+}
+
+/// The artificial-stress factor fⁿ = (W(r)/W(Δp))ⁿ of a pair, by repeated multiplication.
+#[inline]
+fn art_factor<S: Scalar>(w: S, w_dp: f64, n: i32) -> S {
+    let q = w / w_dp;
+    let mut qn = S::cst(1.0);
+    for _ in 0..n {
+        qn *= q;
+    }
+    qn
 }
 
 /// Resizes `v` to `len`, contents unspecified (every entry is rewritten by the build). On

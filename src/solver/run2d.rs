@@ -334,6 +334,17 @@ impl<const D: usize> Run<D> {
         Ok(())
     }
 
+    /// Whether the stencil builds reuse unchanged pairs (default `true`; bitwise the same
+    /// results, see [`RateWorkspace::set_pair_reuse`]).
+    pub fn set_pair_reuse(&mut self, on: bool) {
+        self.bufs.ws.set_pair_reuse(on);
+    }
+
+    /// (full builds, pair refreshes) of the stencils so far ([`RateWorkspace::stencil_builds`]).
+    pub fn stencil_builds(&self) -> (u64, u64) {
+        self.bufs.ws.stencil_builds()
+    }
+
     /// Mean number of neighbours per particle (itself included) in the last rate evaluation's
     /// stencils (Eulerian forms; `None` before the first step and for total-Lagrangian forms).
     pub fn mean_neighbours(&self) -> Option<f64> {

@@ -88,6 +88,8 @@ pub struct ThroughputConfig {
     pub repeats: usize,
     /// Amplitude A of the initial velocity field, in units of c.
     pub amplitude: f64,
+    /// Whether stencil builds reuse provably unchanged pairs ([`Run::set_pair_reuse`]).
+    pub pair_reuse: bool,
 }
 
 impl ThroughputConfig {
@@ -112,6 +114,7 @@ impl ThroughputConfig {
             steps: 50,
             repeats: 3,
             amplitude: 1e-3,
+            pair_reuse: true,
         }
     }
 
@@ -346,6 +349,11 @@ pub struct BlockTiming {
     pub allocations_per_step: Option<f64>,
     /// max |v| at the end (c), a sanity check that the run stayed small and finite.
     pub max_speed_end: f64,
+    /// Full stencil builds (neighbour search) per timed step.
+    pub full_builds_per_step: f64,
+    /// Stencil builds per timed step that reused the pairs of the last full build (only their
+    /// kernel data recomputed; bitwise the same stencils, [`Run::set_pair_reuse`]).
+    pub pair_refreshes_per_step: f64,
 }
 
 /// Mean number of particles within the support of each particle (itself included): the
@@ -401,8 +409,10 @@ fn time_block_nd<const D: usize>(
         m.current()
     });
     let mut run = build_block_nd::<D>(cfg, size)?;
+    run.set_pair_reuse(cfg.pair_reuse);
     let n = run.z.x.len();
     run.step(cfg.dt)?;
+    let builds0 = run.stencil_builds();
     let total = (cfg.steps * cfg.repeats) as f64;
     let mut per_step = Vec::with_capacity(cfg.repeats);
     let allocs0 = mem.map(|m| m.allocations());
@@ -429,6 +439,7 @@ fn time_block_nd<const D: usize>(
     let mut sorted = per_step.clone();
     sorted.sort_by(f64::total_cmp);
     let median = sorted[sorted.len() / 2];
+    let builds1 = run.stencil_builds();
     progress(1.0);
     Ok(BlockTiming {
         size,
@@ -442,6 +453,8 @@ fn time_block_nd<const D: usize>(
         state_bytes_per_particle: run.state_bytes() as f64 / n as f64,
         allocations_per_step,
         max_speed_end: run.max_free_speed(),
+        full_builds_per_step: (builds1.0 - builds0.0) as f64 / total,
+        pair_refreshes_per_step: (builds1.1 - builds0.1) as f64 / total,
     })
 }
 

@@ -69,6 +69,10 @@ pub struct Args {
     /// Threads of the rayon pool (default: one per core), in [1, 1024].
     #[arg(long)]
     threads: Option<usize>,
+    /// Make every stencil build a full neighbour search (by default a build keeps the pairs of
+    /// the last full one while they provably have not changed; bitwise the same results).
+    #[arg(long)]
+    no_pair_reuse: bool,
     /// JSON on stdout.
     #[arg(long)]
     json: bool,
@@ -160,6 +164,7 @@ pub fn run(a: Args) -> Result<()> {
     cfg.dt = a.dt;
     cfg.steps = a.steps;
     cfg.repeats = a.repeats;
+    cfg.pair_reuse = !a.no_pair_reuse;
     cfg.validate()?;
     let default_size = if a.dim == 3 { 22 } else { 200 };
     let sizes = a
@@ -230,6 +235,19 @@ pub fn run(a: Args) -> Result<()> {
             b.neighbours_per_particle,
             b.bytes_per_particle.unwrap_or(f64::NAN),
             b.allocations_per_step.unwrap_or(f64::NAN),
+        );
+    }
+    for b in &r.blocks {
+        println!(
+            "size {}: per timed step {:.2} full neighbour searches and {:.2} pair refreshes{}",
+            b.size,
+            b.full_builds_per_step,
+            b.pair_refreshes_per_step,
+            if a.no_pair_reuse {
+                " (--no-pair-reuse)"
+            } else {
+                ""
+            }
         );
     }
     if let Some(p) = r.scaling_exponent {
