@@ -326,4 +326,128 @@ mod tests {
             }
         }
     }
+    /// The candidates come in the documented order: the 3^D cells around the query's cell,
+    /// first axis slowest, offsets −1, 0, 1 (each distinct cell once), and in each cell its
+    /// particles by increasing index. The expected sequence is built from the particles' own
+    /// cell coordinates, floor((x − origin)/side), not from the list's buffers; open domains
+    /// and periodic boxes with 2, 3 and 5 cells per axis, 2D and 3D.
+    #[test]
+    fn candidate_order_is_cell_by_cell() {
+        fn check<const D: usize>(pts: &[[f64; D]], r: f64, period: Option<[f64; D]>) {
+            let cl = CellList::new(pts, r, period);
+            let coords = |p: [f64; D]| -> [i64; D] {
+                let mut c = [0i64; D];
+                for a in 0..D {
+                    let x = p[a] - cl.origin[a];
+                    c[a] = match period {
+                        Some(l) => {
+                            let x = x.rem_euclid(l[a]);
+                            ((x / l[a] * cl.dims[a] as f64) as i64).min(cl.dims[a] as i64 - 1)
+                        }
+                        None => ((x / cl.size).floor() as i64).clamp(0, cl.dims[a] as i64 - 1),
+                    };
+                }
+                c
+            };
+            for q in pts.iter().step_by(3) {
+                let cq = coords(*q);
+                // per axis the distinct neighbour coordinates in the order −1, 0, 1
+                let per_axis: Vec<Vec<i64>> = (0..D)
+                    .map(|a| {
+                        let n = cl.dims[a] as i64;
+                        let mut v: Vec<i64> = Vec::new();
+                        for o in -1..=1 {
+                            let c = cq[a] + o;
+                            let c = if period.is_some() { c.rem_euclid(n) } else { c };
+                            if (0..n).contains(&c) && !v.contains(&c) {
+                                v.push(c);
+                            }
+                        }
+                        v
+                    })
+                    .collect();
+                let mut expected = Vec::new();
+                let total: usize = per_axis.iter().map(Vec::len).product();
+                for k in 0..total {
+                    // k in mixed radix, last axis fastest
+                    let mut cell = [0i64; D];
+                    let mut rest = k;
+                    for a in (0..D).rev() {
+                        cell[a] = per_axis[a][rest % per_axis[a].len()];
+                        rest /= per_axis[a].len();
+                    }
+                    expected.extend((0..pts.len()).filter(|&j| coords(pts[j]) == cell));
+                }
+                let mut got = Vec::new();
+                cl.for_candidates(*q, |j| got.push(j));
+                assert_eq!(got, expected, "{D}D, period {period:?}");
+            }
+        }
+        let jitter = |t: f64| 0.04 * (t * 1.3).sin();
+        let pts2: Vec<[f64; 2]> = (0..11 * 7)
+            .map(|k| {
+                let t = k as f64;
+                [
+                    (k % 11) as f64 * 0.5 + jitter(t),
+                    (k / 11) as f64 * 0.5 + jitter(2.0 * t),
+                ]
+            })
+            .collect();
+        check(&pts2, 0.7, None);
+        check(&pts2, 1.1, Some([5.5, 3.5]));
+        check(&pts2, 1.6, Some([5.5, 3.5]));
+        let pts3: Vec<[f64; 3]> = (0..5 * 4 * 6)
+            .map(|k| {
+                let t = k as f64;
+                [
+                    (k % 5) as f64 * 0.5 + jitter(t),
+                    ((k / 5) % 4) as f64 * 0.5 + jitter(3.0 * t),
+                    (k / 20) as f64 * 0.5 + jitter(5.0 * t),
+                ]
+            })
+            .collect();
+        check(&pts3, 0.6, None);
+        check(&pts3, 0.9, Some([2.5, 2.0, 3.0]));
+    }
+
+    /// `same_cells` is true exactly when a rebuild would put every particle in its old cell on
+    /// the same grid: small moves inside the cells (and a shift of the whole open block, which
+    /// moves the origin with it) keep it; a particle crossing a cell face or a different
+    /// particle count do not.
+    #[test]
+    fn same_cells_detects_a_cell_change() {
+        // spacing 0.9 from 0.25: no particle within 0.2 of a face of the cells of side 2
+        let pts: Vec<[f64; 2]> = (0..64)
+            .map(|k| [(k % 8) as f64 * 0.9 + 0.25, (k / 8) as f64 * 0.9 + 0.25])
+            .collect();
+        let r = 2.0;
+        let cl = CellList::new(&pts, r, None);
+        assert!(cl.same_cells(&pts, r, None));
+        let nudged: Vec<[f64; 2]> = pts.iter().map(|p| [p[0] + 0.1, p[1] - 0.05]).collect();
+        assert!(
+            cl.same_cells(&nudged, r, None),
+            "a rigid shift keeps the cells"
+        );
+        let mut one = pts.clone();
+        one[9][0] += 1.2; // x − origin 0.9 → 2.1: from cell column 0 to 1 (side 2)
+        assert!(
+            !cl.same_cells(&one, r, None),
+            "a particle crossed a cell face"
+        );
+        assert!(
+            !cl.same_cells(&pts[..63], r, None),
+            "another particle count"
+        );
+        let per = Some([8.0, 8.0]);
+        let clp = CellList::new(&pts, r, per);
+        let mut wrap = pts.clone();
+        wrap[0][0] -= 0.6; // 0.25 → −0.35 wraps to 7.65: last cell column
+        assert!(
+            !clp.same_cells(&wrap, r, per),
+            "a particle wrapped across the box"
+        );
+        let mut inside = pts.clone();
+        inside[0][0] += 0.3;
+        assert!(clp.same_cells(&inside, r, per));
+    }
 }

@@ -195,7 +195,7 @@ fn av_pair<S: Scalar, const D: usize>(
             // zero adds to a sum that starts at +0). A select, not a branch: whether a pair
             // approaches is a coin flip, and the mispredicted branch cost a quarter of a
             // solver step.
-            mu = mu * S::cst(if vx.re() < 0.0 { 1.0 } else { 0.0 });
+            mu *= S::cst(if vx.re() < 0.0 { 1.0 } else { 0.0 });
         }
     }
     let pi = (mu * (-av.alpha * av.sound_speed) + mu * mu * av.beta) / rho_bar;

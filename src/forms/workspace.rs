@@ -432,7 +432,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     /// a rebuild at `x` would find (module docs, "Reusing the pairs"); updates the drift bound
     /// and the positions of the build.
     fn pairs_still_valid(&mut self, m: &Model<D>, x: &[[S; D]]) -> bool {
-        if self.pos.len() != x.len() || !(self.margin > 0.0) {
+        if self.pos.len() != x.len() || self.margin.is_nan() || self.margin <= 0.0 {
             return false;
         }
         // the largest displacement since the last build; NaN (a diverged run) propagates
@@ -464,7 +464,8 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         let r = m.p.kp.support();
         // two particles approach each other by at most 2 × drift; the factor 2 more covers the
         // rounding of the distances and of this bound by far (the margin must exceed 1e-9 r)
-        if !(self.drift < 0.25 * self.margin && self.margin > 1e-9 * r) {
+        let proven = self.drift < 0.25 * self.margin && self.margin > 1e-9 * r;
+        if !proven {
             return false;
         }
         match m.period {

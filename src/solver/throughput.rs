@@ -640,6 +640,8 @@ mod tests {
             state_bytes_per_particle: 0.0,
             allocations_per_step: None,
             max_speed_end: 0.0,
+            full_builds_per_step: 0.0,
+            pair_refreshes_per_step: 0.0,
         }
     }
 
