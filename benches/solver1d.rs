@@ -2,11 +2,13 @@
 //! open chain (kdk, Δt = 0.2 Δx/c, m4, h = 1.3Δx) for the classical, eulerian-stress-points,
 //! total-lagrangian and least-squares forms (divide by 2,000 for ns per particle-step), and the
 //! least-squares consistent-mass solve M a = f ([`BandedLu`]: factorisation and one solve) on
-//! periodic chains of N = 10³, 10⁴, 10⁵ (O(N): the time per particle stays flat).
+//! periodic chains of N = 10³, 10⁴, 10⁵ (O(N): the time per particle stays flat), and one step
+//! of the classical chain per integrator (kdk, dkd, symplectic Euler, epec, rk4, euler).
 //! `cargo bench --bench solver1d` runs them.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use sphstab::forms::{BandedLu, FormKind, MassOperator, Model1D, ModelParams};
+use sphstab::integrator::Integrator;
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
 use sphstab::solver::Run1D;
@@ -54,6 +56,23 @@ fn benches(c: &mut Criterion) {
     ] {
         let mut run = chain(form, 2000);
         g.bench_function(form.name(), |b| b.iter(|| run.step(0.2).unwrap()));
+    }
+    g.finish();
+
+    // the cost of one step per integrator on the same chain (classical, no viscosity): the
+    // step-cost ratios behind the trade-off study's integrator rows
+    let mut g = c.benchmark_group("solver1d step per integrator, 2000 particles (classical, m4)");
+    for integ in [
+        Integrator::Kdk,
+        Integrator::Dkd,
+        Integrator::SymplecticEulerVx,
+        Integrator::Epec,
+        Integrator::Rk4,
+        Integrator::Euler,
+    ] {
+        let mut run = chain(FormKind::Classical, 2000);
+        run.set_integrator(integ);
+        g.bench_function(integ.name(), |b| b.iter(|| run.step(0.01).unwrap()));
     }
     g.finish();
 
