@@ -159,22 +159,6 @@ impl<const D: usize> CellList<D> {
         self.cell = cell;
     }
 
-    /// Whether a rebuild for `pts` would give exactly this list: the same grid (cells per
-    /// axis; the origin of an open domain may have moved) and every particle in the same cell.
-    /// Then the candidates of every particle, and their order, are those of the current list.
-    pub fn same_cells(&self, pts: &[[f64; D]], radius: f64, period: Option<[f64; D]>) -> bool {
-        use rayon::prelude::*;
-        let (origin, size, dims) = Self::grid(pts, radius, period);
-        dims == self.dims
-            && size == self.size
-            && period == self.period
-            && pts.len() == self.cell.len()
-            && pts
-                .par_iter()
-                .zip(&self.cell)
-                .all(|(&p, &c)| Self::cell_of(origin, size, dims, period, p) == c)
-    }
-
     /// Calls `f(j)` for every particle j in the 3^D block of cells around `p` (a superset of
     /// those within the radius; callers test the distance). Cells are visited first axis
     /// slowest, offsets −1, 0, 1 per axis; a cell is visited once even when a small periodic box
@@ -408,46 +392,5 @@ mod tests {
             .collect();
         check(&pts3, 0.6, None);
         check(&pts3, 0.9, Some([2.5, 2.0, 3.0]));
-    }
-
-    /// `same_cells` is true exactly when a rebuild would put every particle in its old cell on
-    /// the same grid: small moves inside the cells (and a shift of the whole open block, which
-    /// moves the origin with it) keep it; a particle crossing a cell face or a different
-    /// particle count do not.
-    #[test]
-    fn same_cells_detects_a_cell_change() {
-        // spacing 0.9 from 0.25: no particle within 0.2 of a face of the cells of side 2
-        let pts: Vec<[f64; 2]> = (0..64)
-            .map(|k| [(k % 8) as f64 * 0.9 + 0.25, (k / 8) as f64 * 0.9 + 0.25])
-            .collect();
-        let r = 2.0;
-        let cl = CellList::new(&pts, r, None);
-        assert!(cl.same_cells(&pts, r, None));
-        let nudged: Vec<[f64; 2]> = pts.iter().map(|p| [p[0] + 0.1, p[1] - 0.05]).collect();
-        assert!(
-            cl.same_cells(&nudged, r, None),
-            "a rigid shift keeps the cells"
-        );
-        let mut one = pts.clone();
-        one[9][0] += 1.2; // x − origin 0.9 → 2.1: from cell column 0 to 1 (side 2)
-        assert!(
-            !cl.same_cells(&one, r, None),
-            "a particle crossed a cell face"
-        );
-        assert!(
-            !cl.same_cells(&pts[..63], r, None),
-            "another particle count"
-        );
-        let per = Some([8.0, 8.0]);
-        let clp = CellList::new(&pts, r, per);
-        let mut wrap = pts.clone();
-        wrap[0][0] -= 0.6; // 0.25 → −0.35 wraps to 7.65: last cell column
-        assert!(
-            !clp.same_cells(&wrap, r, per),
-            "a particle wrapped across the box"
-        );
-        let mut inside = pts.clone();
-        inside[0][0] += 0.3;
-        assert!(clp.same_cells(&inside, r, per));
     }
 }

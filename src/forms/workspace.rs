@@ -20,8 +20,8 @@
 //!   box), bitwise the separation the stencil was built from;
 //! - with artificial stress, the factor fⁿ_IJ = (W(r)/W(Δp))ⁿ (one scalar).
 //!
-//! Each particle then lists its neighbours as 4-byte pair indices (CSR: `start`, `entry`), the
-//! pairs it owns (J ≥ I) first. The SPH shape functions need nothing more (∇φ_J = V_J ∇_I W_IJ
+//! Each particle then lists its neighbours as 4-byte pair indices (CSR: `start`, `entry`), by
+//! increasing neighbour index; the pairs it owns (J ≥ I) are numbered consecutively. The SPH shape functions need nothing more (∇φ_J = V_J ∇_I W_IJ
 //! with the current volumes); other shape families (Shepard, corrected, MLS) are not symmetric
 //! and store ∇φ_J per directed entry (`ga`), as do the corrected functions of the mixed forms
 //! (`gb`). The particle itself is listed only where its ∇φ can be nonzero (non-SPH families).
@@ -37,23 +37,27 @@
 //!
 //! # Reusing the pairs
 //!
+//! Each particle lists its neighbours by increasing index, whatever order the cell search finds
+//! them in, so the stencils — and the summation order of every rate term — are a function of
+//! the positions alone, not of the cell grid (whose origin follows the particles' bounding box).
+//!
 //! Between two builds the particles of a run move by a small fraction of the support, and the
 //! pairs rarely change. A build at new positions keeps the pairs of the last full build and
 //! only recomputes their data (−W'/r, fⁿ) when it can prove that a full build would find
-//! exactly the same pairs in exactly the same order:
+//! exactly the same pairs:
 //!
-//! - the full build records a margin δ, a lower bound on | |d| − ζh | over every candidate pair
-//!   of the cell search (|d² − r²|/(3r), capped at r: no square root per candidate);
+//! - the full build records a margin δ, a lower bound on | |d| − ζh | over every pair: over the
+//!   candidates of the cell search |d² − r²|/(3r), capped at r (no square root per candidate);
+//!   the other pairs are at least a cell side apart, and the cells are r/16 wider than the
+//!   support;
 //! - each later build adds the largest displacement since the previous build to a drift bound
-//!   Δ; a pair's separation has changed by at most 2Δ, so while Δ < δ/4 no candidate pair has
-//!   crossed the support radius;
-//! - the cell list at the new positions would put every particle in the same cell (same grid),
-//!   so the candidates of every particle, and the order in which the search visits them (the
-//!   summation order of every rate term), are unchanged.
+//!   Δ; a pair's separation has changed by at most 2Δ, so while Δ < δ/4 no pair has crossed
+//!   the support radius (the factor 2 to spare covers the rounding of the distances).
 //!
-//! Otherwise (and for non-SPH shape families, whose ∇φ depend on every neighbour, and for
-//! scalars with a tangent) the build is a full one. The results are bitwise those of a full
-//! build at every evaluation (tested on stable and unstable runs,
+//! The pairs being the same and listed in index order, the stencils are then those a full
+//! build would make. Otherwise (and for non-SPH shape families, whose ∇φ depend on every
+//! neighbour, and for scalars with a tangent) the build is a full one. The results are bitwise
+//! those of a full build at every evaluation (tested on stable, large-motion and unstable runs,
 //! [`RateWorkspace::set_pair_reuse`]); the saving is the neighbour search, about half of a
 //! solver step. A diverging run (non-finite positions) makes Δ NaN and every build full.
 
@@ -165,12 +169,14 @@ impl<S: Scalar, const D: usize> Stencils<S, D> {
     }
 }
 
-/// Scratch of the stencil build of one chunk of particles: (relative position, volume),
-/// neighbour indices, (φ, ∇φ) of the family and of the corrected functions.
+/// Scratch of the stencil build of one chunk of particles: the neighbours found (index,
+/// relative position), their (relative position, volume) for the non-SPH shape functions, and
+/// (φ, ∇φ) of the family and of the corrected functions.
 #[derive(Clone, Debug)]
 struct ShapeScratch<S, const D: usize> {
+    /// Neighbours as the search finds them (index, separation).
+    found: Vec<(usize, [S; D])>,
     nodes: Vec<([S; D], S)>,
-    idx: Vec<usize>,
     vals: Vec<(S, [S; D])>,
     vals_b: Vec<(S, [S; D])>,
 }
@@ -178,8 +184,8 @@ struct ShapeScratch<S, const D: usize> {
 impl<S, const D: usize> Default for ShapeScratch<S, D> {
     fn default() -> Self {
         Self {
+            found: Vec::new(),
             nodes: Vec::new(),
-            idx: Vec::new(),
             vals: Vec::new(),
             vals_b: Vec::new(),
         }
@@ -191,6 +197,11 @@ const LOWER: u32 = 1 << 31;
 
 /// Particles per parallel work item of the stencil build (each item owns one scratch).
 const CHUNK: usize = 128;
+
+/// Cell side of the neighbour search over the support radius: slightly more than 1, so that
+/// a pair that is not a candidate is at least r/16 outside the support (the margin of the pair
+/// reuse, module docs).
+const CELL_SIDE: f64 = 1.0 + 1.0 / 16.0;
 
 /// Reusable buffers of the rate evaluation (see the module docs). `S` is the scalar of the
 /// state (`f64` for the solver, [`Dual`](crate::scalar::Dual) for the linearisation), `D` the
@@ -347,8 +358,8 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             .scratch
             .iter()
             .map(|s| {
-                s.nodes.capacity() * size_of::<([S; D], S)>()
-                    + s.idx.capacity() * size_of::<usize>()
+                s.found.capacity() * size_of::<(usize, [S; D])>()
+                    + s.nodes.capacity() * size_of::<([S; D], S)>()
                     + (s.vals.capacity() + s.vals_b.capacity()) * size_of::<(S, [S; D])>()
             })
             .sum();
@@ -464,22 +475,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         let r = m.p.kp.support();
         // two particles approach each other by at most 2 × drift; the factor 2 more covers the
         // rounding of the distances and of this bound by far (the margin must exceed 1e-9 r)
-        let proven = self.drift < 0.25 * self.margin && self.margin > 1e-9 * r;
-        if !proven {
-            return false;
-        }
-        match m.period {
-            None => self.cells.same_cells(&self.pos, r, None),
-            Some(l) if is_diagonal(&l) => {
-                let mut ext = [0.0; D];
-                for (a, e) in ext.iter_mut().enumerate() {
-                    *e = l[a][a];
-                }
-                self.cells.same_cells(&self.pos, r, Some(ext))
-            }
-            // direct scan in index order: the order does not depend on the positions
-            Some(_) => true,
-        }
+        self.drift < 0.25 * self.margin && self.margin > 1e-9 * r
     }
 
     /// Recomputes the pair data (−W'/r and the artificial-stress factor) of the current pairs
@@ -550,7 +546,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         self.pos.extend(z.x.iter().map(|p| p.map(|c| c.re())));
         let grid = match m.period {
             None => {
-                self.cells.rebuild(&self.pos, r, None);
+                self.cells.rebuild(&self.pos, r * CELL_SIDE, None);
                 true
             }
             Some(l) if is_diagonal(&l) => {
@@ -558,7 +554,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                 for (a, e) in ext.iter_mut().enumerate() {
                     *e = l[a][a];
                 }
-                self.cells.rebuild(&self.pos, r, Some(ext));
+                self.cells.rebuild(&self.pos, r * CELL_SIDE, Some(ext));
                 true
             }
             Some(_) => false,
@@ -637,8 +633,12 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                 gap
             })
             .reduce(|| f64::INFINITY, f64::min);
-        // |d − r| = |d² − r²|/(d + r) ≥ |d² − r²|/(3r) when d < 2r, and ≥ r otherwise
+        // |d − r| = |d² − r²|/(d + r) ≥ |d² − r²|/(3r) when d < 2r, and ≥ r otherwise; pairs
+        // that are not candidates are at least a cell side apart
         self.margin = (gap / (3.0 * r)).min(r);
+        if grid {
+            self.margin = self.margin.min(r * (CELL_SIDE - 1.0));
+        }
         self.drift = 0.0;
         for i in 0..n {
             st.start[i + 1] += st.start[i];
@@ -685,12 +685,15 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             .enumerate()
             .try_for_each(|(c, sc)| -> Result<()> {
                 for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
+                    // the neighbours by increasing index: the summation order of every rate
+                    // term does not depend on the cell grid (module docs)
+                    sc.found.clear();
+                    scan(i, &mut |j, d| sc.found.push((j, d)));
+                    sc.found.sort_unstable_by_key(|&(j, _)| j);
                     sc.nodes.clear();
-                    sc.idx.clear();
-                    scan(i, &mut |j, d| {
-                        sc.nodes.push((d, vol[j]));
-                        sc.idx.push(j);
-                    });
+                    if !sph_a || with_corrected {
+                        sc.nodes.extend(sc.found.iter().map(|&(j, d)| (d, vol[j])));
+                    }
                     if !sph_a {
                         eval_d(family, kp, &sc.nodes, pos[i][0], &mut sc.vals)?;
                     }
@@ -703,12 +706,12 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                             &mut sc.vals_b,
                         )?;
                     }
-                    // entries in the order of the scan (the summation order of every rate
-                    // term: an unstable run amplifies a reordering's last bits), owned pairs
-                    // numbered in that order
+                    // entries by increasing neighbour index (the summation order of every
+                    // rate term: an unstable run amplifies a reordering's last bits), owned
+                    // pairs numbered in that order
                     let mut e = start[i] as usize;
                     let mut p = upper[i] as usize;
-                    for (k, (&j, &(d, _))) in sc.idx.iter().zip(&sc.nodes).enumerate() {
+                    for (k, &(j, d)) in sc.found.iter().enumerate() {
                         if j == i && !with_self {
                             continue;
                         }
