@@ -294,6 +294,46 @@ fn golden_outputs_are_reproduced() {
             want["data"]["tradeoff"][i]["l2"] = Value::Null;
         }
     }
+    // The growing Swegle runs (measured growth rate not null) amplify the kick of 1e-10 by up
+    // to 10⁸, and with it the rounding noise of the unstable modes. That noise starts at the
+    // rounding of the pre-stressed equilibrium, ~1e-16 of the O(1e-2) stresses per evaluation,
+    // i.e. at 1e-7–1e-6 of the kick, and grows at the same rate: any change of summation order
+    // moves max |v| at the end by up to ~1e-6 relative and the fitted growth rate by that over
+    // the fit's duration (~1e-8 c/Δx). Issue 13 lists each particle's neighbours by index
+    // instead of in cell-list order (so that the pair reuse holds at any N): max |v| moved by
+    // 2.1e-7 relative, the rate by 2.4e-10. With the cell-list order restored (a local patch:
+    // no sort, cells exactly r wide) these entries reproduce to 1e-12 again, so the summation
+    // order is the only change. They are compared at the noise bound (1e-5 relative, 1e-7
+    // c/Δx absolute), then left out of the 1e-12 comparison; the stable entries and the
+    // predicted rates are not.
+    let n_sw = want["data"]["swegle"].as_array().unwrap().len();
+    for i in 0..n_sw {
+        let w = want["data"]["swegle"][i].clone();
+        if w["measured"].is_null() {
+            continue;
+        }
+        let g = &got["swegle"][i];
+        let (a, b) = (
+            g["max_velocity_end"].as_f64().unwrap(),
+            w["max_velocity_end"].as_f64().unwrap(),
+        );
+        assert!(
+            (a - b).abs() <= 1e-5 * b.abs(),
+            "swegle[{i}].max_velocity_end: {a:e} vs {b:e}"
+        );
+        let (a, b) = (
+            g["measured"].as_f64().unwrap(),
+            w["measured"].as_f64().unwrap(),
+        );
+        assert!(
+            (a - b).abs() <= 1e-7,
+            "swegle[{i}].measured: {a:e} vs {b:e}"
+        );
+        for key in ["max_velocity_end", "measured"] {
+            got["swegle"][i][key] = Value::Null;
+            want["data"]["swegle"][i][key] = Value::Null;
+        }
+    }
     let mut worst = 0.0;
     compare(&got, &want["data"], "golden", 1.0, &mut worst);
     eprintln!("golden data reproduced; worst relative difference {worst:e}");
