@@ -41,6 +41,7 @@
 //! | [`analysis`] | `query`, `dispersion`, `timestep`, maps, box prediction (1D chain, 2D/3D zone) |
 //! | [`solver`] | the reference solver (1D, 2D), the Swegle test, [`solver::throughput`] |
 //! | [`pairing`] | the 3D pairing study: growth under pressure vs neighbour number, kernel W* sign |
+//! | [`kernel_guide`] | `kernels --table`: per kernel, critical CFL, phase error, h/Δx stable in compression (1D, 2D), tensile onset, W* sign (1D–3D) |
 //! | [`tradeoff`], [`study`] | the speed/accuracy trade-off study; config and report plumbing of the `analysis/` studies |
 //! | [`plot`], [`figures`] | SVG output |
 //!
@@ -55,6 +56,7 @@ pub mod figures;
 pub mod forms;
 pub mod integrator;
 pub mod kernel;
+pub mod kernel_guide;
 pub mod lattice;
 pub mod neighbours;
 pub mod pairing;

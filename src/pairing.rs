@@ -438,17 +438,19 @@ pub const DEGENERACY_TOL: f64 = 1e-9;
 /// transverse when it holds one with |ê·k̂|² < ½ (dimension ≥ 2, or a single mode with
 /// |ê·k̂|² < ½). A degenerate longitudinal + transverse pair (e.g. at the M point of sc by
 /// symmetry) counts for both.
-fn scan_k(lin: &Bloch<3>, k: [f64; 3]) -> Result<Scan> {
+fn scan_k<const D: usize>(lin: &Bloch<D>, k: [f64; D]) -> Result<Scan> {
     let d = lin.dynamical(k);
     let big = d.iter().flatten().map(|c| c.norm()).fold(0.0f64, f64::max);
-    let m = nalgebra::Matrix3::from_fn(|a, b| 0.5 * (d[a][b].re + d[b][a].re));
-    let asym = (0..9)
-        .map(|i| (d[i / 3][i % 3] - d[i % 3][i / 3].conj()).norm())
+    let m = nalgebra::DMatrix::from_fn(D, D, |a, b| 0.5 * (d[a][b].re + d[b][a].re));
+    let asym = (0..D * D)
+        .map(|i| (d[i / D][i % D] - d[i % D][i / D].conj()).norm())
         .fold(0.0f64, f64::max);
     let eig = nalgebra::SymmetricEigen::try_new(m, 1e-15, 1000)
         .ok_or(Error::NonFinite("pairing: symmetric eigen-decomposition"))?;
-    let kn = (k[0] * k[0] + k[1] * k[1] + k[2] * k[2]).sqrt();
-    let mut idx = [0usize, 1, 2];
+    let kn = k.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let mut k3 = [0.0; 3];
+    k3[..D].copy_from_slice(&k);
+    let mut idx: Vec<usize> = (0..D).collect();
     idx.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
     let scale = eig.eigenvalues.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut out = Scan {
@@ -456,10 +458,10 @@ fn scan_k(lin: &Bloch<3>, k: [f64; 3]) -> Result<Scan> {
         ..Scan::default()
     };
     let mut i = 0;
-    while i < 3 {
+    while i < D {
         let lam = eig.eigenvalues[idx[i]];
         let mut j = i + 1;
-        while j < 3 && eig.eigenvalues[idx[j]] - lam <= DEGENERACY_TOL * scale {
+        while j < D && eig.eigenvalues[idx[j]] - lam <= DEGENERACY_TOL * scale {
             j += 1;
         }
         if !lam.is_finite() {
@@ -470,7 +472,8 @@ fn scan_k(lin: &Bloch<3>, k: [f64; 3]) -> Result<Scan> {
                 .iter()
                 .map(|&c| {
                     let v = eig.eigenvectors.column(c);
-                    ((v[0] * k[0] + v[1] * k[1] + v[2] * k[2]) / kn).powi(2)
+                    let dot: f64 = (0..D).map(|a| v[a] * k[a]).sum();
+                    (dot / kn).powi(2)
                 })
                 .sum::<f64>()
                 .min(1.0)
@@ -479,7 +482,7 @@ fn scan_k(lin: &Bloch<3>, k: [f64; 3]) -> Result<Scan> {
         };
         let mode = Mode {
             growth: (-lam).max(0.0).sqrt(),
-            k,
+            k: k3,
             lf,
         };
         out.all.take(mode);
@@ -492,6 +495,40 @@ fn scan_k(lin: &Bloch<3>, k: [f64; 3]) -> Result<Scan> {
         i = j;
     }
     Ok(out)
+}
+
+/// Growth over the sampled zone of a D-dimensional question (2D or 3D): the fastest mode, the
+/// fastest longitudinal (pairing) and the fastest transverse mode (c/Δx, 0 when below
+/// [`GROWTH_TOL`]), as [`evaluate_row`] scans them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ZoneGrowth {
+    /// Largest growth rate of any mode.
+    pub max_growth_rate: f64,
+    /// Largest growth of a longitudinal mode (|ê·k̂|² ≥ ½): pairing.
+    pub pairing_growth_rate: f64,
+    /// Largest growth of a transverse mode.
+    pub transverse_growth_rate: f64,
+}
+
+/// Linearises `q` at its stress and scans its wave-vector grid ([`Query::kgrid`], rayon) for
+/// the fastest, the fastest longitudinal and the fastest transverse mode (module docs, the
+/// eigenspace rule of the row scan). The dynamical matrix must be (nearly) Hermitian: the
+/// classical form with `sph` shapes and no dissipation, as in the pairing study.
+pub fn zone_growth<const D: usize>(q: &Query<D>) -> Result<ZoneGrowth> {
+    let lin = q.linearise_at(q.stress)?;
+    let scan = q
+        .kgrid()
+        .par_iter()
+        .map(|&k| scan_k(&lin, k))
+        .try_reduce(Scan::default, |x, y| Ok(x.merge(y)))?;
+    if !scan.all.growth.is_finite() {
+        return Err(Error::NonFinite("pairing growth rate"));
+    }
+    Ok(ZoneGrowth {
+        max_growth_rate: scan.all.rate(),
+        pairing_growth_rate: scan.long.rate(),
+        transverse_growth_rate: scan.trans.rate(),
+    })
 }
 
 /// The 3D question of one row (classical, sph, hydro).

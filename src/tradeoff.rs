@@ -316,14 +316,29 @@ fn neighbours(dim: u8, support: f64) -> f64 {
 
 /// Largest σ̄ ≤ `cap` up to which `grows(σ̄)` stays false: scan, then bisection.
 fn max_stable(cap: f64, grows: impl Fn(f64) -> Result<bool>) -> Result<f64> {
-    let mut last_stable = 0.0;
+    Ok(tension_limit(cap, BISECTION_STEPS, 0.0, grows)?.0)
+}
+
+/// The tension limit of `grows`: scan the σ̄ of [`TENSION_SCAN`] up to `cap`; at the first one
+/// that grows, `steps` bisections between it and the last stable one — or, when the first scan
+/// value (1e-6) already grows, between `floor` (a σ̄ the caller found stable) and it; with
+/// `floor` = 0 no bisection then. Returns (the largest σ̄ found stable, 0 if 1e-6 grows and
+/// `floor` = 0; the smallest σ̄ found growing, `None` if nothing up to `cap` grows). The bracket
+/// after `steps` bisections is (hi − lo) = (scan gap)/2^steps.
+pub(crate) fn tension_limit(
+    cap: f64,
+    steps: usize,
+    floor: f64,
+    grows: impl Fn(f64) -> Result<bool>,
+) -> Result<(f64, Option<f64>)> {
+    let mut last_stable = floor;
     for &s in TENSION_SCAN.iter().filter(|&&s| s <= cap) {
         if grows(s)? {
             if last_stable == 0.0 {
-                return Ok(0.0);
+                return Ok((0.0, Some(s)));
             }
             let (mut lo, mut hi) = (last_stable, s);
-            for _ in 0..BISECTION_STEPS {
+            for _ in 0..steps {
                 let mid = 0.5 * (lo + hi);
                 if grows(mid)? {
                     hi = mid;
@@ -331,11 +346,11 @@ fn max_stable(cap: f64, grows: impl Fn(f64) -> Result<bool>) -> Result<f64> {
                     lo = mid;
                 }
             }
-            return Ok(lo);
+            return Ok((lo, Some(hi)));
         }
         last_stable = s;
     }
-    Ok(last_stable)
+    Ok((last_stable, None))
 }
 
 /// The engine's part of a row (no timing): phase errors, stability, critical Δt.

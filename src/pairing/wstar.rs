@@ -1,6 +1,7 @@
 //! The kernel's 3D Fourier transform and its sign: the pairing criterion of Dehnen & Aly (2012,
 //! §4): SPH with a kernel whose 3D transform is negative somewhere pairs at large neighbour
 //! numbers, and the Wendland functions ψ_{3,k} are positive definite in 3D (Wendland 1995).
+//! The same scan runs in 1D and 2D ([`Transform`], [`sign_criterion_in`]; the kernel guide).
 //!
 //! Convention: for the 3D kernel W(r) = σ₃ h⁻³ f(r/h), with k in units of 1/h,
 //!
@@ -26,29 +27,70 @@ pub const K_STEP: f64 = 0.005;
 /// quadrature's round-off (~1e-16) and far below any physically meaningful value.
 pub const NEGATIVE_TOL: f64 = 1e-12;
 
-/// The normalised 3D transform of one kernel (its normalisation ∫ q² f(q) dq computed once).
+/// The normalised transform W*(k)/W*(0) of one kernel in dimension `dim` ∈ {1, 2, 3} (its
+/// normalisation ∫ q^{D−1} f(q) dq computed once), with the dimension's own shape function
+/// (`f(dim, q)`: the Wendland kernels change with the dimension):
+///
+/// ```text
+/// W*(k)/W*(0) = ∫₀^ζ q^{D−1} f(q) φ_D(kq) dq / ∫₀^ζ q^{D−1} f(q) dq,   φ₁ = cos, φ₂ = J₀, φ₃ = j₀
+/// ```
+///
+/// ([`radial_integral`]; 1D: the \[V21\] transform of [`crate::vonneumann::transform::kernel_ft_at`],
+/// 2D: the Hankel transform, 3D: Dehnen & Aly's criterion).
 #[derive(Clone, Debug)]
-pub struct Transform3D {
+pub struct Transform {
     kernel: &'static dyn Kernel,
+    dim: usize,
     norm: f64,
 }
 
-impl Transform3D {
-    /// Computes the normalisation ∫ q² f(q) dq.
-    pub fn new(kernel: &'static dyn Kernel) -> Self {
-        let mut t = Self { kernel, norm: 1.0 };
+impl Transform {
+    /// Computes the normalisation (`dim` clamped into 1..=3).
+    pub fn new(kernel: &'static dyn Kernel, dim: usize) -> Self {
+        let mut t = Self {
+            kernel,
+            dim: dim.clamp(1, 3),
+            norm: 1.0,
+        };
         t.norm = t.raw(0.0);
         t
     }
 
-    /// ∫₀^ζ q² f(q) j₀(kq) dq.
+    /// ∫₀^ζ q^{D−1} f(q) φ_D(kq) dq.
     fn raw(&self, k: f64) -> f64 {
-        radial_integral::<3>(&|q| self.kernel.f(3, q), self.kernel.zeta(), k)
+        let (kern, d) = (self.kernel, self.dim);
+        let g = |q: f64| kern.f(d, q);
+        match d {
+            1 => radial_integral::<1>(&g, kern.zeta(), k),
+            2 => radial_integral::<2>(&g, kern.zeta(), k),
+            _ => radial_integral::<3>(&g, kern.zeta(), k),
+        }
     }
 
     /// W*(k)/W*(0), k in units of 1/h.
     pub fn at(&self, k: f64) -> f64 {
         self.raw(k) / self.norm
+    }
+
+    /// The dimension.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+}
+
+/// The normalised 3D transform of one kernel ([`Transform`] with D = 3).
+#[derive(Clone, Debug)]
+pub struct Transform3D(Transform);
+
+impl Transform3D {
+    /// Computes the normalisation ∫ q² f(q) dq.
+    pub fn new(kernel: &'static dyn Kernel) -> Self {
+        Self(Transform::new(kernel, 3))
+    }
+
+    /// W*(k)/W*(0), k in units of 1/h.
+    pub fn at(&self, k: f64) -> f64 {
+        self.0.at(k)
     }
 }
 
@@ -82,9 +124,24 @@ pub struct WStarSign {
 /// triple root at k = 2π, ~5e-3 for m6's five-fold one), the minimum refined by golden section
 /// between its neighbouring samples.
 pub fn sign_criterion(kernel: &'static dyn Kernel) -> WStarSign {
-    let t = Transform3D::new(kernel);
-    let n = (K_MAX / K_STEP).round() as usize;
-    let ks: Vec<f64> = (0..=n).map(|i| i as f64 * K_STEP).collect();
+    sign_criterion_in(kernel, 3)
+}
+
+/// [`sign_criterion`] in dimension `dim` ∈ {1, 2, 3} ([`Transform`]).
+pub fn sign_criterion_in(kernel: &'static dyn Kernel, dim: usize) -> WStarSign {
+    sign_criterion_with(kernel, dim, K_STEP)
+}
+
+/// [`sign_criterion_in`] with scan step `k_step` (units 1/h; clamped into [1e-4, 1]).
+pub fn sign_criterion_with(kernel: &'static dyn Kernel, dim: usize, k_step: f64) -> WStarSign {
+    let t = Transform::new(kernel, dim);
+    let k_step = if k_step.is_finite() {
+        k_step.clamp(1e-4, 1.0)
+    } else {
+        K_STEP
+    };
+    let n = (K_MAX / k_step).round() as usize;
+    let ks: Vec<f64> = (0..=n).map(|i| i as f64 * k_step).collect();
     let w: Vec<f64> = ks.iter().map(|&k| t.at(k)).collect();
     let imin = (0..w.len())
         .min_by(|&a, &b| w[a].total_cmp(&w[b]))

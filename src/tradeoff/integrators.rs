@@ -44,7 +44,7 @@ pub const T_REF: f64 = 10.0;
 pub const DEFAULT_SAFETY: f64 = 0.9;
 
 /// One (configuration, integrator) of the study (module table).
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Default, Deserialize, Serialize, PartialEq)]
 pub struct IntegratorRow {
     /// Form.
     pub form: String,

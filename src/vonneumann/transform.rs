@@ -142,14 +142,16 @@ fn gl_rule() -> &'static (Vec<f64>, Vec<f64>) {
 }
 
 /// The radial integral of the D-dimensional Fourier transform of a radial function g(|x|)
-/// supported in |x| ≤ ζ (D = 1 or 3, checked at compile time):
+/// supported in |x| ≤ ζ (D = 1, 2 or 3, checked at compile time):
 ///
 /// ```text
-/// I_D(k) = ∫₀^ζ q^{D−1} g(q) φ_D(kq) dq,   φ₁ = cos,   φ₃ = j₀ = sin x / x ([`sinc`])
+/// I_D(k) = ∫₀^ζ q^{D−1} g(q) φ_D(kq) dq,   φ₁ = cos,   φ₂ = J₀,   φ₃ = j₀ = sin x / x ([`sinc`])
 /// ```
 ///
-/// so that W*(k) = ∫ e^{−ik·x} W(|x|) d^D x = 2 I₁(k) in 1D ([`kernel_ft_at`]) and 4π I₃(k) in
-/// 3D (`pairing::wstar::Transform3D`, which normalises by I₃(0)). q and ζ in units of h, k in
+/// so that W*(k) = ∫ e^{−ik·x} W(|x|) d^D x = 2 I₁(k) in 1D ([`kernel_ft_at`]), 2π I₂(k) in 2D
+/// (the Hankel transform; J₀ is the Bessel function of order 0, `libm::j0`, the FreeBSD msun
+/// implementation, accurate to a few ulp) and 4π I₃(k) in 3D
+/// (`pairing::wstar::Transform`, which normalises by I_D(0)). q and ζ in units of h, k in
 /// units of 1/h. The one quadrature of the kernel transforms: [0, ζ] is cut at every multiple
 /// of [`PIECE`], each piece into equal panels (at least two) with k·width ≤
 /// [`MAX_PANEL_PHASE`] (at most [`MAX_PANELS_PER_PIECE`]), each panel integrated by
@@ -159,7 +161,7 @@ fn gl_rule() -> &'static (Vec<f64>, Vec<f64>) {
 /// panel, of order [`MAX_PANEL_PHASE`]^32/32! ≈ 4e-36 — the result is exact to round-off
 /// (~1e-16). Smooth pieces (Gaussian, mollifier) converge spectrally at this resolution.
 pub fn radial_integral<const D: usize>(g: &dyn Fn(f64) -> f64, zeta: f64, k: f64) -> f64 {
-    const { assert!(D == 1 || D == 3, "radial_integral: D = 1 or 3") };
+    const { assert!(D >= 1 && D <= 3, "radial_integral: D = 1, 2 or 3") };
     let (nodes, weights) = gl_rule();
     let pieces = (zeta / PIECE).ceil() as usize;
     let mut sum = 0.0;
@@ -180,6 +182,8 @@ pub fn radial_integral<const D: usize>(g: &dyn Fn(f64) -> f64, zeta: f64, k: f64
                 let q = mid + half * x;
                 s += if D == 1 {
                     w * g(q) * (k * q).cos()
+                } else if D == 2 {
+                    w * q * g(q) * libm::j0(k * q)
                 } else {
                     w * q * q * g(q) * sinc(k * q)
                 };

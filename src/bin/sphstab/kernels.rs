@@ -1,7 +1,9 @@
-//! `sphstab kernels`.
+//! `sphstab kernels`: the kernel table, and with `--table` the kernel guide
+//! ([`sphstab::kernel_guide`]).
 
-use anyhow::Result;
+use anyhow::{Result, bail};
 use serde::Serialize;
+use sphstab::kernel_guide::{DEFAULT_H_STEP, GuideConfig, kernel_guide, markdown};
 
 /// Flags of `kernels`.
 #[derive(clap::Args, Debug)]
@@ -9,6 +11,17 @@ pub struct Args {
     /// Print one JSON document instead of a table.
     #[arg(long)]
     json: bool,
+    /// The kernel guide: per kernel, critical CFL and phase error (kdk), the h/Δx stable in
+    /// compression (1D, 2D), the tensile onset and the sign of W* (1D, 2D, 3D), all measured by
+    /// the engine (Markdown; JSON with --json).
+    #[arg(long)]
+    table: bool,
+    /// With --table: comma-separated kernel names (default: all eleven).
+    #[arg(long, value_delimiter = ',')]
+    kernels: Vec<String>,
+    /// With --table: step of the h/Δx scans over [0.8, 6], in [0.01, 1] (default 0.05).
+    #[arg(long)]
+    h_step: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -24,7 +37,37 @@ struct Row {
     reference: &'static str,
 }
 
+fn guide(a: &Args) -> Result<()> {
+    let mut cfg = GuideConfig {
+        h_step: a.h_step.unwrap_or(DEFAULT_H_STEP),
+        ..GuideConfig::default()
+    };
+    if !a.kernels.is_empty() {
+        cfg.kernels = a
+            .kernels
+            .iter()
+            .map(|k| sphstab::kernel::by_name(k))
+            .collect::<sphstab::error::Result<_>>()?;
+    }
+    let g = kernel_guide(&cfg)?;
+    if a.json {
+        println!("{}", serde_json::to_string(&g)?);
+    } else {
+        print!("{}", markdown(&g));
+    }
+    Ok(())
+}
+
 pub fn run(a: Args) -> Result<()> {
+    if a.table {
+        return guide(&a);
+    }
+    if !a.kernels.is_empty() {
+        bail!("--kernels applies to the kernel guide only: add --table");
+    }
+    if a.h_step.is_some() {
+        bail!("--h-step applies to the kernel guide only: add --table");
+    }
     let rows: Vec<Row> = sphstab::kernel::all()
         .iter()
         .map(|k| Row {
