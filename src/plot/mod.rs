@@ -16,6 +16,6 @@ pub use lines::{
     lines_svg,
 };
 pub use scatter::{
-    FRONT_STYLE, Panel, PanelCurve, ScatterPanel, group_style, panel_style, panels_svg, pareto_svg,
-    scatter_panels_svg,
+    COINCIDE_PX, FRONT_STYLE, Panel, PanelCurve, ScatterPanel, coinciding_groups, group_style,
+    panel_style, panels_svg, pareto_svg, scatter_panels_svg,
 };

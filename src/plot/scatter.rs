@@ -214,6 +214,7 @@ pub fn panel_style(i: usize) -> Style {
 fn legend_column<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
     legend: &[String],
+    notes: &[Option<String>],
     style: impl Fn(usize) -> Style,
     line: bool,
     (lx, top): (f64, f64),
@@ -224,6 +225,10 @@ fn legend_column<DB: DrawingBackend>(
         draw_sample(root, (lx, y + 7.0), 36.0, &style(i), line, true)?;
         text(root, label, (lx + 44.0, y), 13, BLACK)?;
         y += 22.0;
+        if let Some(Some(n)) = notes.get(i) {
+            text(root, n, (lx + 44.0, y - 5.0), 11, GREY)?;
+            y += 13.0;
+        }
     }
     root.draw(&Rectangle::new(
         [
@@ -329,6 +334,7 @@ pub fn panels_svg(
         legend_column(
             &root,
             legend,
+            &[],
             panel_style,
             true,
             (PANEL_W * cols as f64 + 20.0, th + 26.0),
@@ -346,6 +352,53 @@ pub struct ScatterPanel {
     pub title: String,
     /// Points: legend entry, x, y.
     pub points: Vec<(usize, f64, f64)>,
+}
+
+/// A marker is hidden when a marker drawn after it lies within this many pixels.
+pub const COINCIDE_PX: f64 = 4.0;
+
+/// Legend notes of a scatter figure (groups are drawn in legend order): entry i is "hidden
+/// under" entry j > i when every marker of i has a marker of a later entry within
+/// [`COINCIDE_PX`] in the same panel; j is the entry covering most of them.
+pub fn coinciding_groups(
+    legend: &[String],
+    panels: &[ScatterPanel],
+    frames: &[Frame],
+) -> Vec<Option<String>> {
+    let pos = |g: usize| -> Vec<(usize, (f64, f64))> {
+        panels
+            .iter()
+            .zip(frames)
+            .enumerate()
+            .flat_map(|(k, (p, f))| {
+                p.points
+                    .iter()
+                    .filter(move |q| {
+                        q.0 == g && q.1.is_finite() && q.1 > 0.0 && q.2.is_finite() && q.2 > 0.0
+                    })
+                    .map(move |q| (k, f.map(q.1, q.2)))
+            })
+            .collect()
+    };
+    let all: Vec<Vec<(usize, (f64, f64))>> = (0..legend.len()).map(pos).collect();
+    (0..legend.len())
+        .map(|i| {
+            if all[i].is_empty() {
+                return None;
+            }
+            let mut count = vec![0usize; legend.len()];
+            for (k, p) in &all[i] {
+                let cover = ((i + 1)..legend.len()).find(|&j| {
+                    all[j]
+                        .iter()
+                        .any(|(kj, q)| kj == k && (p.0 - q.0).hypot(p.1 - q.1) <= COINCIDE_PX)
+                })?;
+                count[cover] += 1;
+            }
+            let j = (0..legend.len()).max_by_key(|&j| (count[j], std::cmp::Reverse(j)))?;
+            Some(format!("hidden under “{}”", legend[j]))
+        })
+        .collect()
 }
 
 /// A row of log–log scatter panels sharing both axis ranges, with one legend column on the
@@ -382,7 +435,15 @@ pub fn scatter_panels_svg(
         Scale::log(y0 / 1.3, y1 * 1.3),
     );
     let cols = panels.len().max(1);
-    let legend_w = 60.0 + legend.iter().map(|l| text_width(l, 13)).fold(0.0, f64::max);
+    let th0 = title_height(title, PANEL_W * cols as f64 + 200.0);
+    let frames: Vec<Frame> = (0..cols).map(|c| panel_frame(c, 0, th0, xs, ys)).collect();
+    let notes = coinciding_groups(legend, panels, &frames);
+    let legend_w = 60.0
+        + legend
+            .iter()
+            .map(|l| text_width(l, 13))
+            .chain(notes.iter().flatten().map(|n| text_width(n, 11)))
+            .fold(0.0, f64::max);
     let width = PANEL_W * cols as f64 + 30.0 + legend_w;
     let th = title_height(title, width);
     let height = th + PANEL_H + 5.0;
@@ -410,6 +471,7 @@ pub fn scatter_panels_svg(
         legend_column(
             &root,
             legend,
+            &notes,
             group_style,
             false,
             (PANEL_W * cols as f64 + 20.0, th + 26.0),
@@ -418,4 +480,47 @@ pub fn scatter_panels_svg(
         root.present().map_err(plot_err)?;
     }
     Ok(svg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hidden_groups_are_named_and_log_axes_have_decades() {
+        let legend: Vec<String> = ["kdk", "dkd", "rk4"].map(String::from).to_vec();
+        let panels = vec![ScatterPanel {
+            title: "p".into(),
+            points: vec![
+                (0, 100.0, 0.5),
+                (1, 100.0, 0.5),
+                (0, 1000.0, 0.05),
+                (1, 1000.0, 0.05),
+                (2, 100.0, 0.05),
+            ],
+        }];
+        let f = panel_frame(0, 0, 0.0, Scale::log(10.0, 1e4), Scale::log(0.01, 1.0));
+        let n = coinciding_groups(&legend, &panels, &[f]);
+        assert_eq!(n, vec![Some("hidden under “dkd”".to_string()), None, None]);
+        let svg = scatter_panels_svg("t", "x", "y", &legend, &panels).unwrap();
+        assert!(svg.contains("hidden under “dkd”"));
+        // decade labels on both log axes, no "100.0" or "1e2"
+        for label in ["100", "10³", "0.1"] {
+            assert!(svg.contains(&format!(">\n{label}\n</text>")), "{label}");
+        }
+        assert!(!svg.contains("100.0") && !svg.contains("1e2"));
+    }
+
+    #[test]
+    fn pareto_legend_explains_fill_and_front() {
+        let pts = vec![
+            ("a".to_string(), 10.0, 0.1, true),
+            ("a".to_string(), 20.0, 0.05, true),
+            ("b".to_string(), 15.0, 0.2, false),
+        ];
+        let svg = pareto_svg("t", "x", "y", &pts, ("filled: stable", "hollow: unstable")).unwrap();
+        for s in ["filled: stable", "hollow: unstable", "Pareto front"] {
+            assert!(svg.contains(s), "{s}");
+        }
+    }
 }
