@@ -13,7 +13,7 @@ use crate::analysis::{Query1D, dispersion};
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel;
-use crate::plot::{Curve, KAPPA_DESC, OMEGA2_DESC, lines_svg};
+use crate::plot::{Curve, KAPPA_DESC, LinePlot, OMEGA2_DESC};
 use crate::shape::{KernelParams, ShapeFamily, lattice_shape};
 use crate::vonneumann::closed_form as cf;
 use serde::Deserialize;
@@ -84,7 +84,8 @@ pub struct FigureConfig {
     /// κ points in (0, π].
     #[serde(default = "default_points")]
     pub points: usize,
-    /// Vertical range.
+    /// Fixed vertical range (default: from the data, every curve whole unless it diverges);
+    /// a curve leaving it is marked as clipped.
     pub y_range: Option<(f64, f64)>,
     /// Curves.
     pub series: Vec<Series>,
@@ -237,12 +238,23 @@ impl FigureConfig {
     }
 }
 
-/// Renders a figure to an SVG string.
+/// Renders a figure to an SVG string: the curves, the vertical range from the data unless
+/// `y_range` fixes it (curves leaving it are marked as clipped), the note as caption.
 pub fn render(cfg: &FigureConfig) -> Result<String> {
     let curves = cfg
         .series
         .iter()
         .map(|s| s.curve(cfg.points))
         .collect::<Result<Vec<_>>>()?;
-    lines_svg(&cfg.title, KAPPA_DESC, OMEGA2_DESC, &curves, cfg.y_range)
+    LinePlot {
+        y_range: cfg.y_range,
+        zero_line: true,
+        notes: if cfg.note.is_empty() {
+            Vec::new()
+        } else {
+            vec![cfg.note.clone()]
+        },
+        ..LinePlot::new(&cfg.title, KAPPA_DESC, OMEGA2_DESC, curves)
+    }
+    .svg()
 }

@@ -843,8 +843,12 @@ pub fn pareto_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
     crate::plot::pareto_svg(
         title,
         "cost: ns per particle per Δx/c of simulated time (at Δt_crit)",
-        "phase-velocity error |c_num/c − 1| at 10 points per wavelength",
+        "phase-velocity error |c_num/c − 1| at 10 ppw (dimensionless)",
         &pts,
+        (
+            "filled: stable at σ̄ = ±0.01",
+            "hollow: unstable at σ̄ = +0.01 or −0.01",
+        ),
     )
 }
 

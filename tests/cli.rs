@@ -106,7 +106,7 @@ fn dispersion_json_and_svg() {
     assert_eq!(v["omega2"].as_array().unwrap().len(), 64);
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(text.starts_with("<svg") || text.contains("<svg"));
-    assert!(text.contains("ω² Δx² / c²") && text.contains("κΔx / π") && text.contains("continuum"));
+    assert!(text.contains("ω²Δx²/c²") && text.contains("κΔx/π") && text.contains("continuum"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -89,75 +89,84 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
+/// Names of the D branches of a 2D/3D dispersion plot (sorted by ω² at each wave vector; named
+/// after the continuum's order, the shear branches below the longitudinal one).
+fn branch_names(d: usize) -> Vec<&'static str> {
+    match d {
+        2 => vec![
+            "lower branch (≈ transverse)",
+            "upper branch (≈ longitudinal)",
+        ],
+        _ => vec![
+            "lowest branch (≈ transverse)",
+            "middle branch (≈ transverse)",
+            "upper branch (≈ longitudinal)",
+        ],
+    }
+}
+
 fn run_nd<const D: usize>(a: Args) -> Result<()> {
-    use sphstab::plot::{Curve, lines_svg};
+    use sphstab::plot::{Curve, LinePlot};
     let q = a.cfg.query_nd::<D>()?;
     let r = sphstab::analysis::dispersion2d(&q, a.points)?;
     if let Some(path) = &a.plot {
         let col = |i: usize, v: &Vec<Vec<f64>>| v.iter().map(|b| b[i]).collect::<Vec<_>>();
-        let mut curves = vec![
-            Curve {
-                label: "continuum S".into(),
-                x: r.path.clone(),
-                y: col(0, &r.omega2_continuum),
-                dashed: true,
-            },
-            Curve {
-                label: "continuum P".into(),
-                x: r.path.clone(),
-                y: col(D - 1, &r.omega2_continuum),
-                dashed: true,
-            },
-        ];
-        for b in 0..D {
-            curves.push(Curve {
-                label: format!("{} branch {}", r.form, b + 1),
+        let names = branch_names(D);
+        let mut curves: Vec<Curve> = (0..D)
+            .map(|b| Curve {
+                label: format!("{}: {}", r.form, names[b]),
                 x: r.path.clone(),
                 y: col(b, &r.omega2),
                 dashed: false,
-            });
-        }
-        let labels: Vec<String> = r
-            .labels
-            .iter()
-            .map(|(l, s)| format!("{l} {s:.2}"))
+            })
             .collect();
-        let dmax = r.omega2.iter().flatten().fold(0.0f64, |m, &y| m.max(y));
-        let dmin = r.omega2.iter().flatten().fold(0.0f64, |m, &y| m.min(y));
-        let svg = lines_svg(
-            &format!(
-                "{} / {} h = {}Δx, σ̄ = {} ({D}D, high-symmetry path)",
-                r.form, r.kernel, r.h_over_dx, r.stress
-            ),
-            &format!(
-                "arc length along the path, units 1/Δx ({})",
-                labels.join(", ")
-            ),
-            sphstab::plot::OMEGA2_DESC,
-            &curves,
-            Some((dmin.min(0.0), 1.3 * dmax.max(1e-12))),
-        )?;
+        curves.push(Curve {
+            label: "continuum S (transverse)".into(),
+            x: r.path.clone(),
+            y: col(0, &r.omega2_continuum),
+            dashed: true,
+        });
+        curves.push(Curve {
+            label: "continuum P (longitudinal)".into(),
+            x: r.path.clone(),
+            y: col(D - 1, &r.omega2_continuum),
+            dashed: true,
+        });
+        let ticks: Vec<(f64, String)> = r.labels.iter().map(|(l, s)| (*s, l.clone())).collect();
+        let names_path: Vec<&str> = r.labels.iter().map(|(l, _)| l.as_str()).collect();
+        let x_desc = format!(
+            "wave vector along the path {} (arc length |Δκ|Δx, dimensionless)",
+            names_path.join("–")
+        );
+        let title = format!(
+            "{} / {} h = {}Δx, σ̄ = {}, {}, {} ({D}D)",
+            r.form, r.kernel, r.h_over_dx, r.stress, q.material, q.lattice.kind
+        );
+        let svg = LinePlot {
+            zero_line: true,
+            x_ticks: Some(ticks.clone()),
+            notes: vec![
+                "Branches are sorted by ω² at each wave vector and named after the continuum's order (shear below longitudinal).".into(),
+            ],
+            ..LinePlot::new(&title, &x_desc, sphstab::plot::OMEGA2_DESC, curves)
+        }
+        .svg()?;
         write_svg(path, svg)?;
         if let Some(rate) = &r.damping_rate {
             let branches: Vec<(String, Vec<Option<f64>>)> = (0..D)
                 .map(|b| {
                     (
-                        format!("{} branch {}", r.form, b + 1),
+                        format!("{}: {}", r.form, names[b]),
                         rate.iter().map(|row| row[b]).collect(),
                     )
                 })
                 .collect();
             let svg = sphstab::plot::damping_curves_svg(
-                &format!(
-                    "{} / {} h = {}Δx, σ̄ = {} ({D}D) — damping",
-                    r.form, r.kernel, r.h_over_dx, r.stress
-                ),
-                &format!(
-                    "arc length along the path, units 1/Δx ({})",
-                    labels.join(", ")
-                ),
+                &format!("{title} — damping"),
+                &x_desc,
                 &r.path,
                 &branches,
+                Some(ticks),
             )?;
             write_svg(&damping_path(path), svg)?;
         }

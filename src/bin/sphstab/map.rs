@@ -58,11 +58,14 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config) -> Result<()> {
     let (xl, yl) = if D == 3 {
         let name = a.plane.as_deref().unwrap_or("xy");
         (
-            format!("u Δx / π (plane {name}, k = u e_u + v e_v)"),
-            "v Δx / π".to_string(),
+            format!("uΔx/π (plane {name}, κ = u e_u + v e_v; dimensionless)"),
+            "vΔx/π (dimensionless)".to_string(),
         )
     } else {
-        ("κxΔx / π".to_string(), "κyΔx / π".to_string())
+        (
+            "κxΔx/π (dimensionless; ±1 = π/Δx)".to_string(),
+            "κyΔx/π (dimensionless)".to_string(),
+        )
     };
     let secs = t.elapsed().as_secs_f64();
     if let Some(path) = &a.plot {
@@ -71,17 +74,20 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config) -> Result<()> {
         let ys: Vec<f64> = m.ky.iter().map(|k| k / pi).collect();
         let svg = sphstab::plot::heatmap_svg(
             &format!(
-                "growth rate (c/Δx): {} / {} h = {}Δx, σ̄ = {}; max {:.4} on this {}×{} grid",
+                "growth rate over the zone: {} / {} h = {}Δx, σ̄ = {}, {}, {} ({}D, {}×{} wave vectors)",
                 q.form.name(),
                 q.kernel.name(),
                 q.h_over_dx,
                 q.stress,
-                m.growth.iter().flatten().fold(0.0f64, |x, &y| x.max(y)),
+                q.material,
+                q.lattice.kind,
+                D,
                 a.n,
                 a.n
             ),
             &xl,
             &yl,
+            "growth rate γ (c/Δx; 0 = stable)",
             &xs,
             &ys,
             &m.growth,

@@ -165,46 +165,78 @@ pub fn run(a: Args) -> Result<()> {
         }
     }
     if let Some(path) = &a.plot {
-        use sphstab::plot::{Curve, lines_svg};
-        let t: Vec<f64> = r.history.iter().map(|h| h.0).collect();
-        let lv: Vec<f64> = r.history.iter().map(|h| h.1.max(1e-300).log10()).collect();
+        use sphstab::plot::{Curve, LinePlot};
+        // time in units of Δx/c, so the slopes read directly as growth rates in c/Δx
         let unit = cfg.sound_speed() / cfg.dx;
+        let t: Vec<f64> = r.history.iter().map(|h| h.0 * unit).collect();
+        let lv: Vec<f64> = r.history.iter().map(|h| h.1.max(1e-300).log10()).collect();
         let mut curves = vec![Curve {
-            label: "log10 max |v| (free particles)".into(),
+            label: "max |v| over the free particles (simulation)".into(),
             x: t.clone(),
             y: lv,
             dashed: false,
         }];
+        let (wlo, whi) = (cfg.window.0.log10(), cfg.window.1.log10());
+        let mut band = None;
         if let Some(f) = r.fit {
-            let t0 = f.window.0;
-            let y0 = cfg.window.0.log10();
-            for (name, rate) in [
-                ("box prediction", r.predicted_growth_rate_box),
-                ("infinite lattice", r.predicted_growth_rate_infinite),
-            ] {
-                let slope = rate * unit / std::f64::consts::LN_10;
+            let t0 = f.window.0 * unit;
+            band = Some((
+                t0,
+                f.window.1 * unit,
+                format!(
+                    "fit window ({:.0e} < max |v| < {:.0e})",
+                    cfg.window.0, cfg.window.1
+                ),
+            ));
+            let mut lines = vec![
+                ("box prediction", Some(r.predicted_growth_rate_box)),
+                ("infinite lattice", Some(r.predicted_growth_rate_infinite)),
+            ];
+            lines.insert(0, ("fit to the simulation", r.measured_growth_rate));
+            for (name, rate) in lines {
+                let Some(rate) = rate else { continue };
+                let slope = rate / std::f64::consts::LN_10;
+                // each line only where it stays within a decade of the fit window
+                let y: Vec<f64> = t
+                    .iter()
+                    .map(|&s| {
+                        let v = wlo + slope * (s - t0);
+                        if v >= wlo - 1.0 && v <= whi + 1.0 {
+                            v
+                        } else {
+                            f64::NAN
+                        }
+                    })
+                    .collect();
                 curves.push(Curve {
-                    label: format!("{name}: {rate:.4} c/Δx"),
+                    label: format!("{name}: γ = {rate:.4} c/Δx"),
                     x: t.clone(),
-                    y: t.iter().map(|&s| y0 + slope * (s - t0)).collect(),
+                    y,
                     dashed: true,
                 });
             }
         }
-        let svg = lines_svg(
-            &format!(
-                "Swegle test: {} / {} h = {}Δx, f = {}, {}",
-                r.form,
-                r.kernel,
-                r.h_over_dx,
-                r.density_ratio,
-                cfg.shape_label().replace(' ', "")
-            ),
-            "time",
-            "log10 max |v|",
-            &curves,
-            Some((-11.0, 0.0)),
-        )?;
+        let svg = LinePlot {
+            band,
+            notes: vec![format!(
+                "Straight lines: growth e^(γt) through the start of the fit window, slope γ/ln 10 per Δx/c; centre particle kicked with v_x = {:.0e}.",
+                cfg.kick
+            )],
+            ..LinePlot::new(
+                &format!(
+                    "Swegle test: {} / {} h = {}Δx, f = ρ/ρ0 = {}, {}",
+                    r.form,
+                    r.kernel,
+                    r.h_over_dx,
+                    r.density_ratio,
+                    cfg.shape_label().replace(' ', "")
+                ),
+                "time t (units of Δx/c)",
+                "log₁₀ max |v| (v in the scene's velocity unit)",
+                curves,
+            )
+        }
+        .svg()?;
         std::fs::write(path, svg)
             .with_context(|| format!("--plot: cannot write {}", path.display()))?;
     }

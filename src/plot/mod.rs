@@ -1,0 +1,21 @@
+//! Plots as pure functions returning SVG strings (plotters SVG backend, no system fonts), all
+//! drawn by one layer: the styles of [`style`] (Okabe–Ito colours, marker shapes, dash
+//! patterns; legend samples drawn by the same code as their series), the axes of [`axes`]
+//! (automatic ranges from the data, decade ticks on log axes), legends outside the data.
+
+pub mod axes;
+mod heatmap;
+mod lines;
+mod scatter;
+pub mod style;
+
+pub use heatmap::{heatmap_svg, ramp};
+pub use lines::{
+    COINCIDE_TOL, Curve, DAMPING_DESC, KAPPA_DESC, LegendEntry, LinePlot, MARKERS_PER_CURVE,
+    OMEGA2_DESC, curve_style, damping_curves_svg, damping_svg, dispersion_svg, legend_entries,
+    lines_svg,
+};
+pub use scatter::{
+    COINCIDE_PX, FRONT_STYLE, Panel, PanelCurve, ScatterPanel, coinciding_groups, group_style,
+    panel_style, panels_svg, pareto_svg, scatter_panels_svg,
+};
