@@ -241,6 +241,25 @@ fn legend_column<DB: DrawingBackend>(
     Ok(())
 }
 
+/// A panel's title above its frame, then the frame (grid, box, ticks, axis descriptions).
+fn draw_panel<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    frame: &Frame,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<()> {
+    text_at(
+        root,
+        title,
+        ((frame.rect.0 + frame.rect.2) / 2.0, frame.rect.1 - 5.0),
+        14,
+        (HPos::Center, VPos::Bottom),
+        false,
+    )?;
+    frame.draw(root, x_desc, y_desc, None)
+}
+
 fn panel_frame(col: usize, row: usize, top: f64, x: Scale, y: Scale) -> Frame {
     let (cx, cy) = (col as f64 * PANEL_W, top + row as f64 * PANEL_H);
     Frame {
@@ -307,15 +326,7 @@ pub fn panels_svg(
                 .fold(0.0f64, f64::max);
             let ymax = if ymax > 0.0 { 1.06 * ymax } else { 1.0 };
             let frame = panel_frame(col, row, th, xs, Scale::Linear(-0.02 * ymax, ymax));
-            text_at(
-                &root,
-                &panel.title,
-                ((frame.rect.0 + frame.rect.2) / 2.0, frame.rect.1 - 5.0),
-                14,
-                (HPos::Center, VPos::Bottom),
-                false,
-            )?;
-            frame.draw(&root, x_desc, y_desc, None)?;
+            draw_panel(&root, &frame, &panel.title, x_desc, y_desc)?;
             for (i, c) in panel.curves.iter().enumerate() {
                 let style = panel_style(i);
                 let line: Vec<(f64, f64)> =
@@ -455,15 +466,7 @@ pub fn scatter_panels_svg(
         title_lines(&root, title, width)?;
         for (col, panel) in panels.iter().enumerate() {
             let frame = panel_frame(col, 0, th, xs, ys);
-            text_at(
-                &root,
-                &panel.title,
-                ((frame.rect.0 + frame.rect.2) / 2.0, frame.rect.1 - 5.0),
-                14,
-                (HPos::Center, VPos::Bottom),
-                false,
-            )?;
-            frame.draw(&root, x_desc, y_desc, None)?;
+            draw_panel(&root, &frame, &panel.title, x_desc, y_desc)?;
             for p in panel.points.iter().filter(ok) {
                 draw_marker(&root, frame.map(p.1, p.2), &group_style(p.0))?;
             }
