@@ -49,6 +49,7 @@
 //! \[B98] Belytschko, Krongauz, Dolbow, Gerlach 1998; [T\] thesis on total-Lagrangian SPH.
 
 pub mod analysis;
+pub mod art_stress;
 pub mod atlas;
 pub mod budget;
 pub mod error;

@@ -18,6 +18,7 @@ use crate::lattice::{Lattice, LatticeKind};
 use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
 use crate::vonneumann::linearise::Bloch;
+use num_complex::Complex64;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -442,29 +443,61 @@ fn speed<const D: usize>(v: &[f64; D]) -> f64 {
 }
 
 /// The largest growth rate (c/Δx) over the irreducible wedge π ≥ κ_1 ≥ … ≥ κ_D ≥ 0 of the
-/// square / simple-cubic zone, sampled at spacing π/[`infinite_grid`].
-fn infinite_rate<const D: usize>(lin: &Bloch<D>) -> Result<f64> {
+/// square / simple-cubic zone, sampled at spacing π/[`infinite_grid`]; with the wave vector
+/// (κΔx) where it is reached and that branch's polarisation (None when nothing grows).
+fn infinite_rate<const D: usize>(
+    lin: &Bloch<D>,
+) -> Result<(f64, Option<([f64; D], [Complex64; D])>)> {
     let n = infinite_grid(D);
     let mut g: f64 = 0.0;
+    let mut at = None;
     for idx in 0..(n + 1).pow(D as u32) {
         let c = SwegleConfig::coords::<D>(n + 1, idx);
         if c.windows(2).any(|w| w[1] > w[0]) {
             continue;
         }
-        g = g.max(lin.growth(c.map(|i| PI * i as f64 / n as f64))?.0);
+        let k = c.map(|i| PI * i as f64 / n as f64);
+        let (gk, p) = lin.growth(k)?;
+        if gk > g {
+            g = gk;
+            at = Some((k, p));
+        }
     }
-    Ok(g)
+    Ok((g, at))
 }
 
-fn run_d<const D: usize>(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<SwegleReport>
-where
-    FinalState: From<State<f64, D>>,
-{
-    let mut run = cfg.build::<D>()?;
-    run.set_integrator(cfg.integrator);
-    let c = cfg.sound_speed();
-    let unit = c / cfg.dx; // c/Δx: normalisation of rates
-    // predictions
+/// The engine's predictions for a Swegle configuration, computed without running it (the
+/// same numbers [`run_swegle`] reports next to its measurement).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct SweglePrediction {
+    /// Growth rate of the finite particle set (c/Δx).
+    pub box_rate: f64,
+    /// `dense-operator` or `standing-modes` (as [`SwegleReport::box_method`]).
+    pub box_method: &'static str,
+    /// Wave vector (κΔx per axis) of the fastest standing mode the box admits.
+    pub box_kappa: Vec<f64>,
+    /// Growth rate of the infinite lattice (c/Δx).
+    pub infinite_rate: f64,
+    /// Wave vector (κΔx per axis) of the infinite lattice's fastest mode (empty: none grows).
+    pub infinite_kappa: Vec<f64>,
+    /// Longitudinal fraction |p·κ̂|² of that mode's polarisation p (1: longitudinal, 0:
+    /// transverse; NaN-free: 0 when nothing grows).
+    pub infinite_longitudinal: f64,
+}
+
+/// The predictions of [`run_swegle`] without the time integration: the dense box operator (or
+/// the box's standing modes) and the infinite lattice, with the fastest modes.
+pub fn predict_swegle(cfg: &SwegleConfig) -> Result<SweglePrediction> {
+    cfg.validate()?;
+    match cfg.dim {
+        3 => predict_d::<3>(cfg, &cfg.build::<3>()?),
+        _ => predict_d::<2>(cfg, &cfg.build::<2>()?),
+    }
+}
+
+/// [`predict_swegle`] for a built run (before it is stepped).
+fn predict_d<const D: usize>(cfg: &SwegleConfig, run: &Run<D>) -> Result<SweglePrediction> {
+    let unit = cfg.sound_speed() / cfg.dx; // c/Δx: normalisation of rates
     let nfree = cfg.size - 2 * cfg.layers;
     let lin_unit = Bloch::<D>::new(
         ModelParams2D {
@@ -502,14 +535,44 @@ where
     let (standing_rate, standing_k) = box_prediction(&lin_unit, nfree)?;
     // the dense operator is the mechanical reduction ω² = eig(−(J_vx + J_vq J_qv)), exact only
     // without dissipation; with δ-SPH the standing modes' eigenvalues (of the full J) are used
-    let (box_rate, method) = if D * nfree.pow(D as u32) <= MAX_DENSE_BOX_DOFS.min(MAX_DENSE_DOFS)
+    let (box_rate, box_method) = if D * nfree.pow(D as u32)
+        <= MAX_DENSE_BOX_DOFS.min(MAX_DENSE_DOFS)
         && cfg.diffusion.is_none()
     {
-        (box_growth(&run)?.0 / unit, "dense-operator")
+        (box_growth(run)?.0 / unit, "dense-operator")
     } else {
         (standing_rate, "standing-modes")
     };
-    let inf = infinite_rate(&lin_unit)?;
+    let (infinite_rate, at) = infinite_rate(&lin_unit)?;
+    let (infinite_kappa, infinite_longitudinal) = match at {
+        Some((k, p)) => {
+            let kk: f64 = k.iter().map(|a| a * a).sum::<f64>().sqrt();
+            let dot: Complex64 = k.iter().zip(&p).map(|(a, pa)| pa * (a / kk)).sum();
+            (k.to_vec(), dot.norm_sqr())
+        }
+        None => (Vec::new(), 0.0),
+    };
+    Ok(SweglePrediction {
+        box_rate,
+        box_method,
+        box_kappa: standing_k.to_vec(),
+        infinite_rate,
+        infinite_kappa,
+        infinite_longitudinal,
+    })
+}
+
+fn run_d<const D: usize>(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<SwegleReport>
+where
+    FinalState: From<State<f64, D>>,
+{
+    let mut run = cfg.build::<D>()?;
+    run.set_integrator(cfg.integrator);
+    let c = cfg.sound_speed();
+    let unit = c / cfg.dx; // c/Δx: normalisation of rates
+    let nfree = cfg.size - 2 * cfg.layers;
+    let pred = predict_d(cfg, &run)?;
+    let (box_rate, method, inf) = (pred.box_rate, pred.box_method, pred.infinite_rate);
     let dt = cfg.cfl * cfg.dx / c;
     let t_end = if cfg.until_window && box_rate > 1e-6 {
         cfg.t_end
@@ -648,7 +711,7 @@ where
         runtime_s,
         history_full: full,
         dominant_kappa: dominant,
-        predicted_kappa_box: standing_k.to_vec(),
+        predicted_kappa_box: pred.box_kappa,
         history: t
             .iter()
             .zip(&y)

@@ -1,6 +1,7 @@
 //! `sphstab` command-line interface (thin: argument parsing and printing only).
 
 mod alloc;
+mod art_stress;
 mod atlas;
 mod common;
 mod dispersion;
@@ -81,6 +82,9 @@ enum Cmd {
     /// 3D pairing study: growth under pressure against neighbour number N_H, every kernel ×
     /// lattice (sc, bcc, fcc) × h/Δx, next to the kernel's W* sign criterion.
     Pairing(pairing::Args),
+    /// Artificial stress against the Swegle growth: engine (infinite lattice, box) and Swegle
+    /// runs over ε, for several h/Δx and tensions.
+    ArtStress(art_stress::Args),
 }
 
 /// A reader that closes the pipe early (`sphstab … | head`) makes `println!` panic with a broken
@@ -159,6 +163,7 @@ fn main() {
         Cmd::Merge(a) => merge::run(a),
         Cmd::Throughput(a) => throughput::run(a),
         Cmd::Pairing(a) => pairing::run(a),
+        Cmd::ArtStress(a) => art_stress::run(a),
     };
     if let Err(e) = res {
         let msg = format!("{e:#}").replace('\n', " ");

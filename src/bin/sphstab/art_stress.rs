@@ -1,0 +1,186 @@
+//! `sphstab art-stress`: how much Monaghan–Gray artificial stress slows the Swegle growth of
+//! the classical form (engine on the infinite lattice and the finite box, Swegle runs, and
+//! optionally PySPH's stored measurements); table, JSON and figure. Bare, a quick prediction
+//! grid (m4, h = 1.2, f = 0.99, no runs); the published study is
+//! `--config analysis/art_stress.json`.
+
+use crate::{progress, study};
+use anyhow::Result;
+use sphstab::art_stress::{ArtStressConfig, ArtStressReport};
+use sphstab::solver::BoundaryDensity;
+use std::path::{Path, PathBuf};
+
+/// Flags of `art-stress`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Kernel (default m4).
+    #[arg(long)]
+    kernel: Option<String>,
+    /// Form: classical or cll (default classical).
+    #[arg(long)]
+    form: Option<String>,
+    /// Comma-separated h/Δx, 1 to 4 values in [0.8, 6] (default 1.2).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    h: Vec<f64>,
+    /// Comma-separated density ratios f = ρ/ρ0 (f < 1: tension σ̄ = 1 − f), 1 to 4 values in
+    /// [0.5, 1.5] (default 0.99).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    density_ratio: Vec<f64>,
+    /// Comma-separated ε of the prediction grid, each in [0, 10] (default 0, 0.05, …, 0.6).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    eps: Vec<f64>,
+    /// Comma-separated ε of Swegle runs, each in [0, 10] (default none).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    runs: Vec<f64>,
+    /// Exponent n of f = W(r)/W(Δx), in [1, 12] (default 4).
+    #[arg(long, allow_hyphen_values = true)]
+    art_n: Option<f64>,
+    /// Boundary density of the box: frozen (default, as PySPH) or evolve.
+    #[arg(long, value_enum)]
+    boundary_density: Option<Boundary>,
+    /// Stored measurements of PySPH to draw beside sphstab's
+    /// (analysis/pysph/results-art-stress.json).
+    #[arg(long)]
+    compare: Option<PathBuf>,
+    /// A study config (JSON: form, kernel, h, density_ratio, eps, runs, art_n,
+    /// boundary_density, size, compare, output, note); its `output` names the figure written to
+    /// figures/ together with the data (same name, .json). Not combined with the study flags.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Re-draw the figure from stored data (a JSON written by --json or --config) without
+    /// computing; needs --plot.
+    #[arg(long)]
+    from: Option<PathBuf>,
+    /// Print the JSON report instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// Write the figure (SVG: growth rate against ε, one panel per h and f) here.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+}
+
+/// `--boundary-density`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum Boundary {
+    Frozen,
+    Evolve,
+}
+
+impl Args {
+    fn study_flags(&self) -> Vec<&'static str> {
+        [
+            (self.kernel.is_some(), "--kernel"),
+            (self.form.is_some(), "--form"),
+            (!self.h.is_empty(), "--h"),
+            (!self.density_ratio.is_empty(), "--density-ratio"),
+            (!self.eps.is_empty(), "--eps"),
+            (!self.runs.is_empty(), "--runs"),
+            (self.art_n.is_some(), "--art-n"),
+            (self.boundary_density.is_some(), "--boundary-density"),
+            (self.compare.is_some(), "--compare"),
+        ]
+        .into_iter()
+        .filter_map(|(g, n)| g.then_some(n))
+        .collect()
+    }
+}
+
+pub fn run(a: Args) -> Result<()> {
+    if let Some(p) = &a.plot {
+        crate::common::check_writable("--plot", p)?;
+    }
+    let flags = a.study_flags();
+    if let Some(from) = &a.from {
+        if a.config.is_some() || !flags.is_empty() || a.json {
+            anyhow::bail!(
+                "--from redraws stored data: it takes only --plot (not --config, --json or the study flags)"
+            );
+        }
+        let path = study::plot_path(a.plot.as_ref())?;
+        let rep: ArtStressReport = study::read_report(from)?;
+        return study::write_plot(sphstab::art_stress::figure_svg(&rep), path);
+    }
+    let cfg = match &a.config {
+        Some(p) => {
+            if !flags.is_empty() {
+                anyhow::bail!(
+                    "--config holds the whole study: do not combine it with {}",
+                    flags.join(", ")
+                );
+            }
+            study::read_config(p, sphstab::art_stress::parse_config)?
+        }
+        None => {
+            let d = ArtStressConfig::quick();
+            let n = match a.art_n {
+                Some(n) if n.fract() == 0.0 && (1.0..=12.0).contains(&n) => n as i32,
+                Some(n) => {
+                    return Err(sphstab::error::Error::OutOfRange {
+                        name: "--art-n",
+                        value: n,
+                        range: "an integer in [1, 12]".into(),
+                    }
+                    .into());
+                }
+                None => d.art_n,
+            };
+            ArtStressConfig {
+                form: a.form.clone().unwrap_or(d.form),
+                kernel: a.kernel.clone().unwrap_or(d.kernel),
+                h: if a.h.is_empty() { d.h } else { a.h.clone() },
+                density_ratio: if a.density_ratio.is_empty() {
+                    d.density_ratio
+                } else {
+                    a.density_ratio.clone()
+                },
+                eps: if a.eps.is_empty() {
+                    d.eps
+                } else {
+                    a.eps.clone()
+                },
+                runs: a.runs.clone(),
+                art_n: n,
+                boundary_density: match a.boundary_density {
+                    Some(Boundary::Evolve) => BoundaryDensity::Evolve,
+                    _ => BoundaryDensity::Frozen,
+                },
+                compare: a.compare.as_ref().map(|p| p.display().to_string()),
+                ..d
+            }
+        }
+    };
+    cfg.validate_named(a.config.is_none())?;
+    if let Some(name) = &cfg.output {
+        crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
+    }
+    let compare = match &cfg.compare {
+        Some(p) => {
+            let flag = if a.config.is_some() {
+                "--config (its `compare`)"
+            } else {
+                "--compare"
+            };
+            let text = std::fs::read_to_string(p)
+                .map_err(|e| anyhow::anyhow!("{flag}: cannot read {p}: {e}"))?;
+            Some(sphstab::art_stress::comparison_from_pysph(p, &text)?)
+        }
+        None => None,
+    };
+    let pb = progress::bar(progress::wanted(a.json));
+    let rep = sphstab::art_stress::run(&cfg, compare.as_ref(), |d, t| {
+        progress::set(&pb, d as f64 / t.max(1) as f64)
+    })?;
+    pb.finish_and_clear();
+    if let Some(path) = &a.plot {
+        study::write_plot(sphstab::art_stress::figure_svg(&rep), path)?;
+    }
+    if let Some(name) = &cfg.output {
+        study::write_figure_and_data(&rep, name, sphstab::art_stress::figure_svg)?;
+    }
+    if a.json {
+        println!("{}", serde_json::to_string(&rep)?);
+    } else {
+        print!("{}", sphstab::art_stress::table(&rep));
+    }
+    Ok(())
+}
