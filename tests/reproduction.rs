@@ -1378,7 +1378,7 @@ fn thesis_speeds() -> Row {
         .collect();
     let cb: Vec<f64> = sets.iter().map(|&(rho, e)| (e / rho).sqrt()).collect();
     Row {
-        item: "Thesis table of §4.6.3.5 (unnumbered), Fig 4.14",
+        item: "Thesis table of §4.6.3.5 (unnumbered)",
         shows: "three material sets (ρ, E) and their wave speeds for Fig 4.14",
         how: "arithmetic in the test (c_L = √(E(1 − ν)/((1 + ν)(1 − 2ν)ρ)), ν = 0.3 from §5.3.1)",
         paper: format!("{} (printed in \"m.s⁻²\")", list(&printed, 0)),
