@@ -209,7 +209,7 @@ fn b00_fig9() -> Row {
     Row {
         item: "B00 Fig 9",
         shows: "stress points, Eulerian kernel (quartic spline), σ̄ = 1: ω² vs κ, D_mx = 1.5 and 2.5",
-        how: "`sphstab query --form eulerian-stress-points --kernel efg-quartic --shape mls --support 2.5 --stress 1`",
+        how: "`sphstab figures` → figures/b00_fig9_stress_points.svg; `sphstab query --form eulerian-stress-points --kernel efg-quartic --shape mls --support 2.5 --stress 1`",
         paper: "no tensile instability at small support; at D_mx = 2.5 an instability at the cut-off wave number for σ̄ = 1".into(),
         ours: format!(
             "D_mx = 1.5: stable ({}); D_mx = 2.5: unstable for κΔx/π ∈ [{:.3}, 1], ω²(π) = {at_pi:.4}",
@@ -225,27 +225,34 @@ fn b00_fig9() -> Row {
 
 fn b00_fig10() -> Row {
     let ds = [1.5, 2.0, 2.5, 3.0, 3.5];
-    let w: Vec<f64> = ds
+    let lins: Vec<_> = ds
         .iter()
-        .map(|&d| {
-            lin(FormKind::LagrangianStressPoints, "efg-cubic", MLS, d, 0.0)
-                .omega2(PI)
-                .0
-        })
+        .map(|&d| lin(FormKind::LagrangianStressPoints, "efg-cubic", MLS, d, 0.0))
         .collect();
+    let w: Vec<f64> = lins.iter().map(|l| l.omega2(PI).0).collect();
     let ok = w.iter().zip(ds).all(|(&v, d)| (d < 3.0) == (v > 1e-2));
+    // two-node linear elements, lumped mass: ω² = 4 sin²(κ/2) (derived); EFG below it for
+    // κΔx ≥ π/2 at every D_mx
+    let fe = |q: f64| 4.0 * (0.5 * q).sin().powi(2);
+    let below = lins.iter().all(|l| {
+        grid(256)
+            .into_iter()
+            .filter(|&q| q >= 0.5 * PI)
+            .all(|q| l.omega2(q).0 <= fe(q))
+    });
     Row {
         item: "B00 Fig 10",
-        shows: "stress points, Lagrangian kernel (cubic spline): ω² vs κ for D_mx = 1.5–3.5, against linear FE",
-        how: "`sphstab figures` → figures/b00_fig10_lagrangian_stress_points.svg",
-        paper: "no rank-deficient mode; frequency very small near the cut-off for D_mx ≥ 3.0"
+        shows: "stress points, Lagrangian kernel (cubic spline): ω² vs κ for D_mx = 1.5–3.5, against linear FE (lumped mass)",
+        how: "`sphstab figures` → figures/b00_fig10_lagrangian_stress_points.svg (with the linear-FE lumped-mass curve)",
+        paper: "no rank-deficient mode; frequency very small near the cut-off for D_mx ≥ 3.0 (§4.2.2); linear FE with lumped mass for comparison"
             .into(),
         ours: format!(
-            "ω²(π)Δx²/c² at D_mx = 1.5, 2, 2.5, 3, 3.5: {}",
+            "ω²(π)Δx²/c² at D_mx = 1.5, 2, 2.5, 3, 3.5: {}; linear FE lumped ω² = 4 sin²(κΔx/2) (derived), {:.1} at π; every EFG curve below it for κΔx ≥ π/2: {below}",
             w.iter()
                 .map(|x| format!("{x:.3e}"))
                 .collect::<Vec<_>>()
-                .join(", ")
+                .join(", "),
+            fe(PI)
         ),
         agree: verdict(ok, "read as ω²(π) < 1e-2 exactly for D_mx ≥ 3"),
     }
@@ -389,7 +396,7 @@ fn b00_figs13_15() -> Row {
     Row {
         item: "B00 Figs 13–15",
         shows: "2D anti-plane waves (EFG, efg-cubic, D_mx = 2): ωΔx/c vs κ per propagation angle, for nodal, cell and stress-point quadratures",
-        how: "`sphstab stiffness --kernel efg-cubic --support 2 --shape mls --quadrature Q --theta θ` (Q = nodal, cell-1, cell-2x2, stress-quad, stress-tri)",
+        how: "`sphstab figures` → figures/b00_fig13_antiplane_nodal.svg, b00_fig14_antiplane_cells.svg, b00_fig15_antiplane_stress_points.svg; `sphstab stiffness --kernel efg-cubic --support 2 --shape mls --quadrature Q --theta θ` (Q = nodal, cell-1, cell-2x2, stress-quad, stress-tri)",
         paper: "zero frequency at the cut-offs: nodal at θ = 0° and 45°; one-point cells and quadrilateral stress points at 45° only; 2×2 cells and triangle stress points none".into(),
         ours: format!(
             "spurious zero-frequency modes at the cut-off: {}",
@@ -1064,7 +1071,7 @@ fn b00_fig4() -> Row {
     Row {
         item: "B00 Fig 4",
         shows: "EFG nodal integration, Eulerian kernel, σ̄ = −1 (C̃ = C + σ = 0: material instability), D_mx = 1.5, 2.5; caption normalises by c² = −C/ρ",
-        how: "(a) `sphstab dispersion --form eulerian-nodal --kernel efg-quartic --support 1.5 --shape mls --stress -1` (and `--support 2.5`); (b) C < 0 has no CLI flag: the test negates eq 74's stress term",
+        how: "`sphstab figures` → figures/b00_fig4_material.svg; (a) `sphstab dispersion --form eulerian-nodal --kernel efg-quartic --support 1.5 --shape mls --stress -1` (and `--support 2.5`); (b) C < 0 has no CLI flag: the test negates eq 74's stress term",
         paper: "\"when σ̄ = −1 … the discrete equations are also unstable for most wave numbers\"; the continuum (ω² = 0) for all (§4.1.1)".into(),
         ours: format!(
             "(a) C > 0, σ = −C (compression); (b) C < 0, σ = −C > 0 (the caption's c² = −C/ρ > 0): {}",
@@ -1363,6 +1370,36 @@ fn thesis_tension() -> Row {
         agree: verdict(
             tl.stable && !cl.stable && !en.stable && kmax(&cl) > 0.5 && kmax(&en) > 0.5,
             "\"out of phase\" read as the fastest mode having κΔx > π/2; the thesis's UL scheme is nearest to classical / eulerian-nodal",
+        ),
+    }
+}
+
+/// [T §4.7.1] (text): the share of the 1D cover where W'' > 0 (tensile-unstable neighbours).
+fn thesis_tensile_range() -> Row {
+    let share = |n: &str| {
+        let kk = k(n);
+        1.0 - kk.inflection(1) / kk.zeta()
+    };
+    let (m4, moll) = (share("m4"), share("mollifier"));
+    // the classical mollifier e^{−1/(1−r²)} (not in sphstab): w'' ∝ 3r⁴ − 1, inflection 3^{−1/4}
+    let classical = 1.0 - bisect(|r| 3.0 * r.powi(4) - 1.0, 0.0, 1.0);
+    Row {
+        item: "Thesis §4.7.1 (text)",
+        shows: "the share of the 1D cover where W'' > 0 (the tensile-instability range of Swegle's criterion)",
+        how: "`sphstab kernels --json` (1 − q*/ζ)",
+        paper: "cubic B-spline 67%, mollifier 82% (§4.7.1)".into(),
+        ours: format!(
+            "m4 {:.1}%; modified mollifier {:.1}%; classical mollifier (derived from eq 2.17) {:.1}%",
+            100.0 * m4,
+            100.0 * moll,
+            100.0 * classical
+        ),
+        agree: erratum(
+            (m4 - 0.67).abs() < 0.005
+                && (moll - 0.82).abs() > 0.03
+                && (classical - 0.82).abs() > 0.03,
+            "E17",
+            "67% ✔; 82% matches neither mollifier",
         ),
     }
 }
@@ -1839,7 +1876,7 @@ fn render(rows: &[Row]) -> String {
          longer matches the code (`SPHSTAB_WRITE_REPRODUCTION=1` rewrites it). Paper values are \
          transcribed from the seeds (`../shared/seeds/`: B00 = Belytschko, Guo, Liu, Xiao 2000; \
          V21 = Vignjevic, De Vuyst, Campbell 2021; B98 = Belytschko, Krongauz, Dolbow, Gerlach \
-         1998; Thesis = 004, with the appended conference paper \"T-paper\"); errata E1–E16 and \
+         1998; Thesis = 004, with the appended conference paper \"T-paper\"); errata E1–E17 and \
          note N1 are in `analysis/ERRATA.md`. Units: ω²Δx²/c², κΔx, growth rates in c/Δx, Δt in \
          Δx/c, unless a row says otherwise. A row marked *derived* computes its number in the \
          test from the paper's own formulas, not through sphstab's solver or engine.\n\n\
@@ -1951,6 +1988,7 @@ fn reproduction_md_matches_the_code() {
         thesis_speeds(),
         thesis_interface(),
         thesis_tension(),
+        thesis_tensile_range(),
         thesis_fig56(),
         thesis_fig59(),
     ]);
