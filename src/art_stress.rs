@@ -619,16 +619,18 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
             let boxline: Vec<(f64, f64)> =
                 case.points.iter().map(|p| px(p.eps, p.in_box)).collect();
             draw_line(&root, &boxline, &leg[2].1)?;
-            for p in &case.runs {
-                if let Some(m) = p.measured {
-                    draw_marker(&root, px(p.eps, m), &leg[3].1)?;
-                }
-            }
+            // the compared code's hollow markers first, sphstab's filled ones on top (they
+            // coincide when the codes agree; the legend then says so)
             if leg.len() > 4 {
                 for p in &case.compare {
                     if let Some(m) = p.measured {
                         draw_marker(&root, px(p.eps, m), &leg[4].1)?;
                     }
+                }
+            }
+            for p in &case.runs {
+                if let Some(m) = p.measured {
+                    draw_marker(&root, px(p.eps, m), &leg[3].1)?;
                 }
             }
             // runs that did not grow into the fit window, named under the panel
@@ -650,10 +652,24 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
         }
         let (lx, top) = (PANEL_W * cols as f64 + 20.0, th + 26.0);
         let mut y = top + 6.0;
-        for (label, style, line, marker) in &leg {
+        let agree = max_relative_difference(r);
+        for (i, (label, style, line, marker)) in leg.iter().enumerate() {
             draw_sample(&root, (lx, y + 7.0), 36.0, style, *line, *marker)?;
+            if i == 4 {
+                // sphstab's marker inside, as in the panels
+                draw_marker(&root, (lx + 18.0, y + 7.0), &leg[3].1)?;
+            }
             text(&root, label, (lx + 44.0, y), 13, BLACK)?;
             y += 22.0;
+            if let (4, Some(d)) = (i, agree) {
+                for line in [
+                    "coincides with sphstab's runs (▲ inside ◇):".to_string(),
+                    format!("max relative difference {d:.1e}"),
+                ] {
+                    text(&root, &line, (lx + 44.0, y - 5.0), 11, GREY)?;
+                    y += 13.0;
+                }
+            }
         }
         root.draw(&Rectangle::new(
             [
@@ -666,6 +682,22 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
         root.present().map_err(plot_err)?;
     }
     Ok(svg)
+}
+
+/// The largest relative difference between the compared code's measured rates and sphstab's
+/// runs at the same (h, f, ε); None without common points.
+pub fn max_relative_difference(r: &ArtStressReport) -> Option<f64> {
+    let mut d: Option<f64> = None;
+    for case in &r.cases {
+        for c in &case.compare {
+            let run = case.runs.iter().find(|p| close(p.eps, c.eps));
+            if let (Some(a), Some(b)) = (c.measured, run.and_then(|p| p.measured)) {
+                let x = (a - b).abs() / b.abs();
+                d = Some(d.map_or(x, |y| y.max(x)));
+            }
+        }
+    }
+    d
 }
 
 /// A number without trailing zeros (0.05, not 0.050000000000000044).
