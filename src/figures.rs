@@ -559,3 +559,52 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
     }
     stack_svg(&cfg.title, &parts)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lumped linear element from its assembled stencil: nodal mass ρΔx, element
+    /// stiffness (C̄/Δx)[[1, −1], [−1, 1]] gives row (−1, 2, −1)·C̄/Δx, whose symbol over the
+    /// mass is (C̄/ρΔx²) Σ_j a_j e^{iκj} = (1 + σ̄)(2 − 2 cos κ) in units of c²/Δx².
+    #[test]
+    fn fe_route_is_the_assembled_lumped_element() {
+        for sigma in [0.0, 0.3, -0.5] {
+            for i in 0..=16 {
+                let k = PI * i as f64 / 16.0;
+                let stencil = [(-1i32, -1.0), (0, 2.0), (1, -1.0)];
+                let sym: f64 = stencil
+                    .iter()
+                    .map(|&(j, a)| (1.0 + sigma) * a * (k * f64::from(j)).cos())
+                    .sum();
+                assert!((fe_linear_lumped(sigma, k) - sym).abs() < 1e-12);
+            }
+        }
+        assert!((fe_linear_lumped(0.0, PI) - 4.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn continuum_route_is_the_identity_up_to_the_cut_off() {
+        let a: AntiPlaneSeries =
+            serde_json::from_str(r#"{"route":"continuum","theta":45}"#).unwrap();
+        let c = a.curve(8).unwrap();
+        assert_eq!(c.x.len(), 8);
+        // square lattice, θ = 45°: the zone boundary is at √2π (B00 §4.4)
+        assert!((c.x[7] - 2f64.sqrt()).abs() < 1e-12);
+        for (x, y) in c.x.iter().zip(&c.y) {
+            assert!((y - x * PI).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn cut_off_marks_merge_equal_cut_offs() {
+        let s = |t: f64| -> AntiPlaneSeries {
+            serde_json::from_str(&format!(r#"{{"route":"continuum","theta":{t}}}"#)).unwrap()
+        };
+        let m = cutoff_marks(&[s(0.0), s(90.0), s(45.0), s(0.0)]).unwrap();
+        assert_eq!(m.len(), 2);
+        assert_eq!(m[0].1, "cut-off θ = 0°, 90°");
+        assert!((m[0].0 - 1.0).abs() < 1e-12);
+        assert!((m[1].0 - 2f64.sqrt()).abs() < 1e-12);
+    }
+}
