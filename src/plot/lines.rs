@@ -584,4 +584,32 @@ mod tests {
         let svg = p.svg().unwrap();
         assert!(svg.contains("coincides with “engine”") && svg.contains("clipped ▲"));
     }
+
+    #[test]
+    fn x_marks_are_labelled_above_the_box_in_rows_that_do_not_overlap() {
+        let cs = vec![curve("a", vec![0.0, 1.0, 2.0, 1.0, 0.0], false)];
+        let height = |marks: Vec<(f64, String)>| {
+            let svg = LinePlot {
+                x_marks: marks,
+                ..LinePlot::new("t", "x", "y", cs.clone())
+            }
+            .svg()
+            .unwrap();
+            crate::plot::svg_size(&svg).unwrap().1
+        };
+        let none = height(Vec::new());
+        let one = height(vec![(1.0, "cut-off A".into())]);
+        let far = height(vec![(1.0, "cut-off A".into()), (3.0, "cut-off B".into())]);
+        let close = height(vec![(1.0, "cut-off A".into()), (1.05, "cut-off B".into())]);
+        assert_eq!(one, none + 16);
+        assert_eq!(far, one);
+        assert_eq!(close, one + 16);
+        let svg = LinePlot {
+            x_marks: vec![(5.0, "beyond the data".into())],
+            ..LinePlot::new("t", "x", "y", cs.clone())
+        }
+        .svg()
+        .unwrap();
+        assert!(svg.contains("beyond the data"));
+    }
 }
