@@ -1,6 +1,7 @@
-//! Figures regenerated from JSON configs (`analysis/configs/*.json`): each config lists
-//! series — a form at a kernel, smoothing length, shape and stress, computed either by the
-//! numeric engine or by one of \[B00\]'s closed forms — and is rendered to one SVG.
+//! Figures regenerated from JSON configs (`analysis/configs/*.json`), each rendered to one SVG.
+//! A config lists 1D `series` — a form at a kernel, smoothing length, shape and stress,
+//! computed by the numeric engine, by one of \[B00\]'s closed forms or as the linear finite
+//! element of \[B00\] Fig 10 — plotted as ω²Δx²/c² against κΔx/π:
 //!
 //! ```json
 //! { "output": "b00_fig3_eq74.svg", "title": "...", "note": "...",
@@ -8,13 +9,30 @@
 //!   "series": [ { "form": "eulerian-nodal", "kernel": "efg-quartic", "support": 1.5,
 //!                 "shape": "mls", "stress": 0.5, "route": "b00-eq74", "label": "σ̄ = 0.5" } ] }
 //! ```
+//!
+//! or 2D `antiplane` series — the anti-plane Galerkin wave of \[B00\] §4.4 computed by
+//! [`crate::vonneumann::antiplane`] (the code of `sphstab stiffness`), ωΔx/c along a direction
+//! θ up to the zone boundary, against κΔx/π with the cut-offs marked:
+//!
+//! ```json
+//! { "output": "b00_fig13.svg", "title": "...", "note": "...",
+//!   "antiplane": [ { "quadrature": "nodal", "theta": 45, "kernel": "efg-cubic",
+//!                    "support": 2.0, "shape": "mls" },
+//!                  { "route": "continuum", "theta": 45, "dashed": true } ] }
+//! ```
+//!
+//! A figure of several panels (stacked top to bottom, as the paper's (a), (b), …) gives
+//! `panels`, each with its `title`, optional `y_range` and its `series` or `antiplane` curves,
+//! instead of top-level curves.
 
 use crate::analysis::{Query1D, dispersion};
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel;
-use crate::plot::{Curve, KAPPA_DESC, LinePlot, OMEGA2_DESC};
+use crate::lattice::{Lattice2D, LatticeKind};
+use crate::plot::{Curve, KAPPA_DESC, LinePlot, OMEGA2_DESC, stack_svg};
 use crate::shape::{KernelParams, ShapeFamily, lattice_shape};
+use crate::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
 use crate::vonneumann::closed_form as cf;
 use serde::Deserialize;
 use std::f64::consts::PI;
@@ -38,6 +56,20 @@ pub enum Route {
     B00Eq103,
     /// \[B00\] eq 108.
     B00Eq108,
+    /// The two-node linear finite element with lumped mass, \[B00\] Fig 10's comparison
+    /// curve: [`fe_linear_lumped`].
+    FeLinearLumped,
+}
+
+/// Two-node linear finite elements with lumped mass on a uniform mesh of spacing Δx, the
+/// comparison curve of \[B00\] Fig 10: ω²Δx²/c² = (1 + σ̄) · 4 sin²(κΔx/2).
+///
+/// Element stiffness (C̄/Δx)[[1, −1], [−1, 1]] with C̄ = C + σ (\[B00\] eq 81 at F = 1, as
+/// in eq 82), lumped nodal mass ρΔx: m ü_j = (C̄/Δx)(u_{j+1} − 2u_j + u_{j−1}), so
+/// ω² = (C̄/ρΔx²)(2 − 2 cos κΔx) = (C̄/ρΔx²) 4 sin²(κΔx/2). `kappa` is κΔx.
+pub fn fe_linear_lumped(sigma_bar: f64, kappa: f64) -> f64 {
+    let s = (0.5 * kappa).sin();
+    (1.0 + sigma_bar) * 4.0 * s * s
 }
 
 /// One curve of a figure.
@@ -85,10 +117,76 @@ pub struct FigureConfig {
     #[serde(default = "default_points")]
     pub points: usize,
     /// Fixed vertical range (default: from the data, every curve whole unless it diverges);
-    /// a curve leaving it is marked as clipped.
+    /// a curve leaving it is marked as clipped. With `panels`: the range of every panel that
+    /// gives none.
     pub y_range: Option<(f64, f64)>,
-    /// Curves.
+    /// 1D curves (ω²Δx²/c² against κΔx/π).
+    #[serde(default)]
     pub series: Vec<Series>,
+    /// 2D anti-plane curves (ωΔx/c against κΔx/π).
+    #[serde(default)]
+    pub antiplane: Vec<AntiPlaneSeries>,
+    /// Panels stacked top to bottom (instead of top-level curves).
+    #[serde(default)]
+    pub panels: Vec<Panel>,
+}
+
+/// One panel of a figure: its curves, 1D `series` or 2D `antiplane` (not both).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Panel {
+    /// Panel title, e.g. "(a) D_mx = 1.5".
+    pub title: String,
+    /// Fixed vertical range (default: the figure's, else from the data).
+    pub y_range: Option<(f64, f64)>,
+    /// 1D curves.
+    #[serde(default)]
+    pub series: Vec<Series>,
+    /// 2D anti-plane curves.
+    #[serde(default)]
+    pub antiplane: Vec<AntiPlaneSeries>,
+}
+
+/// How an anti-plane curve is computed.
+#[derive(Clone, Copy, Debug, Default, Deserialize, serde::Serialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum AntiPlaneRoute {
+    /// The Galerkin anti-plane system of [`crate::vonneumann::antiplane`] (as `sphstab
+    /// stiffness --theta`): ωΔx/c of every branch.
+    #[default]
+    Engine,
+    /// The continuum ü = c²Δu (\[B00\] eq 110): ωΔx/c = κΔx in every direction.
+    Continuum,
+}
+
+/// One anti-plane curve (\[B00\] §4.4): ωΔx/c along the direction θ for κΔx from 0 to the
+/// first-zone boundary along θ.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AntiPlaneSeries {
+    /// Route (default: engine).
+    #[serde(default)]
+    pub route: AntiPlaneRoute,
+    /// Quadrature (`sphstab stiffness --quadrature`); engine route only, required there.
+    pub quadrature: Option<String>,
+    /// Propagation angle θ in degrees, in [−360, 360].
+    pub theta: f64,
+    /// Node lattice, `square` (default) or `hex` (Δx = nearest-neighbour distance).
+    pub lattice: Option<String>,
+    /// Kernel name; engine route only, required there.
+    pub kernel: Option<String>,
+    /// Support radius R/Δx (\[B00\]'s D_mx); engine route only, required there.
+    pub support: Option<f64>,
+    /// Shape family (default mls).
+    pub shape: Option<String>,
+    /// Consistent mass (default: lumped, as \[B00\] eq 119).
+    #[serde(default)]
+    pub consistent: bool,
+    /// Legend label (default: generated).
+    pub label: Option<String>,
+    /// Draw dashed.
+    #[serde(default)]
+    pub dashed: bool,
 }
 
 fn default_points() -> usize {
@@ -159,6 +257,7 @@ impl Series {
                 .iter()
                 .map(|&k| cf::b00_eq108_least_squares(&phi, r, q.alpha_s, k))
                 .collect(),
+            Route::FeLinearLumped => kappas.iter().map(|&k| fe_linear_lumped(s, k)).collect(),
         };
         if y.iter().any(|v| !v.is_finite()) {
             return Err(Error::NonFinite("figure series (shape function failed)"));
@@ -186,6 +285,165 @@ impl Series {
     }
 }
 
+/// Ordinate description of the anti-plane figures.
+pub const OMEGA_DESC: &str = "ωΔx/c (frequency in units of c/Δx)";
+/// Abscissa description of the anti-plane figures.
+pub const KAPPA_THETA_DESC: &str = "wave number κΔx/π along θ (dimensionless; dotted: the cut-off, the first-zone boundary along θ)";
+
+impl AntiPlaneSeries {
+    fn lattice(&self) -> Result<Lattice2D> {
+        Lattice2D::by_name(self.lattice.as_deref().unwrap_or("square"), 1.0)
+    }
+
+    /// The cut-off κΔx along θ (the first-zone boundary of the node lattice).
+    fn cutoff(&self) -> Result<f64> {
+        crate::error::check_range("theta", self.theta, -360.0, 360.0, true, true)?;
+        Ok(self.lattice()?.zone_boundary(self.theta.to_radians()))
+    }
+
+    /// The curve: ωΔx/c against κΔx/π at `points` wave numbers in (0, cut-off]. A pattern of
+    /// several nodes per periodic cell (the star pattern's 2×2 supercell) has one branch per
+    /// node (the plane wave's band folded into the smaller zone of the supercell, mixed where
+    /// the folded branches meet): all are drawn, as `sphstab stiffness --theta` prints them,
+    /// in one curve with gaps between branches. ω² < 0 (not met for K = ∫∇φ·∇φ) would be drawn
+    /// as ω = 0, as `sphstab stiffness` prints it.
+    fn curve(&self, points: usize) -> Result<Curve> {
+        let lat = self.lattice()?;
+        let kcut = self.cutoff()?;
+        let (c, s) = (self.theta.to_radians().cos(), self.theta.to_radians().sin());
+        let kappas: Vec<f64> = (1..=points)
+            .map(|i| kcut * i as f64 / points as f64)
+            .collect();
+        let hex = matches!(lat.kind, LatticeKind::Hexagonal);
+        let missing = |f: &str| {
+            Error::Incompatible(format!("antiplane series: the engine route needs `{f}`"))
+        };
+        let (x, y, label) = match self.route {
+            AntiPlaneRoute::Continuum => (
+                kappas.iter().map(|k| k / PI).collect(),
+                kappas.clone(),
+                "continuum ωΔx/c = κΔx [B00 eq 110]".to_string(),
+            ),
+            AntiPlaneRoute::Engine => {
+                let q =
+                    Quadrature::by_name(self.quadrature.as_deref().ok_or(missing("quadrature"))?)?;
+                let k = kernel::by_name(self.kernel.as_deref().ok_or(missing("kernel"))?)?;
+                let r = self.support.ok_or(missing("support"))?;
+                crate::error::check_range("support", r, 0.0, 50.0, false, true)?;
+                let fam = ShapeFamily::by_name(self.shape.as_deref().unwrap_or("mls"))?;
+                let ap = AntiPlane::new(
+                    &lat,
+                    q,
+                    fam,
+                    KernelParams {
+                        kernel: k,
+                        h: r / k.zeta(),
+                    },
+                )?;
+                let mass = if self.consistent {
+                    Mass::Consistent
+                } else {
+                    Mass::Lumped
+                };
+                let w2 = kappas
+                    .iter()
+                    .map(|&kap| ap.omega2([kap * c, kap * s], mass))
+                    .collect::<Result<Vec<_>>>()?;
+                let nb = ap.pattern.sites.len();
+                let (mut x, mut y) = (Vec::new(), Vec::new());
+                for b in 0..nb {
+                    if b > 0 {
+                        x.push(f64::NAN);
+                        y.push(f64::NAN);
+                    }
+                    x.extend(kappas.iter().map(|k| k / PI));
+                    y.extend(w2.iter().map(|w| w[b].max(0.0).sqrt()));
+                }
+                let mut label = format!("{}, θ = {}°", q.name(), self.theta);
+                if nb > 1 {
+                    label += &format!(
+                        " (all {nb} branches: {nb} nodes per periodic cell, the band folded into its smaller zone)"
+                    );
+                }
+                if hex {
+                    label += ", hex lattice";
+                }
+                (x, y, label)
+            }
+        };
+        Ok(Curve {
+            label: self.label.clone().unwrap_or(label),
+            x,
+            y,
+            dashed: self.dashed,
+        })
+    }
+}
+
+/// The cut-off marks of anti-plane curves: one per distinct cut-off, naming every θ (and the
+/// lattice when hexagonal) that ends there.
+fn cutoff_marks(series: &[AntiPlaneSeries]) -> Result<Vec<(f64, String)>> {
+    let mut marks: Vec<(f64, Vec<String>)> = Vec::new();
+    for a in series {
+        let k = a.cutoff()? / PI;
+        let name = format!("{}°", a.theta);
+        match marks.iter_mut().find(|m| (m.0 - k).abs() < 1e-9) {
+            Some(m) if !m.1.contains(&name) => m.1.push(name),
+            Some(_) => {}
+            None => marks.push((k, vec![name])),
+        }
+    }
+    Ok(marks
+        .into_iter()
+        .map(|(k, names)| (k, format!("cut-off θ = {}", names.join(", "))))
+        .collect())
+}
+
+/// A panel's curves and extras, as [`render`] draws them.
+struct PanelSpec<'a> {
+    title: &'a str,
+    y_range: Option<(f64, f64)>,
+    series: &'a [Series],
+    antiplane: &'a [AntiPlaneSeries],
+}
+
+impl FigureConfig {
+    fn panel_specs(&self) -> Vec<PanelSpec<'_>> {
+        if self.panels.is_empty() {
+            return vec![PanelSpec {
+                title: &self.title,
+                y_range: self.y_range,
+                series: &self.series,
+                antiplane: &self.antiplane,
+            }];
+        }
+        self.panels
+            .iter()
+            .map(|p| PanelSpec {
+                title: &p.title,
+                y_range: p.y_range.or(self.y_range),
+                series: &p.series,
+                antiplane: &p.antiplane,
+            })
+            .collect()
+    }
+}
+
+/// The data of every panel of a figure (one panel without `panels`), curve by curve as drawn:
+/// abscissa κΔx/π; ordinate ω²Δx²/c² (1D `series`) or ωΔx/c (`antiplane`).
+pub fn panel_curves(cfg: &FigureConfig) -> Result<Vec<Vec<Curve>>> {
+    cfg.panel_specs()
+        .iter()
+        .map(|p| {
+            if p.antiplane.is_empty() {
+                p.series.iter().map(|s| s.curve(cfg.points)).collect()
+            } else {
+                p.antiplane.iter().map(|s| s.curve(cfg.points)).collect()
+            }
+        })
+        .collect()
+}
+
 /// Parses a figure config; `file` names it in errors (unknown fields are rejected by name).
 pub fn parse(file: &str, text: &str) -> Result<FigureConfig> {
     let cfg: FigureConfig = serde_json::from_str(text).map_err(|e| Error::Config {
@@ -201,8 +459,9 @@ pub fn parse(file: &str, text: &str) -> Result<FigureConfig> {
 
 impl FigureConfig {
     /// The fields serde cannot check: a plain `.svg` file name (no directory, no `..`: figures
-    /// go into the output directory), 1–64 series, 2–100000 points, an increasing finite
-    /// `y_range`.
+    /// go into the output directory), 2–100000 points, increasing finite `y_range`s, and either
+    /// top-level curves or 1–8 `panels`, each place with 1–64 curves of one kind (`series` or
+    /// `antiplane`).
     pub fn validate(&self) -> std::result::Result<(), String> {
         let o = &self.output;
         if o.is_empty()
@@ -215,11 +474,40 @@ impl FigureConfig {
                 "`output` = {o:?} must be a plain file name ending in .svg (no directory, no ..)"
             ));
         }
-        if self.series.is_empty() || self.series.len() > 64 {
-            return Err(format!(
-                "`series` has {} entries: give 1 to 64 curves",
-                self.series.len()
-            ));
+        let curves = |what: &str, series: usize, antiplane: usize| match (series, antiplane) {
+            (0, 0) => Err(format!(
+                "{what}: give 1 to 64 curves in `series` (1D) or `antiplane` (2D)"
+            )),
+            (s, 0) | (0, s) if s <= 64 => Ok(()),
+            (s, 0) | (0, s) => Err(format!("{what} has {s} curves: give 1 to 64")),
+            _ => Err(format!(
+                "{what}: give `series` (1D) or `antiplane` (2D), not both (their ordinates differ)"
+            )),
+        };
+        let range = |what: &str, r: Option<(f64, f64)>| match r {
+            Some((lo, hi)) if !(lo.is_finite() && hi.is_finite() && lo < hi) => Err(format!(
+                "{what} = [{lo}, {hi}] must be two finite numbers, the smaller first"
+            )),
+            _ => Ok(()),
+        };
+        if self.panels.is_empty() {
+            curves("the figure", self.series.len(), self.antiplane.len())?;
+        } else {
+            if !self.series.is_empty() || !self.antiplane.is_empty() {
+                return Err(
+                    "give the curves either at the top level or in `panels`, not both".into(),
+                );
+            }
+            if self.panels.len() > 8 {
+                return Err(format!(
+                    "`panels` has {} entries: give 1 to 8",
+                    self.panels.len()
+                ));
+            }
+            for (i, p) in self.panels.iter().enumerate() {
+                curves(&format!("`panels[{i}]`"), p.series.len(), p.antiplane.len())?;
+                range(&format!("`panels[{i}].y_range`"), p.y_range)?;
+            }
         }
         if !(2..=100_000).contains(&self.points) {
             return Err(format!(
@@ -227,34 +515,96 @@ impl FigureConfig {
                 self.points
             ));
         }
-        if let Some((lo, hi)) = self.y_range
-            && !(lo.is_finite() && hi.is_finite() && lo < hi)
-        {
-            return Err(format!(
-                "`y_range` = [{lo}, {hi}] must be two finite numbers, the smaller first"
-            ));
-        }
-        Ok(())
+        range("`y_range`", self.y_range)
     }
 }
 
 /// Renders a figure to an SVG string: the curves, the vertical range from the data unless
-/// `y_range` fixes it (curves leaving it are marked as clipped), the note as caption.
+/// `y_range` fixes it (curves leaving it are marked as clipped), the note as caption; panels
+/// stacked under the figure title, the note under the last. Anti-plane panels mark the
+/// cut-off of every θ.
 pub fn render(cfg: &FigureConfig) -> Result<String> {
-    let curves = cfg
-        .series
+    let specs = cfg.panel_specs();
+    let data = panel_curves(cfg)?;
+    let n = specs.len();
+    let parts = specs
         .iter()
-        .map(|s| s.curve(cfg.points))
+        .zip(data)
+        .enumerate()
+        .map(|(i, (p, curves))| {
+            let (x_desc, y_desc, x_marks) = if p.antiplane.is_empty() {
+                (KAPPA_DESC, OMEGA2_DESC, Vec::new())
+            } else {
+                (KAPPA_THETA_DESC, OMEGA_DESC, cutoff_marks(p.antiplane)?)
+            };
+            LinePlot {
+                y_range: p.y_range,
+                zero_line: true,
+                notes: if i + 1 == n && !cfg.note.is_empty() {
+                    vec![cfg.note.clone()]
+                } else {
+                    Vec::new()
+                },
+                x_marks,
+                ..LinePlot::new(p.title, x_desc, y_desc, curves)
+            }
+            .svg()
+        })
         .collect::<Result<Vec<_>>>()?;
-    LinePlot {
-        y_range: cfg.y_range,
-        zero_line: true,
-        notes: if cfg.note.is_empty() {
-            Vec::new()
-        } else {
-            vec![cfg.note.clone()]
-        },
-        ..LinePlot::new(&cfg.title, KAPPA_DESC, OMEGA2_DESC, curves)
+    if cfg.panels.is_empty() {
+        return parts
+            .into_iter()
+            .next()
+            .ok_or_else(|| Error::Incompatible("figure without curves".into()));
     }
-    .svg()
+    stack_svg(&cfg.title, &parts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lumped linear element from its assembled stencil: nodal mass ρΔx, element
+    /// stiffness (C̄/Δx)[[1, −1], [−1, 1]] gives row (−1, 2, −1)·C̄/Δx, whose symbol over the
+    /// mass is (C̄/ρΔx²) Σ_j a_j e^{iκj} = (1 + σ̄)(2 − 2 cos κ) in units of c²/Δx².
+    #[test]
+    fn fe_route_is_the_assembled_lumped_element() {
+        for sigma in [0.0, 0.3, -0.5] {
+            for i in 0..=16 {
+                let k = PI * i as f64 / 16.0;
+                let stencil = [(-1i32, -1.0), (0, 2.0), (1, -1.0)];
+                let sym: f64 = stencil
+                    .iter()
+                    .map(|&(j, a)| (1.0 + sigma) * a * (k * f64::from(j)).cos())
+                    .sum();
+                assert!((fe_linear_lumped(sigma, k) - sym).abs() < 1e-12);
+            }
+        }
+        assert!((fe_linear_lumped(0.0, PI) - 4.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn continuum_route_is_the_identity_up_to_the_cut_off() {
+        let a: AntiPlaneSeries =
+            serde_json::from_str(r#"{"route":"continuum","theta":45}"#).unwrap();
+        let c = a.curve(8).unwrap();
+        assert_eq!(c.x.len(), 8);
+        // square lattice, θ = 45°: the zone boundary is at √2π (B00 §4.4)
+        assert!((c.x[7] - 2f64.sqrt()).abs() < 1e-12);
+        for (x, y) in c.x.iter().zip(&c.y) {
+            assert!((y - x * PI).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn cut_off_marks_merge_equal_cut_offs() {
+        let s = |t: f64| -> AntiPlaneSeries {
+            serde_json::from_str(&format!(r#"{{"route":"continuum","theta":{t}}}"#)).unwrap()
+        };
+        let m = cutoff_marks(&[s(0.0), s(90.0), s(45.0), s(0.0)]).unwrap();
+        assert_eq!(m.len(), 2);
+        assert_eq!(m[0].1, "cut-off θ = 0°, 90°");
+        assert!((m[0].0 - 1.0).abs() < 1e-12);
+        assert!((m[1].0 - 2f64.sqrt()).abs() < 1e-12);
+    }
 }

@@ -50,6 +50,10 @@ pub struct LinePlot {
     pub x_ticks: Option<Vec<(f64, String)>>,
     /// A shaded abscissa interval with its legend label (e.g. a fit window).
     pub band: Option<(f64, f64, String)>,
+    /// Marked abscissae (e.g. cut-off wave numbers): a dotted vertical line at each, its label
+    /// above the data box (staggered into rows where labels would overlap); the numeric ticks
+    /// stay.
+    pub x_marks: Vec<(f64, String)>,
     /// Caption lines under the plot.
     pub notes: Vec<String>,
 }
@@ -159,6 +163,7 @@ impl LinePlot {
             .iter()
             .flat_map(|c| c.x.iter().copied())
             .chain(self.band.iter().flat_map(|b| [b.0, b.1]))
+            .chain(self.x_marks.iter().map(|m| m.0))
             .filter(|x| x.is_finite());
         let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
             (a.min(x), b.max(x))
@@ -191,7 +196,26 @@ impl LinePlot {
         let left = 95.0;
         let width = left + BOX_W + 25.0 + legend_w + 15.0;
         let title = wrap(&self.title, ((width - 40.0) / (0.56 * 18.0)) as usize);
-        let top = 18.0 + 23.0 * title.len() as f64 + 8.0;
+        let top0 = 18.0 + 23.0 * title.len() as f64 + 8.0;
+        // mark labels: one row above the box, a further row wherever two would overlap
+        let map_x = |v: f64| left + (v - x0) / (x1 - x0) * BOX_W;
+        let mut rows_end: Vec<f64> = Vec::new();
+        let mut marks: Vec<(f64, &str, usize)> = Vec::new();
+        let mut sorted: Vec<&(f64, String)> = self.x_marks.iter().collect();
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (v, label) in sorted {
+            let (px, w) = (map_x(*v), text_width(label, 12));
+            let row = rows_end
+                .iter()
+                .position(|&end| px - w / 2.0 > end + 6.0)
+                .unwrap_or(rows_end.len());
+            if row == rows_end.len() {
+                rows_end.push(0.0);
+            }
+            rows_end[row] = px + w / 2.0;
+            marks.push((px, label, row));
+        }
+        let top = top0 + 16.0 * rows_end.len() as f64;
         let bottom = top + BOX_H;
         let frame = Frame {
             rect: (left, top, left + BOX_W, bottom),
@@ -254,6 +278,26 @@ impl LinePlot {
                 &self.y_desc,
                 self.x_ticks.as_deref(),
             )?;
+            for &(px, label, row) in &marks {
+                let dots = Style {
+                    color: GREY,
+                    dash: Dash::Dotted,
+                    width: 1,
+                    ..series_style(0, Dash::Dotted)
+                };
+                draw_line(&root, &[(px, t), (px, b)], &dots)?;
+                super::style::text_at(
+                    &root,
+                    label,
+                    (px, top0 + 16.0 * (rows_end.len() - 1 - row) as f64),
+                    12,
+                    (
+                        plotters::style::text_anchor::HPos::Center,
+                        plotters::style::text_anchor::VPos::Top,
+                    ),
+                    false,
+                )?;
+            }
             if self.zero_line && lo < 0.0 && hi > 0.0 {
                 let y = frame.map(x0, 0.0).1;
                 root.draw(&PathElement::new(
@@ -539,5 +583,33 @@ mod tests {
         assert!(e[2].note.as_deref().unwrap().contains("clipped ▲"));
         let svg = p.svg().unwrap();
         assert!(svg.contains("coincides with “engine”") && svg.contains("clipped ▲"));
+    }
+
+    #[test]
+    fn x_marks_are_labelled_above_the_box_in_rows_that_do_not_overlap() {
+        let cs = vec![curve("a", vec![0.0, 1.0, 2.0, 1.0, 0.0], false)];
+        let height = |marks: Vec<(f64, String)>| {
+            let svg = LinePlot {
+                x_marks: marks,
+                ..LinePlot::new("t", "x", "y", cs.clone())
+            }
+            .svg()
+            .unwrap();
+            crate::plot::svg_size(&svg).unwrap().1
+        };
+        let none = height(Vec::new());
+        let one = height(vec![(1.0, "cut-off A".into())]);
+        let far = height(vec![(1.0, "cut-off A".into()), (3.0, "cut-off B".into())]);
+        let close = height(vec![(1.0, "cut-off A".into()), (1.05, "cut-off B".into())]);
+        assert_eq!(one, none + 16);
+        assert_eq!(far, one);
+        assert_eq!(close, one + 16);
+        let svg = LinePlot {
+            x_marks: vec![(5.0, "beyond the data".into())],
+            ..LinePlot::new("t", "x", "y", cs.clone())
+        }
+        .svg()
+        .unwrap();
+        assert!(svg.contains("beyond the data"));
     }
 }

@@ -7,6 +7,7 @@ pub mod axes;
 mod heatmap;
 mod lines;
 mod scatter;
+mod stack;
 pub mod style;
 
 pub use heatmap::{heatmap_svg, ramp};
@@ -19,3 +20,4 @@ pub use scatter::{
     COINCIDE_PX, FRONT_STYLE, Panel, PanelCurve, ScatterPanel, coinciding_groups, group_style,
     panel_style, panels_svg, pareto_svg, scatter_panels_svg,
 };
+pub use stack::{stack_svg, svg_size};

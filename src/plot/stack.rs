@@ -1,0 +1,99 @@
+//! Figures of several panels: a title strip and the panels' own SVGs stacked top to bottom,
+//! each panel kept whole (its frame, legend and caption) as a nested `<svg>`.
+
+use super::style::{plot_err, text_at, wrap};
+use crate::error::{Error, Result};
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, VPos};
+
+/// Width and height (pixels) of an SVG drawn by this module's plots: the `width` and `height`
+/// attributes of its root element.
+pub fn svg_size(svg: &str) -> Result<(u32, u32)> {
+    let bad = || Error::Incompatible("panel: not an SVG with width and height".into());
+    let head = svg
+        .strip_prefix("<svg ")
+        .and_then(|r| r.split('>').next())
+        .ok_or_else(bad)?;
+    let attr = |name: &str| -> Option<u32> {
+        let key = format!(" {name}=\"");
+        let i = format!(" {head}").find(&key)? + key.len() - 1;
+        head.get(i..)?.split('"').next()?.parse().ok()
+    };
+    Ok((
+        attr("width").ok_or_else(bad)?,
+        attr("height").ok_or_else(bad)?,
+    ))
+}
+
+/// One SVG of `title` (18 px, wrapped, centred) above `panels` stacked top to bottom, each
+/// left-aligned at its own size; the figure is as wide as the widest panel.
+pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
+    let sizes = panels
+        .iter()
+        .map(|p| svg_size(p))
+        .collect::<Result<Vec<_>>>()?;
+    let width = sizes.iter().map(|s| s.0).max().unwrap_or(600);
+    let lines = wrap(title, ((f64::from(width) - 40.0) / (0.56 * 18.0)) as usize);
+    let strip = (12.0 + 23.0 * lines.len() as f64 + 6.0) as u32;
+    let height = strip + sizes.iter().map(|s| s.1).sum::<u32>();
+    let mut head = String::new();
+    {
+        let root = SVGBackend::with_string(&mut head, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_err)?;
+        for (k, line) in lines.iter().enumerate() {
+            text_at(
+                &root,
+                line,
+                (f64::from(width) / 2.0, 12.0 + 23.0 * k as f64),
+                18,
+                (HPos::Center, VPos::Top),
+                false,
+            )?;
+        }
+        root.present().map_err(plot_err)?;
+    }
+    let head = head.trim_end();
+    let mut out = head
+        .strip_suffix("</svg>")
+        .ok_or_else(|| Error::Incompatible("title strip: unterminated SVG".into()))?
+        .to_string();
+    let mut y = strip;
+    for (p, &(_, h)) in panels.iter().zip(&sizes) {
+        let body = p.trim_end().strip_prefix("<svg ").unwrap_or(p);
+        out.push_str(&format!("<svg x=\"0\" y=\"{y}\" {body}\n"));
+        y += h;
+    }
+    out.push_str("</svg>\n");
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plot::{Curve, LinePlot};
+
+    fn panel(t: &str) -> String {
+        let c = Curve {
+            label: "a".into(),
+            x: vec![0.0, 1.0],
+            y: vec![0.0, 1.0],
+            dashed: false,
+        };
+        LinePlot::new(t, "x", "y", vec![c]).svg().unwrap()
+    }
+
+    #[test]
+    fn panels_keep_their_size_and_order() {
+        let (a, b) = (panel("(a) first"), panel("(b) second"));
+        let (wa, ha) = svg_size(&a).unwrap();
+        let s = stack_svg("both", &[a, b]).unwrap();
+        let (w, h) = svg_size(&s).unwrap();
+        assert_eq!(w, wa);
+        assert!(h > 2 * ha, "{h} {ha}");
+        let i = s.find("(a) first").unwrap();
+        assert!(s[i..].contains("(b) second"));
+        assert_eq!(s.matches("<svg ").count(), 3);
+        assert_eq!(s.matches("</svg>").count(), 3);
+        assert!(svg_size("<rect/>").is_err());
+    }
+}
