@@ -1763,7 +1763,7 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
     (
         "Thesis Fig 4.9",
         "probe histories, no smoothing",
-        "needs code: as Fig 4.6 (the dispersion behind the noise: `sphstab dispersion --form total-lagrangian --shape sph --kernel mollifier --h 5.5`)",
+        "needs code: as Fig 4.6 (the dispersion behind the noise — ω² peaks at κΔx = 0.262π, beyond it the group velocity is negative: `sphstab figures` → figures/thesis_fig4_9_dispersion.svg; `sphstab dispersion --form total-lagrangian --shape sph --kernel mollifier --h 5.5 --stress 0`)",
     ),
     (
         "Thesis Fig 4.13",
@@ -2008,4 +2008,42 @@ fn reproduction_md_matches_the_code() {
          rewrite it with SPHSTAB_WRITE_REPRODUCTION=1 cargo test --release --test reproduction\n\
          --- computed ---\n{text}"
     );
+}
+
+/// Every figure REPRODUCTION.md cites is the output of a config in analysis/configs, so
+/// `sphstab figures` regenerates it (tests/figures.rs checks that the committed file is exactly
+/// what its config draws).
+#[test]
+fn every_cited_figure_is_regenerated_by_sphstab_figures() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let md = std::fs::read_to_string(root.join("REPRODUCTION.md")).unwrap();
+    let mut outputs = Vec::new();
+    for e in std::fs::read_dir(root.join("analysis/configs")).unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "json") {
+            let cfg = sphstab::figures::parse(
+                &p.display().to_string(),
+                &std::fs::read_to_string(&p).unwrap(),
+            )
+            .unwrap();
+            outputs.push(cfg.output);
+        }
+    }
+    let mut cited = 0;
+    for word in md.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '.')) {
+        if let Some(stem) = word.strip_suffix(".svg") {
+            if stem.is_empty() {
+                continue;
+            }
+            let name = format!("{stem}.svg");
+            assert!(
+                outputs.contains(&name),
+                "REPRODUCTION.md cites {name}, which no config in analysis/configs draws"
+            );
+            assert!(root.join("figures").join(&name).exists(), "figures/{name} missing");
+            cited += 1;
+        }
+    }
+    // B00 Figs 3 (three files), 4, 9, 10, 11, 13, 14, 15, V21 Fig 7, thesis Fig 4.9
+    assert!(cited >= 12, "only {cited} figures cited");
 }
