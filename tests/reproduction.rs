@@ -2040,7 +2040,10 @@ fn every_cited_figure_is_regenerated_by_sphstab_figures() {
                 outputs.contains(&name),
                 "REPRODUCTION.md cites {name}, which no config in analysis/configs draws"
             );
-            assert!(root.join("figures").join(&name).exists(), "figures/{name} missing");
+            assert!(
+                root.join("figures").join(&name).exists(),
+                "figures/{name} missing"
+            );
             cited += 1;
         }
     }
