@@ -442,12 +442,13 @@ fn speed<const D: usize>(v: &[f64; D]) -> f64 {
     }
 }
 
+/// A wave vector (κΔx per axis) and a branch's polarisation there.
+type FastestMode<const D: usize> = ([f64; D], [Complex64; D]);
+
 /// The largest growth rate (c/Δx) over the irreducible wedge π ≥ κ_1 ≥ … ≥ κ_D ≥ 0 of the
 /// square / simple-cubic zone, sampled at spacing π/[`infinite_grid`]; with the wave vector
 /// (κΔx) where it is reached and that branch's polarisation (None when nothing grows).
-fn infinite_rate<const D: usize>(
-    lin: &Bloch<D>,
-) -> Result<(f64, Option<([f64; D], [Complex64; D])>)> {
+fn infinite_rate<const D: usize>(lin: &Bloch<D>) -> Result<(f64, Option<FastestMode<D>>)> {
     let n = infinite_grid(D);
     let mut g: f64 = 0.0;
     let mut at = None;
