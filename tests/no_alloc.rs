@@ -6,7 +6,10 @@
 //! Rayon itself allocates a little when work is *injected* into its pool from outside (the
 //! injector queue takes a new block every 63 jobs; a step injects a few parallel loops). So the
 //! steps are run twice: inside one `ThreadPool::install` (one injection for all 10 steps) the
-//! count must be exactly zero; from the test thread on the global pool it must not depend on
+//! count must be exactly zero in at least one of three consecutive windows of 10 steps (an
+//! allocation of the time loop recurs in every window; under CPU contention rayon's scheduling
+//! occasionally allocates inside the install — seen about once in a dozen runs next to three
+//! CPU hogs — and that does not recur); from the test thread on the global pool it must not depend on
 //! the number of particles (at most one block per step, and the counts at 30×30 and 60×60 within
 //! one of each other: which run crosses a 63-job boundary of the injector depends on how many
 //! jobs were injected before it, not on N).
@@ -34,7 +37,18 @@ static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
 static LIVE: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
 
+/// Sizes of the first allocations counted while [`RECORD`] is on (for the failure message).
+static SIZES: [AtomicUsize; 8] = [const { AtomicUsize::new(0) }; 8];
+static RECORD: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+static RECORDED: AtomicUsize = AtomicUsize::new(0);
+
 fn grew(by: usize) {
+    if RECORD.load(Ordering::Relaxed) {
+        let k = RECORDED.fetch_add(1, Ordering::Relaxed);
+        if k < SIZES.len() {
+            SIZES[k].store(by, Ordering::Relaxed);
+        }
+    }
     let now = LIVE.fetch_add(by, Ordering::Relaxed) + by;
     PEAK.fetch_max(now, Ordering::Relaxed);
 }
@@ -121,8 +135,9 @@ fn block(n: usize, form: FormKind, material: Material2D, av: bool, art: bool) ->
     Run2D::new(model, z, vec![false; n * n], BoundaryDensity::Evolve).unwrap()
 }
 
-/// Allocations during 10 steps after 2 warm-up steps; `pool`: all 10 inside one `install`.
-fn count(mut run: Run2D, pool: Option<&rayon::ThreadPool>) -> u64 {
+/// Allocations during 10 steps after 2 warm-up steps, in each of three consecutive windows of
+/// 10 steps (with the sizes of the first few of each); `pool`: each window inside one `install`.
+fn count(mut run: Run2D, pool: Option<&rayon::ThreadPool>) -> Vec<(u64, Vec<usize>)> {
     run.step(0.2).unwrap();
     run.step(0.2).unwrap();
     let steps = |run: &mut Run2D| {
@@ -130,15 +145,32 @@ fn count(mut run: Run2D, pool: Option<&rayon::ThreadPool>) -> u64 {
             run.step(0.2).unwrap();
         }
     };
-    let before = allocations();
-    match pool {
-        Some(p) => p.install(|| steps(&mut run)),
-        None => steps(&mut run),
+    let mut windows = Vec::new();
+    for _ in 0..3 {
+        RECORDED.store(0, Ordering::SeqCst);
+        RECORD.store(true, Ordering::SeqCst);
+        let before = allocations();
+        match pool {
+            Some(p) => p.install(|| steps(&mut run)),
+            None => steps(&mut run),
+        }
+        let n = allocations() - before;
+        RECORD.store(false, Ordering::SeqCst);
+        let sizes = SIZES
+            .iter()
+            .take(RECORDED.load(Ordering::SeqCst).min(SIZES.len()))
+            .map(|a| a.load(Ordering::SeqCst))
+            .collect();
+        windows.push((n, sizes));
     }
-    let n = allocations() - before;
     // the run did something
-    assert!(run.max_free_speed() > 1e-4 && run.steps == 12);
-    n
+    assert!(run.max_free_speed() > 1e-4 && run.steps == 32);
+    windows
+}
+
+/// The fewest allocations of the windows.
+fn fewest(w: &[(u64, Vec<usize>)]) -> u64 {
+    w.iter().map(|x| x.0).min().unwrap_or(0)
 }
 
 #[test]
@@ -185,12 +217,21 @@ fn time_loop_does_not_allocate() {
     for (name, form, material, av, art) in cases {
         for n in [30, 60] {
             let run = block(n, form, material, av, art);
-            let inside = count(run, Some(&pool));
-            eprintln!("{name}, {n}×{n}, inside one install: {inside} allocations in 10 steps");
-            assert_eq!(inside, 0, "{name}, {n}×{n}: the time loop allocated");
+            let windows = count(run, Some(&pool));
+            eprintln!(
+                "{name}, {n}×{n}, inside one install: allocations (sizes) in three windows of 10 steps: {windows:?}"
+            );
+            // an allocation of the time loop recurs in every window; rare scheduling-dependent
+            // ones inside rayon under CPU contention (seen: 1 run in ~12 under 3 CPU hogs, an
+            // injector block of 1,520 B and a few small blocks) do not
+            assert_eq!(
+                fewest(&windows),
+                0,
+                "{name}, {n}×{n}: the time loop allocated in every window"
+            );
         }
-        let small = count(block(30, form, material, av, art), None);
-        let large = count(block(60, form, material, av, art), None);
+        let small = fewest(&count(block(30, form, material, av, art), None));
+        let large = fewest(&count(block(60, form, material, av, art), None));
         eprintln!("{name}, global pool from the test thread: {small} (30×30), {large} (60×60)");
         assert!(
             small <= 10 && large <= 10,
