@@ -21,9 +21,31 @@
 //!                  { "route": "continuum", "theta": 45, "dashed": true } ] }
 //! ```
 //!
+//! or `swegle` series — the Swegle test of \[V21 §7.2\] run by [`run_swegle`] (the code of
+//! `sphstab swegle`), log10 of a velocity history against time in Δx/c, with the box
+//! prediction's growth rate drawn dashed over the fit window, anchored on the least-squares fit
+//! of the plotted history ([`SwegleSeries`]):
+//!
+//! ```json
+//! { "output": "v21_fig12.svg", "title": "...", "note": "...",
+//!   "swegle": [ { "form": "classical", "kernel": "m4", "h": 1.2, "density_ratio": 0.99 } ] }
+//! ```
+//!
+//! or `scene` series — a 1D scene run by [`Scene1D::run`] (the code of `sphstab simulate`), or
+//! its analytic solution ([`Scene1D::exact_profile`]), as a stress or velocity profile along
+//! the bar at the scene's end time ([`SceneSeries`]); `x_desc` and `y_desc` name the axes:
+//!
+//! ```json
+//! { "output": "v21_fig17.svg", "title": "...", "note": "...",
+//!   "x_desc": "X (mm)", "y_desc": "σ (GPa)",
+//!   "scene": [ { "scene": "compressive-wave", "form": "nonlocal", "x_scale": 1e3, "y_scale": 1e-9 },
+//!              { "scene": "compressive-wave", "route": "analytic", "x_scale": 1e3, "y_scale": 1e-9,
+//!                "dashed": true } ] }
+//! ```
+//!
 //! A figure of several panels (stacked top to bottom, as the paper's (a), (b), …) gives
-//! `panels`, each with its `title`, optional `y_range` and its `series` or `antiplane` curves,
-//! instead of top-level curves.
+//! `panels`, each with its `title`, optional `y_range` and its curves of one kind, instead of
+//! top-level curves.
 
 use crate::analysis::{Query1D, dispersion};
 use crate::error::{Error, Result};
@@ -32,8 +54,12 @@ use crate::kernel;
 use crate::lattice::{Lattice2D, LatticeKind};
 use crate::plot::{Curve, KAPPA_DESC, LinePlot, OMEGA2_DESC, stack_svg};
 use crate::shape::{KernelParams, ShapeFamily, lattice_shape};
+use crate::solver::diagnostics::growth_fit;
+use crate::solver::scene::{Scene1D, builtin};
+use crate::solver::swegle::{SwegleConfig, run_swegle};
 use crate::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
 use crate::vonneumann::closed_form as cf;
+use rayon::prelude::*;
 use serde::Deserialize;
 use std::f64::consts::PI;
 
@@ -126,6 +152,16 @@ pub struct FigureConfig {
     /// 2D anti-plane curves (ωΔx/c against κΔx/π).
     #[serde(default)]
     pub antiplane: Vec<AntiPlaneSeries>,
+    /// Swegle growth histories (log10 |v| against t c/Δx).
+    #[serde(default)]
+    pub swegle: Vec<SwegleSeries>,
+    /// 1D scene profiles (stress or velocity against the reference position).
+    #[serde(default)]
+    pub scene: Vec<SceneSeries>,
+    /// Abscissa description (default: that of the curves' kind; scene figures give theirs).
+    pub x_desc: Option<String>,
+    /// Ordinate description (default: that of the curves' kind; scene figures give theirs).
+    pub y_desc: Option<String>,
     /// Panels stacked top to bottom (instead of top-level curves).
     #[serde(default)]
     pub panels: Vec<Panel>,
@@ -145,6 +181,284 @@ pub struct Panel {
     /// 2D anti-plane curves.
     #[serde(default)]
     pub antiplane: Vec<AntiPlaneSeries>,
+    /// Swegle growth histories.
+    #[serde(default)]
+    pub swegle: Vec<SwegleSeries>,
+    /// 1D scene profiles.
+    #[serde(default)]
+    pub scene: Vec<SceneSeries>,
+}
+
+/// Which velocity history of a Swegle run is drawn ([`crate::solver::swegle::SwegleReport`]'s
+/// `history_full` columns).
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum SwegleHistory {
+    /// |v| of the kicked centre particle (the ordinate of \[V21\] Figs 12, 13).
+    #[default]
+    Centre,
+    /// max |v| over the free particles (the history `sphstab swegle` fits).
+    Max,
+    /// RMS |v| over the free particles.
+    Rms,
+}
+
+impl SwegleHistory {
+    /// Column of `history_full`.
+    fn column(self) -> usize {
+        match self {
+            SwegleHistory::Centre => 1,
+            SwegleHistory::Max => 2,
+            SwegleHistory::Rms => 3,
+        }
+    }
+
+    /// Ordinate description.
+    fn desc(self) -> &'static str {
+        match self {
+            SwegleHistory::Centre => {
+                "log10 |v| of the kicked centre particle (v in V21's units; kick 1e−10)"
+            }
+            SwegleHistory::Max => "log10 max |v| over the free particles (V21's units; kick 1e−10)",
+            SwegleHistory::Rms => "log10 RMS |v| over the free particles (V21's units; kick 1e−10)",
+        }
+    }
+}
+
+/// One Swegle run (\[V21 §7.2\]: the published box of [`SwegleConfig::new`], 21 × 21, 3
+/// fixed layers, Δx = 0.1, ρ0 = 2.8, K = 0.686275, kick 1e−10, fit window 1e−8 to 1e−4):
+/// the history drawn solid, and, when the box prediction grows and the history enters the fit
+/// window, a dashed line of slope γ_box/ln 10 (γ_box the report's `predicted_growth_rate_box`
+/// in c/Δx) over the fit window, through the centroid of the least-squares fit of ln of the
+/// drawn history ([`growth_fit`], the fit of `sphstab swegle`, over the same window).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SwegleSeries {
+    /// Form (a 2D form).
+    pub form: String,
+    /// Kernel.
+    pub kernel: String,
+    /// h/Δx.
+    pub h: f64,
+    /// f = ρ/ρ0 (< 1 tension).
+    pub density_ratio: f64,
+    /// Partition coefficient c (lnl, cll; default 0.5).
+    pub c: Option<f64>,
+    /// End time in V21's time units (default 40, the published test).
+    pub t_end: Option<f64>,
+    /// History drawn (default: the centre particle).
+    #[serde(default)]
+    pub history: SwegleHistory,
+    /// Legend label of the history (default: generated).
+    pub label: Option<String>,
+}
+
+/// How a scene curve is computed.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum SceneRoute {
+    /// The scene run by [`Scene1D::run`].
+    #[default]
+    Run,
+    /// The scene's analytic solution at its end time ([`Scene1D::exact_profile`]).
+    Analytic,
+}
+
+/// Quantity of a scene profile.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum SceneQuantity {
+    /// The stress the form reports ([`Scene1D::stress_profile`]).
+    #[default]
+    Stress,
+    /// The particle velocity.
+    Velocity,
+}
+
+/// A 1D scene's profile at its end time against the reference position X of every particle
+/// (end layers included), multiplied by `x_scale` and `y_scale` (e.g. 1e3 for mm, 1e−9 for GPa).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSeries {
+    /// Built-in scene name (`uniform-bar`, `compressive-wave`, `tensile-wave`, `rod`).
+    pub scene: String,
+    /// Form (default: the scene's).
+    pub form: Option<String>,
+    /// Partition coefficient c (default: the scene's).
+    pub c: Option<f64>,
+    /// End time (s; default: the scene's).
+    pub t_end: Option<f64>,
+    /// Route (default: run).
+    #[serde(default)]
+    pub route: SceneRoute,
+    /// Quantity (default: stress).
+    #[serde(default)]
+    pub quantity: SceneQuantity,
+    /// Factor on the position.
+    #[serde(default = "one")]
+    pub x_scale: f64,
+    /// Factor on the quantity.
+    #[serde(default = "one")]
+    pub y_scale: f64,
+    /// Legend label (default: generated).
+    pub label: Option<String>,
+    /// Draw dashed.
+    #[serde(default)]
+    pub dashed: bool,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Abscissa description of the Swegle figures.
+pub const SWEGLE_TIME_DESC: &str =
+    "time t c/Δx (units of Δx/c = 0.2020 V21 time units; 1 V21 time unit = 4.951 Δx/c)";
+
+impl SwegleSeries {
+    /// The run's configuration: [`SwegleConfig::new`] with this series' form, kernel, h, f,
+    /// c and end time.
+    pub fn config(&self) -> Result<SwegleConfig> {
+        let mut cfg = SwegleConfig::new(
+            FormKind::by_name(&self.form)?,
+            kernel::by_name(&self.kernel)?,
+            self.h,
+            self.density_ratio,
+        );
+        if let Some(c) = self.c {
+            cfg.c_partition = c;
+        }
+        if let Some(t) = self.t_end {
+            cfg.t_end = t;
+        }
+        cfg.validate()?;
+        Ok(cfg)
+    }
+
+    /// The history (solid) and, when drawn, the predicted growth line (dashed).
+    fn curves(&self) -> Result<Vec<Curve>> {
+        let cfg = self.config()?;
+        let r = run_swegle(&cfg, |_| {})?;
+        let unit = cfg.sound_speed() / cfg.dx;
+        let col = self.history.column();
+        let t: Vec<f64> = r.history_full.iter().map(|h| h[0]).collect();
+        let y: Vec<f64> = r.history_full.iter().map(|h| h[col]).collect();
+        let tau: Vec<f64> = t.iter().map(|t| t * unit).collect();
+        let box_rate = r.predicted_growth_rate_box;
+        let name = self.label.clone().unwrap_or_else(|| {
+            let mut l = format!("{} ρ/ρ0 = {}", r.form, self.density_ratio);
+            if matches!(cfg.form, FormKind::Lnl | FormKind::Cll) {
+                l += &format!(", c = {}", cfg.c_partition);
+            }
+            l
+        });
+        let fit = growth_fit(&t, &y, cfg.window.0, cfg.window.1);
+        let mut label = name.clone();
+        match fit {
+            Some(f) => label += &format!(": fitted {:.4} c/Δx", f.rate / unit),
+            None => label += ": no growth into the fit window",
+        }
+        let mut out = vec![Curve {
+            label,
+            x: tau.clone(),
+            y: y.iter()
+                .map(|v| if *v > 0.0 { v.log10() } else { f64::NAN })
+                .collect(),
+            dashed: false,
+        }];
+        if let (Some(f), true) = (fit, box_rate > crate::vonneumann::classify::GROWTH_TOL) {
+            // the least-squares line of ln y passes through the centroid of its samples
+            let (lo, hi) = f.window;
+            let pts: Vec<(f64, f64)> = t
+                .iter()
+                .zip(&y)
+                .filter(|&(&ti, &yi)| ti >= lo && ti <= hi && yi > cfg.window.0)
+                .map(|(&ti, &yi)| (ti * unit, yi.log10()))
+                .collect();
+            let n = pts.len() as f64;
+            let (tc, yc) = pts
+                .iter()
+                .fold((0.0, 0.0), |a, p| (a.0 + p.0 / n, a.1 + p.1 / n));
+            let slope = box_rate / std::f64::consts::LN_10;
+            let ends = [lo * unit, hi * unit];
+            out.push(Curve {
+                label: format!(
+                    "{name}: box prediction {box_rate:.4} c/Δx ({}), slope through the fit",
+                    r.box_method
+                ),
+                x: ends.to_vec(),
+                y: ends.iter().map(|&a| yc + slope * (a - tc)).collect(),
+                dashed: true,
+            });
+        }
+        Ok(out)
+    }
+}
+
+impl SceneSeries {
+    /// The scene: the built-in with this series' form, c and end time.
+    pub fn scene(&self) -> Result<Scene1D> {
+        let mut s = builtin(&self.scene)?;
+        if let Some(f) = &self.form {
+            s.form = f.clone();
+        }
+        if let Some(c) = self.c {
+            s.c_partition = c;
+        }
+        if let Some(t) = self.t_end {
+            s.t_end = t;
+        }
+        s.validate()?;
+        Ok(s)
+    }
+
+    fn curve(&self) -> Result<Curve> {
+        crate::error::check_range("x_scale", self.x_scale, 0.0, f64::MAX, false, true)?;
+        crate::error::check_range("y_scale", self.y_scale, 0.0, f64::MAX, false, true)?;
+        let s = self.scene()?;
+        let x: Vec<f64> = s
+            .reference_positions()
+            .iter()
+            .map(|x| x * self.x_scale)
+            .collect();
+        let (q, label) = match self.route {
+            SceneRoute::Analytic => {
+                let (v, sigma) = s.exact_profile(s.t_end).ok_or_else(|| {
+                    Error::Incompatible(format!(
+                        "scene series: `{}` has no analytic solution",
+                        self.scene
+                    ))
+                })?;
+                let q = match self.quantity {
+                    SceneQuantity::Stress => sigma,
+                    SceneQuantity::Velocity => v,
+                };
+                (q, "analytic".to_string())
+            }
+            SceneRoute::Run => {
+                let mut r = s.run(|_| {})?;
+                let z = r
+                    .final_state
+                    .take()
+                    .ok_or(Error::NonFinite("scene series: no final state"))?;
+                let q = match self.quantity {
+                    SceneQuantity::Stress => s.stress_profile(&z),
+                    SceneQuantity::Velocity => z.v,
+                };
+                let mut l = s.form.clone();
+                if matches!(FormKind::by_name(&s.form)?, FormKind::Lnl | FormKind::Cll) {
+                    l += &format!(" (c = {})", s.c_partition);
+                }
+                (q, l)
+            }
+        };
+        Ok(Curve {
+            label: self.label.clone().unwrap_or(label),
+            x,
+            y: q.iter().map(|v| v * self.y_scale).collect(),
+            dashed: self.dashed,
+        })
+    }
 }
 
 /// How an anti-plane curve is computed.
@@ -405,6 +719,8 @@ struct PanelSpec<'a> {
     y_range: Option<(f64, f64)>,
     series: &'a [Series],
     antiplane: &'a [AntiPlaneSeries],
+    swegle: &'a [SwegleSeries],
+    scene: &'a [SceneSeries],
 }
 
 impl FigureConfig {
@@ -415,6 +731,8 @@ impl FigureConfig {
                 y_range: self.y_range,
                 series: &self.series,
                 antiplane: &self.antiplane,
+                swegle: &self.swegle,
+                scene: &self.scene,
             }];
         }
         self.panels
@@ -424,21 +742,35 @@ impl FigureConfig {
                 y_range: p.y_range.or(self.y_range),
                 series: &p.series,
                 antiplane: &p.antiplane,
+                swegle: &p.swegle,
+                scene: &p.scene,
             })
             .collect()
     }
 }
 
 /// The data of every panel of a figure (one panel without `panels`), curve by curve as drawn:
-/// abscissa κΔx/π; ordinate ω²Δx²/c² (1D `series`) or ωΔx/c (`antiplane`).
+/// abscissa κΔx/π; ordinate ω²Δx²/c² (1D `series`) or ωΔx/c (`antiplane`); or log10 |v|
+/// against t c/Δx (`swegle`: each run's history, then its predicted line when drawn); or a
+/// scene's profile against X (`scene`).
 pub fn panel_curves(cfg: &FigureConfig) -> Result<Vec<Vec<Curve>>> {
     cfg.panel_specs()
         .iter()
         .map(|p| {
-            if p.antiplane.is_empty() {
-                p.series.iter().map(|s| s.curve(cfg.points)).collect()
-            } else {
+            if !p.antiplane.is_empty() {
                 p.antiplane.iter().map(|s| s.curve(cfg.points)).collect()
+            } else if !p.swegle.is_empty() {
+                // independent runs, in parallel; collected in order
+                let c = p
+                    .swegle
+                    .par_iter()
+                    .map(SwegleSeries::curves)
+                    .collect::<Result<Vec<_>>>()?;
+                Ok(c.into_iter().flatten().collect())
+            } else if !p.scene.is_empty() {
+                p.scene.iter().map(SceneSeries::curve).collect()
+            } else {
+                p.series.iter().map(|s| s.curve(cfg.points)).collect()
             }
         })
         .collect()
@@ -474,15 +806,19 @@ impl FigureConfig {
                 "`output` = {o:?} must be a plain file name ending in .svg (no directory, no ..)"
             ));
         }
-        let curves = |what: &str, series: usize, antiplane: usize| match (series, antiplane) {
-            (0, 0) => Err(format!(
-                "{what}: give 1 to 64 curves in `series` (1D) or `antiplane` (2D)"
-            )),
-            (s, 0) | (0, s) if s <= 64 => Ok(()),
-            (s, 0) | (0, s) => Err(format!("{what} has {s} curves: give 1 to 64")),
-            _ => Err(format!(
-                "{what}: give `series` (1D) or `antiplane` (2D), not both (their ordinates differ)"
-            )),
+        let curves = |what: &str, counts: [usize; 4]| {
+            let kinds = counts.iter().filter(|&&n| n > 0).count();
+            let n: usize = counts.iter().sum();
+            match kinds {
+                0 => Err(format!(
+                    "{what}: give 1 to 64 curves in `series` (1D), `antiplane` (2D), `swegle` or `scene`"
+                )),
+                1 if n <= 64 => Ok(()),
+                1 => Err(format!("{what} has {n} curves: give 1 to 64")),
+                _ => Err(format!(
+                    "{what}: give one of `series` (1D), `antiplane` (2D), `swegle`, `scene`, not several (their axes differ)"
+                )),
+            }
         };
         let range = |what: &str, r: Option<(f64, f64)>| match r {
             Some((lo, hi)) if !(lo.is_finite() && hi.is_finite() && lo < hi) => Err(format!(
@@ -491,9 +827,21 @@ impl FigureConfig {
             _ => Ok(()),
         };
         if self.panels.is_empty() {
-            curves("the figure", self.series.len(), self.antiplane.len())?;
+            curves(
+                "the figure",
+                [
+                    self.series.len(),
+                    self.antiplane.len(),
+                    self.swegle.len(),
+                    self.scene.len(),
+                ],
+            )?;
         } else {
-            if !self.series.is_empty() || !self.antiplane.is_empty() {
+            if !self.series.is_empty()
+                || !self.antiplane.is_empty()
+                || !self.swegle.is_empty()
+                || !self.scene.is_empty()
+            {
                 return Err(
                     "give the curves either at the top level or in `panels`, not both".into(),
                 );
@@ -505,7 +853,15 @@ impl FigureConfig {
                 ));
             }
             for (i, p) in self.panels.iter().enumerate() {
-                curves(&format!("`panels[{i}]`"), p.series.len(), p.antiplane.len())?;
+                curves(
+                    &format!("`panels[{i}]`"),
+                    [
+                        p.series.len(),
+                        p.antiplane.len(),
+                        p.swegle.len(),
+                        p.scene.len(),
+                    ],
+                )?;
                 range(&format!("`panels[{i}].y_range`"), p.y_range)?;
             }
         }
@@ -532,14 +888,24 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
         .zip(data)
         .enumerate()
         .map(|(i, (p, curves))| {
-            let (x_desc, y_desc, x_marks) = if p.antiplane.is_empty() {
-                (KAPPA_DESC, OMEGA2_DESC, Vec::new())
-            } else {
+            let (x_desc, y_desc, x_marks) = if !p.antiplane.is_empty() {
                 (KAPPA_THETA_DESC, OMEGA_DESC, cutoff_marks(p.antiplane)?)
+            } else if let Some(s) = p.swegle.first() {
+                (SWEGLE_TIME_DESC, s.history.desc(), Vec::new())
+            } else if !p.scene.is_empty() {
+                (
+                    "reference position X",
+                    "stress σ (+ tension) or velocity",
+                    Vec::new(),
+                )
+            } else {
+                (KAPPA_DESC, OMEGA2_DESC, Vec::new())
             };
+            let x_desc = cfg.x_desc.as_deref().unwrap_or(x_desc);
+            let y_desc = cfg.y_desc.as_deref().unwrap_or(y_desc);
             LinePlot {
                 y_range: p.y_range,
-                zero_line: true,
+                zero_line: p.swegle.is_empty(),
                 notes: if i + 1 == n && !cfg.note.is_empty() {
                     vec![cfg.note.clone()]
                 } else {

@@ -275,3 +275,144 @@ fn new_config_fields_are_checked_by_name() {
     .unwrap();
     assert!(sphstab::figures::render(&cfg).is_err());
 }
+
+/// The Swegle kind: the abscissa is t c/Δx with c/Δx = √(K/ρ0)/Δx = √(0.686275/2.8)/0.1 =
+/// 4.951 per V21 time unit (V21 §7.2's box); the dashed line has slope γ_box/ln 10 per Δx/c,
+/// i.e. the report's `predicted_growth_rate_box` × c/Δx per V21 time unit in ln |v|, spans the
+/// fit window of `sphstab swegle` (history max |v|: the history that command fits) and passes
+/// through that fit (its rate, in the legend, is the command's measured growth rate).
+#[test]
+fn swegle_kind_draws_the_box_slope_over_the_fit() {
+    use sphstab::solver::swegle::{predict_swegle, run_swegle};
+    let cfg = parse(
+        "s.json",
+        r#"{"output":"s.svg","title":"t","note":"n","swegle":[{"form":"classical","kernel":"m4","h":1.2,"density_ratio":0.95,"t_end":20,"history":"max"}]}"#,
+    )
+    .unwrap();
+    let curves = sphstab::figures::panel_curves(&cfg).unwrap().remove(0);
+    assert_eq!(curves.len(), 2);
+    let (hist, line) = (&curves[0], &curves[1]);
+    assert!(!hist.dashed && line.dashed);
+    let sc = cfg.swegle[0].config().unwrap();
+    let unit = (0.686275f64 / 2.8).sqrt() / 0.1;
+    assert!((unit - 4.951).abs() < 5e-4);
+    let report = run_swegle(&sc, |_| {}).unwrap();
+    let pred = predict_swegle(&sc).unwrap();
+    assert_eq!(pred.box_rate, report.predicted_growth_rate_box);
+    // abscissa: every recorded step, in Δx/c
+    assert_eq!(hist.x.len(), report.history_full.len());
+    for (x, h) in hist.x.iter().zip(&report.history_full) {
+        assert!((x - h[0] * unit).abs() < 1e-9 * (1.0 + x));
+    }
+    let slope = (line.y[1] - line.y[0]) / (line.x[1] - line.x[0]);
+    assert!(
+        (slope * std::f64::consts::LN_10 - pred.box_rate).abs() < 1e-12,
+        "slope {slope}, box rate {}",
+        pred.box_rate
+    );
+    // per V21 time unit, in ln |v|: γ_box c/Δx
+    assert!((slope * std::f64::consts::LN_10 * unit - pred.box_rate * unit).abs() < 1e-12);
+    let fit = report
+        .fit
+        .expect("f = 0.95 grows through the window by t = 20");
+    assert!((line.x[0] - fit.window.0 * unit).abs() < 1e-9);
+    assert!((line.x[1] - fit.window.1 * unit).abs() < 1e-9);
+    assert!(
+        hist.label
+            .contains(&format!("fitted {:.4} c/Δx", fit.rate / unit)),
+        "{}",
+        hist.label
+    );
+    // the dashed line meets the drawn history inside the window (box and measured rates
+    // agree to a few per cent, and it passes through the centroid of the fitted samples)
+    let mid = 0.5 * (line.x[0] + line.x[1]);
+    let i = hist
+        .x
+        .iter()
+        .position(|&x| x >= mid)
+        .expect("history covers the window");
+    let on_line = line.y[0] + slope * (hist.x[i] - line.x[0]);
+    assert!(
+        (hist.y[i] - on_line).abs() < 0.2,
+        "{} vs {on_line}",
+        hist.y[i]
+    );
+}
+
+/// The scene kind against the analytic solutions, each from the scene's published data:
+/// uniform bar (V21 §7.1: E = 2, v = 0.001 X) σ = E g t, derived in tests/reproduction.rs
+/// (`v21_uniform`: "σ̇ = (C + σ) ∂v/∂x integrates to C + σ = C(1 + g t), i.e. σ = C g t
+/// exactly"); wall impact (V21 §7.4: E = 200 GPa, ρ = 8000, v0 = 50 m/s) σ = −ρ c v0 =
+/// −2 GPa behind X − X_wall = c t, c = 5000 m/s; end pull (V21 §7.5: E = 70.8 GPa, ρ = 1550,
+/// ±70 m/s) σ1 = ρ c v behind each front, 2σ1 where they overlap.
+#[test]
+fn scene_kind_draws_the_analytic_profiles() {
+    let fig9 = sphstab::figures::panel_curves(&config("v21_fig9_uniform_tension.json")).unwrap();
+    for (panel, t) in fig9.iter().zip([1.0, 10.0]) {
+        let exact = 2.0 * 0.001 * t;
+        let a = panel.iter().find(|c| c.dashed).unwrap();
+        assert_eq!(a.x.len(), 100);
+        assert!((a.x[0] + 0.5).abs() < 1e-12 && (a.x[99] - 0.5).abs() < 1e-12);
+        for y in &a.y {
+            assert!((y - exact).abs() < 1e-15, "{y} vs {exact}");
+        }
+        // the local form (corrected gradient) is exact in the interior (REPRODUCTION: 2e-6)
+        let local = panel.iter().find(|c| c.label == "local").unwrap();
+        for y in &local.y[10..90] {
+            assert!((y / exact - 1.0).abs() < 1e-4, "{y}");
+        }
+    }
+    let fig17 = sphstab::figures::panel_curves(&config("v21_fig17_compressive_wave.json")).unwrap();
+    let a = fig17[0].iter().find(|c| c.dashed).unwrap();
+    // X in mm, σ in GPa; 500 particles on 50 mm, the wall at the third particle
+    let dx = 50.0 / 499.0;
+    let ct = 5000.0 * 5e-6 * 1e3;
+    for (x, y) in a.x.iter().zip(&a.y) {
+        let want = if x - 2.0 * dx < ct { -2.0 } else { 0.0 };
+        assert!((y - want).abs() < 1e-9, "X = {x} mm: {y} GPa");
+    }
+    let fig21 = sphstab::figures::panel_curves(&config("v21_fig21_tensile_wave.json")).unwrap();
+    let a = fig21[0].iter().find(|c| c.dashed).unwrap();
+    let c = (70.8e9f64 / 1550.0).sqrt();
+    let s1 = 1550.0 * c * 70.0 / 1e9;
+    let dx = 200.0 / 199.0;
+    let (xl, xr) = (-100.0 + 6.0 * dx, 100.0 - 6.0 * dx);
+    let ct = c * 2e-5 * 1e3;
+    for (x, y) in a.x.iter().zip(&a.y) {
+        let mut want = 0.0;
+        if x - xl < ct {
+            want += s1;
+        }
+        if xr - x < ct {
+            want += s1;
+        }
+        assert!((y - want).abs() < 1e-9, "X = {x} mm: {y} GPa, want {want}");
+    }
+    // the overlap (|X| < 41 mm at 20 μs) doubles the single-front stress
+    let mid = a.y[a.x.len() / 2];
+    assert!((mid - 2.0 * s1).abs() < 1e-9 && (s1 - 0.733).abs() < 5e-4);
+}
+
+#[test]
+fn time_domain_kinds_check_their_fields() {
+    for bad in [
+        r#"{"output":"a.svg","title":"t","scene":[{"scene":"uniform-bar","colour":1}]}"#,
+        r#"{"output":"a.svg","title":"t","swegle":[{"form":"classical","kernel":"m4","h":1.2,"density_ratio":0.99,"hh":1}]}"#,
+    ] {
+        let e = parse("k.json", bad).unwrap_err();
+        assert!(
+            e.to_string().contains("colour") || e.to_string().contains("hh"),
+            "{e}"
+        );
+    }
+    // one kind per place
+    let bad = r#"{"output":"a.svg","title":"t","scene":[{"scene":"uniform-bar"}],"series":[{"form":"classical","kernel":"m4","h":1.2,"stress":0}]}"#;
+    assert!(parse("m.json", bad).is_err());
+    // a scene without analytic solution cannot draw one
+    let cfg = parse(
+        "r.json",
+        r#"{"output":"a.svg","title":"t","scene":[{"scene":"rod","route":"analytic"}]}"#,
+    )
+    .unwrap();
+    assert!(sphstab::figures::render(&cfg).is_err());
+}

@@ -317,7 +317,7 @@ fn v21_fig12() -> Row {
     Row {
         item: "V21 Figs 10, 12",
         shows: "Swegle test (21×21, 3 fixed layers, ρ0 = 2.8, K = 0.686275): centre-particle speed vs time, classical and nonlocal, several density fractions",
-        how: "`sphstab swegle --form classical --kernel m4 --h 1.2 --density-ratio 0.99` (0.95; `--form nonlocal`); kernel and h are sphstab's choice (V21 does not state them)",
+        how: "`sphstab figures` → figures/v21_fig12_swegle.svg (Fig 12: centre-particle histories with the box prediction's slope, ρ/ρ0 = 0.95, 0.99, 1.01, 1.05); `sphstab swegle --form classical --kernel m4 --h 1.2 --density-ratio 0.99` (0.95; `--form nonlocal`); kernel and h are sphstab's choice (V21 does not state them)",
         paper: "classical unstable in tension, growth \"proportional to the level of stress\"; nonlocal no growth".into(),
         ours: format!(
             "classical growth in the box {g99:.4} (ρ/ρ0 = 0.99), {g95:.4} (0.95) c/Δx: ratio {:.2} for ×5 tension (infinite lattice {:.4}, {:.4}: ratio {:.2}); nonlocal max speed {:.2e} (kick 1e-10)",
@@ -550,7 +550,7 @@ fn v21_uniform(tension: bool) -> Row {
         Row {
             item: "V21 Figs 9, 16 (1D)",
             shows: "1D uniform tension (bar of length 1, 100 particles, v = 0.001x, 3 prescribed particles per end, ρ0 = 8, E = 2; m4, h = 1.3Δx): stress at t = 1 and 10",
-            how: "`sphstab simulate uniform-bar --form nonlocal --t-end 1 --out DIR` (also `--form local`, `lnl`; stress in final.vtk); `sphstab simulate uniform-bar --form classical --json`",
+            how: "`sphstab figures` → figures/v21_fig9_uniform_tension.svg; `sphstab simulate uniform-bar --form nonlocal --t-end 1 --out DIR` (also `--form local`, `lnl`; stress in final.vtk); `sphstab simulate uniform-bar --form classical --json`",
             paper: "nonlocal, local, lnl: \"good agreement with the analytical solutions\"; classical \"unstable and did not reach a solution time of t = 10.0\" (§7.1); analytic σ not printed".into(),
             ours: format!(
                 "analytic σ = E g t (derived for sphstab's law, see the test); {}; {}",
@@ -656,7 +656,7 @@ fn v21_fig13() -> Row {
     Row {
         item: "V21 Fig 13",
         shows: "Swegle test, mixed classical–local form (cll), centre-particle speed for several c, ρ/ρ0 = 0.99 and 0.95",
-        how: "`sphstab swegle --form cll --c C --kernel m4 --h 1.2 --density-ratio 0.99 --json` (C = 0, 0.25, 0.5, 0.75, 1; also 0.95)",
+        how: "`sphstab figures` → figures/v21_fig13_cll.svg; `sphstab swegle --form cll --c C --kernel m4 --h 1.2 --density-ratio 0.99 --json` (C = 0, 0.25, 0.5, 0.75, 1; also 0.95)",
         paper: "increasing c reduces the growth rate; c = 0.5 and c-calculated (eq 49, 0.497 < c < 0.502) almost identical (§7.2; the c set is lost)".into(),
         ours: format!(
             "growth at c = 0, 0.25, 0.5, 0.75, 1: {} (0: no growth)",
@@ -746,7 +746,7 @@ fn v21_figs17_18() -> [Row; 2] {
     let fig17 = Row {
         item: "V21 Fig 17",
         shows: "compressive wave from a rigid wall (5 cm steel bar, v0 = 50 m/s, E = 200 GPa, ρ = 8000, 500 particles, h = 1.3Δx, viscosity 0.5), before the free-end reflection",
-        how: "`sphstab simulate compressive-wave --form F --out DIR` (F = classical, nonlocal, local, lnl; stress in final.vtk; t = 5 μs)",
+        how: "`sphstab figures` → figures/v21_fig17_compressive_wave.svg; `sphstab simulate compressive-wave --form F --out DIR` (F = classical, nonlocal, local, lnl; stress in final.vtk; t = 5 μs)",
         paper: format!(
             "all forms \"predict the correct compressive stress magnitude\"; classical and nonlocal close to the analytic wave speed, lnl half-way between local and nonlocal (§7.4); caption t = 10 μs; analytic σ = −ρ c v0 = {:.3} GPa (c = √(E/ρ); {:.3} GPa with c_L, ν = 0.3)",
             exact / 1e9,
@@ -896,7 +896,7 @@ fn v21_figs21_22() -> [Row; 2] {
     let fig21 = Row {
         item: "V21 Figs 19, 20, 21(a) (1D)",
         shows: "tensile wave, 1D (0.2 m bar, E = 70.8 GPa, ρ = 1550, ends pulled at ±70 m/s, 200 particles, 7-particle end layers; m4, h = 1.3Δx, viscosity 0.5) at t = 20 μs; Figs 19, 20 are its set-up",
-        how: "`sphstab simulate tensile-wave --form F --t-end 2e-5 --out DIR` (F = classical, nonlocal, lnl; stress in final.vtk)",
+        how: "`sphstab figures` → figures/v21_fig21_tensile_wave.svg; `sphstab simulate tensile-wave --form F --t-end 2e-5 --out DIR` (F = classical, nonlocal, lnl; stress in final.vtk)",
         paper: format!(
             "classical unstable, \"large unphysical oscillations\"; nonlocal and lnl match the analytic solution (§7.5); analytic (derived here): σ1 = ρcv = {:.0} MPa, fronts meet at {:.1} μs, overlap {:.3} GPa",
             s1 / 1e6,

@@ -362,7 +362,7 @@ impl Scene1D {
         let (form, k, shape) = self.validate()?;
         let n = self.particles;
         let dx = self.length / (n - 1) as f64;
-        let x: Vec<f64> = (0..n).map(|i| self.origin + i as f64 * dx).collect();
+        let x = self.reference_positions();
         let c = (self.modulus / self.rho0).sqrt();
         let p = ModelParams {
             form,
@@ -389,35 +389,17 @@ impl Scene1D {
         };
         let model = Model1D::new(p, x.clone(), vec![dx; n], None)?;
         let mut z = model.rest_state();
-        for (i, v) in z.v.iter_mut().enumerate() {
-            *v = match self.initial_velocity {
-                InitialVelocity::Rest => 0.0,
-                InitialVelocity::Uniform { value } => value,
-                InitialVelocity::Linear { gradient } => gradient * x[i],
-                InitialVelocity::Point { index, value } => {
-                    if index >= n {
-                        return Err(Error::OutOfRange {
-                            name: "initial_velocity.index",
-                            value: index as f64,
-                            range: format!("must be < particles = {n}"),
-                        });
-                    }
-                    if i == index { value } else { 0.0 }
-                }
-            };
+        if let InitialVelocity::Point { index, .. } = self.initial_velocity
+            && index >= n
+        {
+            return Err(Error::OutOfRange {
+                name: "initial_velocity.index",
+                value: index as f64,
+                range: format!("must be < particles = {n}"),
+            });
         }
-        let mut prescribed = vec![None; n];
-        if let Some(l) = &self.left {
-            for (i, p) in prescribed.iter_mut().enumerate().take(l.layers.min(n)) {
-                *p = Some(l.velocity.unwrap_or(z.v[i]));
-            }
-        }
-        if let Some(r) = &self.right {
-            let first = n.saturating_sub(r.layers);
-            for (p, &v) in prescribed.iter_mut().zip(&z.v).skip(first) {
-                *p = Some(r.velocity.unwrap_or(v));
-            }
-        }
+        z.v = self.initial_velocities(&x);
+        let prescribed = self.prescribed(&z.v);
         let v_init = z.v.clone();
         let free: Vec<bool> = prescribed.iter().map(|p| p.is_none()).collect();
         let mut run = Run1D::new(model, z, prescribed.clone())?;
@@ -462,14 +444,7 @@ impl Scene1D {
             }
         }
         let runtime_s = start.elapsed().as_secs_f64();
-        let error = self.analytic.map(|a| {
-            let ends = (
-                prescribed[0].unwrap_or(0.0),
-                prescribed[n - 1].unwrap_or(0.0),
-            );
-            let exact: Vec<f64> = (0..n)
-                .map(|i| self.exact_velocity(a, x[i], v_init[i], ends, run.t * c))
-                .collect();
+        let error = self.exact_profile(run.t).map(|(exact, _)| {
             let (mut num, mut den, mut cnt) = (0.0, 0.0, 0usize);
             let mut scale: f64 = 0.0;
             for i in (0..n).filter(|&i| free[i]) {
@@ -500,6 +475,109 @@ impl Scene1D {
 
     /// The analytic velocity at reference position `xi` (initial velocity `v0`, end velocities
     /// `ends`) when the fronts have travelled `ct`.
+    /// Initial velocity of every particle at the reference positions `x`.
+    fn initial_velocities(&self, x: &[f64]) -> Vec<f64> {
+        x.iter()
+            .enumerate()
+            .map(|(i, &xi)| match self.initial_velocity {
+                InitialVelocity::Rest => 0.0,
+                InitialVelocity::Uniform { value } => value,
+                InitialVelocity::Linear { gradient } => gradient * xi,
+                InitialVelocity::Point { index, value } => {
+                    if i == index {
+                        value
+                    } else {
+                        0.0
+                    }
+                }
+            })
+            .collect()
+    }
+
+    /// The prescribed velocity of every particle (None: free), from the end layers and the
+    /// initial velocities `v`.
+    fn prescribed(&self, v: &[f64]) -> Vec<Option<f64>> {
+        let n = v.len();
+        let mut prescribed = vec![None; n];
+        if let Some(l) = &self.left {
+            for (i, p) in prescribed.iter_mut().enumerate().take(l.layers.min(n)) {
+                *p = Some(l.velocity.unwrap_or(v[i]));
+            }
+        }
+        if let Some(r) = &self.right {
+            let first = n.saturating_sub(r.layers);
+            for (p, &vi) in prescribed.iter_mut().zip(v).skip(first) {
+                *p = Some(r.velocity.unwrap_or(vi));
+            }
+        }
+        prescribed
+    }
+
+    /// Reference positions X_i = origin + iΔx of the particles (m).
+    pub fn reference_positions(&self) -> Vec<f64> {
+        let n = self.particles;
+        let dx = self.length / (n - 1) as f64;
+        (0..n).map(|i| self.origin + i as f64 * dx).collect()
+    }
+
+    /// The scene's analytic solution at time `t` at the reference positions
+    /// ([`Scene1D::reference_positions`]): (velocity, stress), None without `analytic`. The
+    /// velocity is the one the error norm of [`Scene1D::run`] uses. The stress follows from it
+    /// for sphstab's 1D law σ̇ = (C + σ) ∂v/∂x (\[B00\] eq 72):
+    /// - `uniform-strain` (v = g X): x = X(1 + g t), ∂v/∂x = g/(1 + g t), so C + σ =
+    ///   (C + σ0)(1 + g t), **σ = σ0 + (C + σ0) g t** (0 for an initial velocity that is not
+    ///   `linear`);
+    /// - `wall-impact` and `end-pull` (linear, small strain, c = √(C/ρ0)): across a front
+    ///   moving right σ jumps by −ρ0 c [v], moving left by +ρ0 c [v], so σ = σ0 + ρ0 c (v_0 − v)
+    ///   behind the wall's front and, for the two pulled ends, σ = σ0 − ρ0 c v_left (passed by
+    ///   the left front) + ρ0 c v_right (passed by the right front): twice the single-front
+    ///   stress where the fronts overlap.
+    pub fn exact_profile(&self, t: f64) -> Option<(Vec<f64>, Vec<f64>)> {
+        let a = self.analytic?;
+        let n = self.particles;
+        let x = self.reference_positions();
+        let c = (self.modulus / self.rho0).sqrt();
+        let v_init = self.initial_velocities(&x);
+        let pre = self.prescribed(&v_init);
+        let ends = (pre[0].unwrap_or(0.0), pre[n - 1].unwrap_or(0.0));
+        let v: Vec<f64> = (0..n)
+            .map(|i| self.exact_velocity(a, x[i], v_init[i], ends, t * c))
+            .collect();
+        let z = self.rho0 * c;
+        let s0 = self.initial_stress;
+        let sigma = (0..n)
+            .map(|i| match a {
+                Analytic::UniformStrain => match self.initial_velocity {
+                    InitialVelocity::Linear { gradient } => s0 + (self.modulus + s0) * gradient * t,
+                    _ => s0,
+                },
+                Analytic::WallImpact => s0 + z * (v_init[i] - v[i]),
+                Analytic::EndPull => {
+                    let (vl, vr) = ends;
+                    let left = self.exact_velocity(a, x[i], 0.0, (vl, 0.0), t * c);
+                    let right = self.exact_velocity(a, x[i], 0.0, (0.0, vr), t * c);
+                    s0 - z * left + z * right
+                }
+            })
+            .collect();
+        Some((v, sigma))
+    }
+
+    /// The stress the scene's form reports at each particle of state `z`: σ, or for the mixed
+    /// forms (lnl, cll) (1 − c)σ + cτ, the partition the momentum equation uses (each of σ
+    /// and τ integrated from its own velocity gradient).
+    pub fn stress_profile(&self, z: &crate::forms::State1D<f64>) -> Vec<f64> {
+        if z.tau.is_empty() {
+            return z.sigma.clone();
+        }
+        let c = self.c_partition;
+        z.sigma
+            .iter()
+            .zip(&z.tau)
+            .map(|(s, t)| (1.0 - c) * s + c * t)
+            .collect()
+    }
+
     fn exact_velocity(&self, a: Analytic, xi: f64, v0: f64, ends: (f64, f64), ct: f64) -> f64 {
         match a {
             Analytic::UniformStrain => v0,
