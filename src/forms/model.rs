@@ -523,7 +523,7 @@ impl FlatCache {
 /// with the exact (bitwise) state it was made at, so `accel` and `qrate` at one state — a
 /// `rates` call, or the two separate calls — cost one evaluation. And the accelerations do not
 /// depend on the velocities unless the model has artificial viscosity
-/// ([`SecondOrderSystem::accel_depends_on_velocity`]), which lets `kdk` reuse its end-of-step
+/// ([`crate::integrator::SecondOrderSystem::accel_depends_on_velocity`]), which lets `kdk` reuse its end-of-step
 /// acceleration. Neither changes a result: the rate function is deterministic.
 pub struct FlatSystem<'a> {
     model: &'a Model1D,

@@ -31,7 +31,7 @@ pub fn ramp(t: f64) -> RGBColor {
     RGBColor(c(a.0, b.0), c(a.1, b.1), c(a.2, b.2))
 }
 
-/// A heat map of z over a rectangular (x, y) grid (cell centres, z[i][j] at (x[i], y[j])) with
+/// A heat map of z over a rectangular (x, y) grid (cell centres, z\[i\]\[j\] at (x\[i\], y\[j\])) with
 /// a colour bar labelled `z_desc` (quantity and unit) from 0 to max z.
 pub fn heatmap_svg(
     title: &str,

@@ -528,7 +528,7 @@ impl Scene1D {
     ///   (C + σ0)(1 + g t), **σ = σ0 + (C + σ0) g t** (0 for an initial velocity that is not
     ///   `linear`);
     /// - `wall-impact` and `end-pull` (linear, small strain, c = √(C/ρ0)): across a front
-    ///   moving right σ jumps by −ρ0 c [v], moving left by +ρ0 c [v], so σ = σ0 + ρ0 c (v_0 − v)
+    ///   moving right σ jumps by −ρ0 c \[v\], moving left by +ρ0 c \[v\], so σ = σ0 + ρ0 c (v_0 − v)
     ///   behind the wall's front and, for the two pulled ends, σ = σ0 − ρ0 c v_left (passed by
     ///   the left front) + ρ0 c v_right (passed by the right front): twice the single-front
     ///   stress where the fronts overlap.

@@ -373,7 +373,7 @@ impl Linearisation {
     }
 
     /// The linearisation at t ∈ [0, 1] between `self` and `other` (the same form, kernel, h and
-    /// lattice at two pre-stresses), interpolating the Jacobian columns ([`Columns::lerp`]):
+    /// lattice at two pre-stresses), interpolating the Jacobian columns (`Columns::lerp`):
     /// exact when the columns are affine in the pre-stress (the atlas checks that with
     /// [`Self::distance`] before it relies on it). `None` if the two differ in anything but
     /// the column values.
@@ -397,7 +397,7 @@ impl Linearisation {
     }
 
     /// Largest difference of the Jacobian columns of two linearisations relative to their
-    /// largest entry ([`Columns::distance`]); `None` if the degrees of freedom differ.
+    /// largest entry (`Columns::distance`); `None` if the degrees of freedom differ.
     pub fn distance(&self, other: &Self) -> Option<f64> {
         if self.dofs != other.dofs || self.mass != other.mass {
             return None;

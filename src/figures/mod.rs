@@ -21,18 +21,19 @@
 //!                  { "route": "continuum", "theta": 45, "dashed": true } ] }
 //! ```
 //!
-//! or `swegle` series — the Swegle test of \[V21 §7.2\] run by [`run_swegle`] (the code of
-//! `sphstab swegle`), log10 of a velocity history against time in Δx/c, with the box
-//! prediction's growth rate drawn dashed over the fit window, anchored on the least-squares fit
-//! of the plotted history ([`SwegleSeries`]):
+//! or `swegle` series — the Swegle test of \[V21 §7.2\] run by
+//! [`crate::solver::swegle::run_swegle`] (the code of `sphstab swegle`), log10 of a velocity
+//! history against time in Δx/c, with the box prediction's growth rate drawn dashed over the fit
+//! window, anchored on the least-squares fit of the plotted history ([`SwegleSeries`]):
 //!
 //! ```json
 //! { "output": "v21_fig12.svg", "title": "...", "note": "...",
 //!   "swegle": [ { "form": "classical", "kernel": "m4", "h": 1.2, "density_ratio": 0.99 } ] }
 //! ```
 //!
-//! or `scene` series — a 1D scene run by [`Scene1D::run`] (the code of `sphstab simulate`), or
-//! its analytic solution ([`Scene1D::exact_profile`]), as a stress or velocity profile along
+//! or `scene` series — a 1D scene run by [`crate::solver::scene::Scene1D::run`] (the code of
+//! `sphstab simulate`), or its analytic solution
+//! ([`crate::solver::scene::Scene1D::exact_profile`]), as a stress or velocity profile along
 //! the bar at the scene's end time ([`SceneSeries`]); `x_desc` and `y_desc` name the axes:
 //!
 //! ```json
@@ -51,17 +52,21 @@ use crate::analysis::{Query1D, dispersion};
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel;
-use crate::lattice::{Lattice2D, LatticeKind};
 use crate::plot::{Curve, KAPPA_DESC, LinePlot, OMEGA2_DESC, stack_svg};
 use crate::shape::{KernelParams, ShapeFamily, lattice_shape};
-use crate::solver::diagnostics::growth_fit;
-use crate::solver::scene::{Scene1D, builtin};
-use crate::solver::swegle::{SwegleConfig, run_swegle};
-use crate::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
 use crate::vonneumann::closed_form as cf;
 use rayon::prelude::*;
+
+mod antiplane;
+mod scene;
+mod swegle;
+
+use antiplane::cutoff_marks;
+pub use antiplane::{AntiPlaneRoute, AntiPlaneSeries, KAPPA_THETA_DESC, OMEGA_DESC};
+pub use scene::{SceneQuantity, SceneRoute, SceneSeries};
 use serde::Deserialize;
 use std::f64::consts::PI;
+pub use swegle::{SWEGLE_TIME_DESC, SwegleHistory, SwegleSeries};
 
 /// How a series is computed.
 #[derive(Clone, Copy, Debug, Default, Deserialize, serde::Serialize, PartialEq, Eq)]
@@ -189,320 +194,6 @@ pub struct Panel {
     pub scene: Vec<SceneSeries>,
 }
 
-/// Which velocity history of a Swegle run is drawn ([`crate::solver::swegle::SwegleReport`]'s
-/// `history_full` columns).
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum SwegleHistory {
-    /// |v| of the kicked centre particle (the ordinate of \[V21\] Figs 12, 13).
-    #[default]
-    Centre,
-    /// max |v| over the free particles (the history `sphstab swegle` fits).
-    Max,
-    /// RMS |v| over the free particles.
-    Rms,
-}
-
-impl SwegleHistory {
-    /// Column of `history_full`.
-    fn column(self) -> usize {
-        match self {
-            SwegleHistory::Centre => 1,
-            SwegleHistory::Max => 2,
-            SwegleHistory::Rms => 3,
-        }
-    }
-
-    /// Ordinate description.
-    fn desc(self) -> &'static str {
-        match self {
-            SwegleHistory::Centre => {
-                "log10 |v| of the kicked centre particle (v in V21's units; kick 1e−10)"
-            }
-            SwegleHistory::Max => "log10 max |v| over the free particles (V21's units; kick 1e−10)",
-            SwegleHistory::Rms => "log10 RMS |v| over the free particles (V21's units; kick 1e−10)",
-        }
-    }
-}
-
-/// One Swegle run (\[V21 §7.2\]: the published box of [`SwegleConfig::new`], 21 × 21, 3
-/// fixed layers, Δx = 0.1, ρ0 = 2.8, K = 0.686275, kick 1e−10, fit window 1e−8 to 1e−4):
-/// the history drawn solid, and, when the box prediction grows and the history enters the fit
-/// window, a dashed line of slope γ_box/ln 10 (γ_box the report's `predicted_growth_rate_box`
-/// in c/Δx) over the fit window, through the centroid of the least-squares fit of ln of the
-/// drawn history ([`growth_fit`], the fit of `sphstab swegle`, over the same window).
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SwegleSeries {
-    /// Form (a 2D form).
-    pub form: String,
-    /// Kernel.
-    pub kernel: String,
-    /// h/Δx.
-    pub h: f64,
-    /// f = ρ/ρ0 (< 1 tension).
-    pub density_ratio: f64,
-    /// Partition coefficient c (lnl, cll; default 0.5).
-    pub c: Option<f64>,
-    /// End time in V21's time units (default 40, the published test).
-    pub t_end: Option<f64>,
-    /// History drawn (default: the centre particle).
-    #[serde(default)]
-    pub history: SwegleHistory,
-    /// Legend label of the history (default: generated).
-    pub label: Option<String>,
-}
-
-/// How a scene curve is computed.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum SceneRoute {
-    /// The scene run by [`Scene1D::run`].
-    #[default]
-    Run,
-    /// The scene's analytic solution at its end time ([`Scene1D::exact_profile`]).
-    Analytic,
-}
-
-/// Quantity of a scene profile.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum SceneQuantity {
-    /// The stress the form reports ([`Scene1D::stress_profile`]).
-    #[default]
-    Stress,
-    /// The particle velocity.
-    Velocity,
-}
-
-/// A 1D scene's profile at its end time against the reference position X of every particle
-/// (end layers included), multiplied by `x_scale` and `y_scale` (e.g. 1e3 for mm, 1e−9 for GPa).
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SceneSeries {
-    /// Built-in scene name (`uniform-bar`, `compressive-wave`, `tensile-wave`, `rod`).
-    pub scene: String,
-    /// Form (default: the scene's).
-    pub form: Option<String>,
-    /// Partition coefficient c (default: the scene's).
-    pub c: Option<f64>,
-    /// End time (s; default: the scene's).
-    pub t_end: Option<f64>,
-    /// Route (default: run).
-    #[serde(default)]
-    pub route: SceneRoute,
-    /// Quantity (default: stress).
-    #[serde(default)]
-    pub quantity: SceneQuantity,
-    /// Factor on the position.
-    #[serde(default = "one")]
-    pub x_scale: f64,
-    /// Factor on the quantity.
-    #[serde(default = "one")]
-    pub y_scale: f64,
-    /// Legend label (default: generated).
-    pub label: Option<String>,
-    /// Draw dashed.
-    #[serde(default)]
-    pub dashed: bool,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-/// Abscissa description of the Swegle figures.
-pub const SWEGLE_TIME_DESC: &str =
-    "time t c/Δx (units of Δx/c = 0.2020 V21 time units; 1 V21 time unit = 4.951 Δx/c)";
-
-impl SwegleSeries {
-    /// The run's configuration: [`SwegleConfig::new`] with this series' form, kernel, h, f,
-    /// c and end time.
-    pub fn config(&self) -> Result<SwegleConfig> {
-        let mut cfg = SwegleConfig::new(
-            FormKind::by_name(&self.form)?,
-            kernel::by_name(&self.kernel)?,
-            self.h,
-            self.density_ratio,
-        );
-        if let Some(c) = self.c {
-            cfg.c_partition = c;
-        }
-        if let Some(t) = self.t_end {
-            cfg.t_end = t;
-        }
-        cfg.validate()?;
-        Ok(cfg)
-    }
-
-    /// The history (solid) and, when drawn, the predicted growth line (dashed).
-    fn curves(&self) -> Result<Vec<Curve>> {
-        let cfg = self.config()?;
-        let r = run_swegle(&cfg, |_| {})?;
-        let unit = cfg.sound_speed() / cfg.dx;
-        let col = self.history.column();
-        let t: Vec<f64> = r.history_full.iter().map(|h| h[0]).collect();
-        let y: Vec<f64> = r.history_full.iter().map(|h| h[col]).collect();
-        let tau: Vec<f64> = t.iter().map(|t| t * unit).collect();
-        let box_rate = r.predicted_growth_rate_box;
-        let name = self.label.clone().unwrap_or_else(|| {
-            let mut l = format!("{} ρ/ρ0 = {}", r.form, self.density_ratio);
-            if matches!(cfg.form, FormKind::Lnl | FormKind::Cll) {
-                l += &format!(", c = {}", cfg.c_partition);
-            }
-            l
-        });
-        let fit = growth_fit(&t, &y, cfg.window.0, cfg.window.1);
-        let mut label = name.clone();
-        match fit {
-            Some(f) => label += &format!(": fitted {:.4} c/Δx", f.rate / unit),
-            None => label += ": no growth into the fit window",
-        }
-        let mut out = vec![Curve {
-            label,
-            x: tau.clone(),
-            y: y.iter()
-                .map(|v| if *v > 0.0 { v.log10() } else { f64::NAN })
-                .collect(),
-            dashed: false,
-        }];
-        if let (Some(f), true) = (fit, box_rate > crate::vonneumann::classify::GROWTH_TOL) {
-            // the least-squares line of ln y passes through the centroid of its samples
-            let (lo, hi) = f.window;
-            let pts: Vec<(f64, f64)> = t
-                .iter()
-                .zip(&y)
-                .filter(|&(&ti, &yi)| ti >= lo && ti <= hi && yi > cfg.window.0)
-                .map(|(&ti, &yi)| (ti * unit, yi.log10()))
-                .collect();
-            let n = pts.len() as f64;
-            let (tc, yc) = pts
-                .iter()
-                .fold((0.0, 0.0), |a, p| (a.0 + p.0 / n, a.1 + p.1 / n));
-            let slope = box_rate / std::f64::consts::LN_10;
-            let ends = [lo * unit, hi * unit];
-            out.push(Curve {
-                label: format!(
-                    "{name}: box prediction {box_rate:.4} c/Δx ({}), slope through the fit",
-                    r.box_method
-                ),
-                x: ends.to_vec(),
-                y: ends.iter().map(|&a| yc + slope * (a - tc)).collect(),
-                dashed: true,
-            });
-        }
-        Ok(out)
-    }
-}
-
-impl SceneSeries {
-    /// The scene: the built-in with this series' form, c and end time.
-    pub fn scene(&self) -> Result<Scene1D> {
-        let mut s = builtin(&self.scene)?;
-        if let Some(f) = &self.form {
-            s.form = f.clone();
-        }
-        if let Some(c) = self.c {
-            s.c_partition = c;
-        }
-        if let Some(t) = self.t_end {
-            s.t_end = t;
-        }
-        s.validate()?;
-        Ok(s)
-    }
-
-    fn curve(&self) -> Result<Curve> {
-        crate::error::check_range("x_scale", self.x_scale, 0.0, f64::MAX, false, true)?;
-        crate::error::check_range("y_scale", self.y_scale, 0.0, f64::MAX, false, true)?;
-        let s = self.scene()?;
-        let x: Vec<f64> = s
-            .reference_positions()
-            .iter()
-            .map(|x| x * self.x_scale)
-            .collect();
-        let (q, label) = match self.route {
-            SceneRoute::Analytic => {
-                let (v, sigma) = s.exact_profile(s.t_end).ok_or_else(|| {
-                    Error::Incompatible(format!(
-                        "scene series: `{}` has no analytic solution",
-                        self.scene
-                    ))
-                })?;
-                let q = match self.quantity {
-                    SceneQuantity::Stress => sigma,
-                    SceneQuantity::Velocity => v,
-                };
-                (q, "analytic".to_string())
-            }
-            SceneRoute::Run => {
-                let mut r = s.run(|_| {})?;
-                let z = r
-                    .final_state
-                    .take()
-                    .ok_or(Error::NonFinite("scene series: no final state"))?;
-                let q = match self.quantity {
-                    SceneQuantity::Stress => s.stress_profile(&z),
-                    SceneQuantity::Velocity => z.v,
-                };
-                let mut l = s.form.clone();
-                if matches!(FormKind::by_name(&s.form)?, FormKind::Lnl | FormKind::Cll) {
-                    l += &format!(" (c = {})", s.c_partition);
-                }
-                (q, l)
-            }
-        };
-        Ok(Curve {
-            label: self.label.clone().unwrap_or(label),
-            x,
-            y: q.iter().map(|v| v * self.y_scale).collect(),
-            dashed: self.dashed,
-        })
-    }
-}
-
-/// How an anti-plane curve is computed.
-#[derive(Clone, Copy, Debug, Default, Deserialize, serde::Serialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum AntiPlaneRoute {
-    /// The Galerkin anti-plane system of [`crate::vonneumann::antiplane`] (as `sphstab
-    /// stiffness --theta`): ωΔx/c of every branch.
-    #[default]
-    Engine,
-    /// The continuum ü = c²Δu (\[B00\] eq 110): ωΔx/c = κΔx in every direction.
-    Continuum,
-}
-
-/// One anti-plane curve (\[B00\] §4.4): ωΔx/c along the direction θ for κΔx from 0 to the
-/// first-zone boundary along θ.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AntiPlaneSeries {
-    /// Route (default: engine).
-    #[serde(default)]
-    pub route: AntiPlaneRoute,
-    /// Quadrature (`sphstab stiffness --quadrature`); engine route only, required there.
-    pub quadrature: Option<String>,
-    /// Propagation angle θ in degrees, in [−360, 360].
-    pub theta: f64,
-    /// Node lattice, `square` (default) or `hex` (Δx = nearest-neighbour distance).
-    pub lattice: Option<String>,
-    /// Kernel name; engine route only, required there.
-    pub kernel: Option<String>,
-    /// Support radius R/Δx (\[B00\]'s D_mx); engine route only, required there.
-    pub support: Option<f64>,
-    /// Shape family (default mls).
-    pub shape: Option<String>,
-    /// Consistent mass (default: lumped, as \[B00\] eq 119).
-    #[serde(default)]
-    pub consistent: bool,
-    /// Legend label (default: generated).
-    pub label: Option<String>,
-    /// Draw dashed.
-    #[serde(default)]
-    pub dashed: bool,
-}
-
 fn default_points() -> usize {
     256
 }
@@ -597,120 +288,6 @@ impl Series {
             dashed: self.dashed,
         })
     }
-}
-
-/// Ordinate description of the anti-plane figures.
-pub const OMEGA_DESC: &str = "ωΔx/c (frequency in units of c/Δx)";
-/// Abscissa description of the anti-plane figures.
-pub const KAPPA_THETA_DESC: &str = "wave number κΔx/π along θ (dimensionless; dotted: the cut-off, the first-zone boundary along θ)";
-
-impl AntiPlaneSeries {
-    fn lattice(&self) -> Result<Lattice2D> {
-        Lattice2D::by_name(self.lattice.as_deref().unwrap_or("square"), 1.0)
-    }
-
-    /// The cut-off κΔx along θ (the first-zone boundary of the node lattice).
-    fn cutoff(&self) -> Result<f64> {
-        crate::error::check_range("theta", self.theta, -360.0, 360.0, true, true)?;
-        Ok(self.lattice()?.zone_boundary(self.theta.to_radians()))
-    }
-
-    /// The curve: ωΔx/c against κΔx/π at `points` wave numbers in (0, cut-off]. A pattern of
-    /// several nodes per periodic cell (the star pattern's 2×2 supercell) has one branch per
-    /// node (the plane wave's band folded into the smaller zone of the supercell, mixed where
-    /// the folded branches meet): all are drawn, as `sphstab stiffness --theta` prints them,
-    /// in one curve with gaps between branches. ω² < 0 (not met for K = ∫∇φ·∇φ) would be drawn
-    /// as ω = 0, as `sphstab stiffness` prints it.
-    fn curve(&self, points: usize) -> Result<Curve> {
-        let lat = self.lattice()?;
-        let kcut = self.cutoff()?;
-        let (c, s) = (self.theta.to_radians().cos(), self.theta.to_radians().sin());
-        let kappas: Vec<f64> = (1..=points)
-            .map(|i| kcut * i as f64 / points as f64)
-            .collect();
-        let hex = matches!(lat.kind, LatticeKind::Hexagonal);
-        let missing = |f: &str| {
-            Error::Incompatible(format!("antiplane series: the engine route needs `{f}`"))
-        };
-        let (x, y, label) = match self.route {
-            AntiPlaneRoute::Continuum => (
-                kappas.iter().map(|k| k / PI).collect(),
-                kappas.clone(),
-                "continuum ωΔx/c = κΔx [B00 eq 110]".to_string(),
-            ),
-            AntiPlaneRoute::Engine => {
-                let q =
-                    Quadrature::by_name(self.quadrature.as_deref().ok_or(missing("quadrature"))?)?;
-                let k = kernel::by_name(self.kernel.as_deref().ok_or(missing("kernel"))?)?;
-                let r = self.support.ok_or(missing("support"))?;
-                crate::error::check_range("support", r, 0.0, 50.0, false, true)?;
-                let fam = ShapeFamily::by_name(self.shape.as_deref().unwrap_or("mls"))?;
-                let ap = AntiPlane::new(
-                    &lat,
-                    q,
-                    fam,
-                    KernelParams {
-                        kernel: k,
-                        h: r / k.zeta(),
-                    },
-                )?;
-                let mass = if self.consistent {
-                    Mass::Consistent
-                } else {
-                    Mass::Lumped
-                };
-                let w2 = kappas
-                    .iter()
-                    .map(|&kap| ap.omega2([kap * c, kap * s], mass))
-                    .collect::<Result<Vec<_>>>()?;
-                let nb = ap.pattern.sites.len();
-                let (mut x, mut y) = (Vec::new(), Vec::new());
-                for b in 0..nb {
-                    if b > 0 {
-                        x.push(f64::NAN);
-                        y.push(f64::NAN);
-                    }
-                    x.extend(kappas.iter().map(|k| k / PI));
-                    y.extend(w2.iter().map(|w| w[b].max(0.0).sqrt()));
-                }
-                let mut label = format!("{}, θ = {}°", q.name(), self.theta);
-                if nb > 1 {
-                    label += &format!(
-                        " (all {nb} branches: {nb} nodes per periodic cell, the band folded into its smaller zone)"
-                    );
-                }
-                if hex {
-                    label += ", hex lattice";
-                }
-                (x, y, label)
-            }
-        };
-        Ok(Curve {
-            label: self.label.clone().unwrap_or(label),
-            x,
-            y,
-            dashed: self.dashed,
-        })
-    }
-}
-
-/// The cut-off marks of anti-plane curves: one per distinct cut-off, naming every θ (and the
-/// lattice when hexagonal) that ends there.
-fn cutoff_marks(series: &[AntiPlaneSeries]) -> Result<Vec<(f64, String)>> {
-    let mut marks: Vec<(f64, Vec<String>)> = Vec::new();
-    for a in series {
-        let k = a.cutoff()? / PI;
-        let name = format!("{}°", a.theta);
-        match marks.iter_mut().find(|m| (m.0 - k).abs() < 1e-9) {
-            Some(m) if !m.1.contains(&name) => m.1.push(name),
-            Some(_) => {}
-            None => marks.push((k, vec![name])),
-        }
-    }
-    Ok(marks
-        .into_iter()
-        .map(|(k, names)| (k, format!("cut-off θ = {}", names.join(", "))))
-        .collect())
 }
 
 /// A panel's curves and extras, as [`render`] draws them.
