@@ -91,14 +91,13 @@ pub fn run(a: Args) -> Result<()> {
     }
     let flags = a.study_flags();
     if let Some(from) = &a.from {
-        if a.config.is_some() || !flags.is_empty() || a.json {
-            anyhow::bail!(
-                "--from redraws stored data: it takes only --plot (not --config, --json or the study flags)"
-            );
-        }
-        let path = study::plot_path(a.plot.as_ref())?;
-        let rep: ArtStressReport = study::read_report(from)?;
-        return study::write_plot(sphstab::art_stress::figure_svg(&rep), path);
+        let others = a.config.is_some() || !flags.is_empty() || a.json;
+        return study::redraw::<ArtStressReport>(
+            from,
+            a.plot.as_ref(),
+            others,
+            sphstab::art_stress::figure_svg,
+        );
     }
     let cfg = match &a.config {
         Some(p) => {

@@ -56,3 +56,21 @@ pub fn write_figure_and_data<T: Serialize>(
     eprintln!("wrote {} and {}", svg.display(), data.display());
     Ok(())
 }
+
+/// `--from FILE --plot FILE`: redraws a stored report with `draw`, refusing the other flags
+/// (`others`: whether `--config`, `--json` or a study flag was given).
+pub fn redraw<T: DeserializeOwned>(
+    from: &Path,
+    plot: Option<&PathBuf>,
+    others: bool,
+    draw: impl Fn(&T) -> sphstab::error::Result<String>,
+) -> Result<()> {
+    if others {
+        anyhow::bail!(
+            "--from redraws stored data: it takes only --plot (not --config, --json or the study flags)"
+        );
+    }
+    let path = plot_path(plot)?;
+    let rep: T = read_report(from)?;
+    write_plot(draw(&rep), path)
+}
