@@ -5,16 +5,16 @@
 //! block of `sphstab throughput` (its defaults). `cargo bench --bench engine` runs them.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sphstab::analysis::{MaterialSpec, Query2D, Query3D, growth_map, query_nd, query2d};
+use sphstab::analysis::{MaterialSpec, Query, growth_map, query_nd, query2d};
 use sphstab::analysis::{Query1D, dispersion};
 use sphstab::atlas::AtlasConfig;
-use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D};
+use sphstab::forms::{FormKind, Material, Model, ModelParams};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::solver::throughput::{ThroughputConfig, build_block};
-use sphstab::solver::{BoundaryDensity, Run2D};
+use sphstab::solver::{BoundaryDensity, Run};
 use sphstab::vonneumann::linearise::PhaseTable;
 
 fn benches(c: &mut Criterion) {
@@ -50,12 +50,12 @@ fn benches(c: &mut Criterion) {
     c.bench_function("linearisation of one 1D cell (classical m4 h 1.3)", |b| {
         b.iter(|| qc.linearise().unwrap())
     });
-    let q2 = Query2D::new(FormKind::Classical, m4, 1.2, 0.01);
+    let q2 = Query::<2>::new(FormKind::Classical, m4, 1.2, 0.01);
     c.bench_function(
         "query 2D, default (classical m4 elastic, 64x64 zone)",
         |b| b.iter(|| query2d(&q2).unwrap()),
     );
-    let q3 = Query3D::new(FormKind::Classical, m4, 1.2, 0.01);
+    let q3 = Query::<3>::new(FormKind::Classical, m4, 1.2, 0.01);
     c.bench_function(
         "query 3D, default (classical m4 elastic sc, 16^3 zone)",
         |b| b.iter(|| query_nd(&q3).unwrap()),
@@ -75,7 +75,7 @@ fn benches(c: &mut Criterion) {
     });
     g0.finish();
 
-    let mut q2 = Query2D::new(FormKind::Classical, m4, 1.2, 0.01);
+    let mut q2 = Query::<2>::new(FormKind::Classical, m4, 1.2, 0.01);
     q2.material = MaterialSpec::Hydro;
     let q2 = q2;
     let mut g = c.benchmark_group("slow");
@@ -84,18 +84,20 @@ fn benches(c: &mut Criterion) {
         b.iter(|| growth_map(&q2, 128, sphstab::analysis::Plane::Xy).unwrap())
     });
 
-    let p = ModelParams2D {
+    let p = ModelParams {
         form: FormKind::Classical,
         shape: ShapeFamily::Sph,
         kp: KernelParams { kernel: m4, h: 1.3 },
-        material: Material2D::Hydro { bulk: 1.0 },
+        material: Material::Hydro { bulk: 1.0 },
         rho0: 1.0,
         c_partition: 0.5,
         av: None,
         art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: 1.0,
     };
-    let model = Model2D::periodic_patch(
+    let model = Model::<2>::periodic_patch(
         p,
         &Lattice2D::square(1.0).unwrap(),
         1.0,
@@ -106,7 +108,7 @@ fn benches(c: &mut Criterion) {
     .unwrap();
     let z = model.rest_state(1.0);
     let n = z.x.len();
-    let mut run = Run2D::new(model, z, vec![false; n], BoundaryDensity::Evolve).unwrap();
+    let mut run = Run::<2>::new(model, z, vec![false; n], BoundaryDensity::Evolve).unwrap();
     run.z.v[n / 2][0] = 1e-6;
     g.bench_function("solver step 2D, 200x200 (classical m4 hydro)", |b| {
         b.iter(|| run.step(0.1).unwrap())

@@ -7,11 +7,11 @@
 //! `cargo bench --bench solver1d` runs them.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use sphstab::forms::{BandedLu, FormKind, MassOperator, Model1D, ModelParams};
+use sphstab::forms::{BandedLu, FormKind, MassOperator, Material, Model, ModelParams};
 use sphstab::integrator::Integrator;
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
-use sphstab::solver::Run1D;
+use sphstab::solver::Run;
 
 fn params(form: FormKind) -> ModelParams {
     ModelParams {
@@ -21,29 +21,29 @@ fn params(form: FormKind) -> ModelParams {
             kernel: kernel::by_name("m4").unwrap(),
             h: 1.3,
         },
-        modulus: 1.0,
+        material: Material::bar(1.0),
         rho0: 1.0,
-        sigma0: 0.0,
         c_partition: 0.5,
         alpha_s: 0.1,
+        ls_length: 1.0,
         av: None,
-        dx: 1.0,
+        art_stress: None,
         diffusion: None,
     }
 }
 
 /// An open chain of `n` particles, 3 fixed layers at each end, a smooth velocity field.
-fn chain(form: FormKind, n: usize) -> Run1D {
-    let x: Vec<f64> = (0..n).map(|i| i as f64).collect();
-    let model = Model1D::new(params(form), x.clone(), vec![1.0; n], None).unwrap();
-    let mut z = model.rest_state();
-    for (v, &xi) in z.v.iter_mut().zip(&x) {
-        *v = 1e-3 * (2.0 * std::f64::consts::PI * xi / n as f64).sin();
+fn chain(form: FormKind, n: usize) -> Run<1> {
+    let x: Vec<[f64; 1]> = (0..n).map(|i| [i as f64]).collect();
+    let model = Model::new(params(form), x.clone(), vec![1.0; n], 1.0, 0.0, None).unwrap();
+    let mut z = model.rest_state(1.0);
+    for (v, &[xi]) in z.v.iter_mut().zip(&x) {
+        *v = [1e-3 * (2.0 * std::f64::consts::PI * xi / n as f64).sin()];
     }
-    let prescribed = (0..n)
-        .map(|i| (i < 3 || i + 3 >= n).then_some(0.0))
+    let prescribed: Vec<Option<[f64; 1]>> = (0..n)
+        .map(|i| (i < 3 || i + 3 >= n).then_some([0.0]))
         .collect();
-    Run1D::new(model, z, prescribed).unwrap()
+    Run::with_prescribed(model, z, &prescribed).unwrap()
 }
 
 fn benches(c: &mut Criterion) {
@@ -79,15 +79,17 @@ fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("consistent mass (least-squares, periodic, m4 mls)");
     g.sample_size(10);
     for n in [1_000, 10_000, 100_000] {
-        let x: Vec<f64> = (0..n).map(|i| i as f64).collect();
-        let model = Model1D::new(
+        let x: Vec<[f64; 1]> = (0..n).map(|i| [i as f64]).collect();
+        let model = Model::new(
             params(FormKind::LeastSquares),
             x,
             vec![1.0; n],
-            Some(n as f64),
+            1.0,
+            0.0,
+            Some([[n as f64]]),
         )
         .unwrap();
-        let MassOperator::Consistent(rows) = &model.mass_op else {
+        let MassOperator::Consistent(rows) = model.mass_operator() else {
             unreachable!("least squares has a consistent mass")
         };
         g.bench_with_input(BenchmarkId::new("factorise", n), &n, |b, _| {

@@ -24,15 +24,14 @@
 use crate::analysis::Query1D;
 use crate::analysis::{MaterialSpec, Query2D};
 use crate::error::{Error, Result};
-use crate::forms::{FormKind, Model1D, Model2D};
+use crate::forms::{FormKind, Model};
 use crate::integrator::{DEFAULT_EULER_EVERY, Integrator};
 use crate::kernel::{self, Kernel};
 use crate::lattice::Lattice2D;
 use crate::solver::throughput::MemoryProbe;
-use crate::solver::{BoundaryDensity, Run1D, Run2D};
+use crate::solver::{BoundaryDensity, Run};
 use crate::vonneumann::amplification::{critical_dt, critical_dt_bisection};
 use crate::vonneumann::classify::GROWTH_TOL;
-use crate::vonneumann::linearise::Linearisation;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -366,7 +365,7 @@ fn analyse(dim: u8, form: FormKind, k: &'static dyn Kernel, h: f64, row: &mut Ro
         row.phase_error_10ppw = Some(phase(lin0.omega2(k10).0, k10, 1.0));
         row.phase_error_20ppw = Some(phase(lin0.omega2(k20).0, k20, 1.0));
         let grows = |s: f64| -> Result<bool> {
-            let lin = Linearisation::new(q.params(s), q.lattice)?;
+            let lin = q.linearise_at(s)?;
             for &kap in &kappas {
                 if lin.growth(kap)? > GROWTH_TOL {
                     return Ok(true);
@@ -477,15 +476,23 @@ fn scene_1d_with(
     let (res, bytes) = with_memory(probe, || -> Result<(f64, f64)> {
         let q = Query1D::new(form, k, h, 0.0);
         let x: Vec<f64> = (0..n).map(|i| i as f64).collect();
-        let model = Model1D::new(q.params(0.0), x.clone(), vec![1.0; n], Some(n as f64))?;
-        let mut z = model.rest_state();
+        let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
+        let model = Model::new(
+            q.params(),
+            x_ref,
+            vec![1.0; n],
+            1.0,
+            0.0,
+            Some([[n as f64]]),
+        )?;
+        let mut z = model.rest_state(1.0);
         for (v, &xi) in z.v.iter_mut().zip(&x) {
-            *v = SCENE_AMPLITUDE * (kw * xi).sin();
+            *v = [SCENE_AMPLITUDE * (kw * xi).sin()];
         }
         if count {
             calls = integrators::rate_calls_per_step(&model, &z, integ, dt)?;
         }
-        let mut run = Run1D::new(model, z, vec![None; n])?;
+        let mut run = Run::with_prescribed(model, z, &vec![None; n])?;
         run.set_integrator(integ);
         let start = std::time::Instant::now();
         for _ in 0..steps {
@@ -494,7 +501,7 @@ fn scene_1d_with(
         let secs = start.elapsed().as_secs_f64();
         let ct = (kw * run.t).cos();
         let (mut num, mut den) = (0.0, 0.0);
-        for (v, &xi) in run.z.v.iter().zip(&x) {
+        for ([v], &xi) in run.z.v.iter().zip(&x) {
             let e = SCENE_AMPLITUDE * (kw * xi).sin() * ct;
             num += (v - e).powi(2);
             den += e * e;
@@ -529,7 +536,7 @@ fn scene_2d(
     let (res, bytes) = with_memory(probe, || -> Result<(f64, f64)> {
         let mut q = Query2D::new(form, k, h, 0.0);
         q.material = MaterialSpec::Hydro;
-        let model = Model2D::periodic_patch(
+        let model = Model::<2>::periodic_patch(
             q.params()?,
             &Lattice2D::square(1.0)?,
             1.0,
@@ -543,7 +550,7 @@ fn scene_2d(
             v[0] = SCENE_AMPLITUDE * (kw * p[0]).sin();
         }
         let n = z.x.len();
-        let mut run = Run2D::new(model, z, vec![false; n], BoundaryDensity::Evolve)?;
+        let mut run = Run::<2>::new(model, z, vec![false; n], BoundaryDensity::Evolve)?;
         let start = std::time::Instant::now();
         for _ in 0..steps {
             run.step(SCENE_DT)?;
@@ -718,14 +725,16 @@ fn integrator_rows(
             let res = integrators::analyse(form, k, h, integ, cfg.safety, KAPPAS_1D, &mut row)
                 .and_then(|()| {
                     let q = Query1D::new(form, k, h, 0.0);
-                    let x: Vec<f64> = (0..SCENE_1D_N).map(|i| i as f64).collect();
-                    let model = Model1D::new(
-                        q.params(0.0),
+                    let x: Vec<[f64; 1]> = (0..SCENE_1D_N).map(|i| [i as f64]).collect();
+                    let model = Model::new(
+                        q.params(),
                         x,
                         vec![1.0; SCENE_1D_N],
-                        Some(SCENE_1D_N as f64),
+                        1.0,
+                        0.0,
+                        Some([[SCENE_1D_N as f64]]),
                     )?;
-                    row.evaluations_per_step = integrators::evaluations_per_step(&model, integ)?;
+                    row.evaluations_per_step = integrators::evaluations_per_step(&model, integ);
                     Ok(())
                 });
             if let Err(e) = res {

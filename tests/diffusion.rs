@@ -19,10 +19,10 @@
 mod common;
 
 use num_complex::Complex64 as C;
-use sphstab::forms::{DensityDiffusion, DiffusionForm, FlatSystem, FormKind, Model1D};
-use sphstab::integrator::{Integrator, Stepper};
+use sphstab::forms::{DensityDiffusion, DiffusionForm, FormKind, Model};
 use sphstab::kernel;
 use sphstab::shape::ShapeFamily;
+use sphstab::solver::Run;
 use sphstab::vonneumann::linearise::{Lattice1D, Linearisation};
 use std::f64::consts::PI;
 
@@ -47,7 +47,7 @@ fn symbol(kern: &str, h: f64, delta: f64, form: DiffusionForm, kappa: f64) -> f6
 }
 
 fn params(kern: &str, h: f64, delta: f64, form: DiffusionForm) -> sphstab::forms::ModelParams {
-    let mut p = common::params(FormKind::Nonlocal, kern, ShapeFamily::Sph, h, 0.01);
+    let mut p = common::params(FormKind::Nonlocal, kern, ShapeFamily::Sph, h);
     p.diffusion = Some(DensityDiffusion {
         delta,
         form,
@@ -81,13 +81,12 @@ fn engine_eigenvalue_is_the_diffusion_symbol() {
                     };
                     let mut p = params(kern, h, 0.1, form);
                     p.kp.h = h * dx;
-                    p.dx = dx;
+                    p.ls_length = dx;
                     // physical c of the lattice (√(C/ρ0)), as the analysis sets it
                     p.diffusion.as_mut().unwrap().sound_speed = (lat.modulus / lat.rho0).sqrt();
-                    p.modulus = lat.modulus;
+                    p.material = sphstab::forms::Material::bar(lat.modulus);
                     p.rho0 = lat.rho0;
-                    p.sigma0 = 0.01 * lat.modulus;
-                    let lin = Linearisation::new(p, lat).unwrap();
+                    let lin = Linearisation::new(p, 0.01 * lat.modulus, lat).unwrap();
                     for i in 1..=16 {
                         let kap = PI * i as f64 / 16.0;
                         let want = symbol(kern, h, 0.1, form, kap);
@@ -120,7 +119,8 @@ fn antuono_damps_long_waves_at_fourth_order() {
     let a = symbol("m4", 1.3, 0.1, mc, PI);
     let b = symbol("m4", 1.3, 0.1, an, PI);
     assert!((a / b - 1.0).abs() < 1e-14, "{a} vs {b}");
-    let lin = |f| Linearisation::new(params("m4", 1.3, 0.1, f), Lattice1D::default()).unwrap();
+    let lin =
+        |f| Linearisation::new(params("m4", 1.3, 0.1, f), 0.01, Lattice1D::default()).unwrap();
     let damping = |l: &Linearisation, kap: f64| {
         -l.eigenvalues(kap)
             .unwrap()
@@ -145,40 +145,34 @@ fn solver_density_wave_decays_at_the_symbol_rate() {
     for form in [DiffusionForm::MolteniColagrossi, DiffusionForm::Antuono] {
         let (n, m, dt, delta) = (64usize, 11usize, 0.3, 0.1);
         let p = params("m4", 1.3, delta, form);
-        let model = Model1D::new(
+        let model = Model::new(
             p,
-            (0..n).map(|i| i as f64).collect(),
+            (0..n).map(|i| [i as f64]).collect(),
             vec![1.0; n],
-            Some(n as f64),
+            1.0,
+            0.01,
+            Some([[n as f64]]),
         )
         .unwrap();
-        let rest = model.rest_state();
-        let sys = FlatSystem::new(&model, rest.clone()).unwrap();
-        let (mut x, mut v, mut q) = sys.flatten(&rest);
-        let q0 = q.clone();
+        let mut z = model.rest_state(1.0);
+        let q0 = z.rho.clone();
         let kap = 2.0 * PI * m as f64 / n as f64;
-        // the density block of q: find it as the block that equals ρ0 = 1 everywhere (the
-        // stress block holds σ0 = 0.01)
-        let blocks = q.len() / n;
-        let rb = (0..blocks)
-            .find(|&b| q[b * n..(b + 1) * n].iter().all(|&r| r == 1.0))
-            .expect("a density block");
-        for j in 0..n {
-            q[rb * n + j] += 1e-8 * (kap * j as f64).cos();
+        for (j, r) in z.rho.iter_mut().enumerate() {
+            *r += 1e-8 * (kap * j as f64).cos();
         }
         let amp = |q: &[f64]| -> f64 {
             (0..n)
-                .map(|j| C::from_polar(q[rb * n + j] - q0[rb * n + j], -kap * j as f64))
+                .map(|j| C::from_polar(q[j] - q0[j], -kap * j as f64))
                 .sum::<C>()
                 .norm()
         };
-        let a0 = amp(&q);
-        let mut st = Stepper::new(Integrator::Kdk);
+        let a0 = amp(&z.rho);
+        let mut run = Run::with_prescribed(model, z, &vec![None; n]).unwrap();
         let steps = 20;
         for _ in 0..steps {
-            st.step(&sys, &mut x, &mut v, &mut q, dt);
+            run.step(dt).unwrap();
         }
-        let meas = (amp(&q) / a0).powf(1.0 / steps as f64);
+        let meas = (amp(&run.z.rho) / a0).powf(1.0 / steps as f64);
         let want = 1.0 + dt * symbol("m4", 1.3, delta, form, kap);
         eprintln!("{form:?}: decay per step measured {meas:.12}, predicted {want:.12}");
         assert!(
@@ -186,7 +180,7 @@ fn solver_density_wave_decays_at_the_symbol_rate() {
             "{form:?}: {meas} vs {want}"
         );
         assert!(
-            v.iter().all(|&vi| vi.abs() < 1e-14),
+            run.z.v.iter().all(|[vi]| vi.abs() < 1e-14),
             "the density wave moved particles"
         );
     }
@@ -309,7 +303,7 @@ fn cli_delta() {
 /// below 1e-3 of Molteni–Colagrossi's there), and at X = (π, 0) the two are equal.
 #[test]
 fn fluid_acoustic_damping_matches_the_diffusivity() {
-    use sphstab::analysis::{MaterialSpec, Query2D};
+    use sphstab::analysis::{MaterialSpec, Query};
     let (h, delta) = (1.3, 0.1);
     let k = kernel::by_name("m4").unwrap();
     let reach = (k.zeta() * h).ceil() as i64 + 1;
@@ -324,7 +318,7 @@ fn fluid_acoustic_damping_matches_the_diffusivity() {
         }
     }
     let eigs = |form: DiffusionForm, kv: [f64; 2]| {
-        let mut q = Query2D::new(FormKind::Nonlocal, k, h, 0.0);
+        let mut q = Query::<2>::new(FormKind::Nonlocal, k, h, 0.0);
         q.material = MaterialSpec::Hydro;
         q.diffusion = Some((delta, form));
         q.linearise_at(0.0).unwrap().eigenvalues(kv).unwrap()

@@ -132,25 +132,27 @@ fn time_step_at_the_critical_value() {
 /// 2D normalised results do not depend on Δx (1e−6 … 1e6).
 #[test]
 fn two_d_results_are_scale_free() {
-    use sphstab::forms::{Material2D, ModelParams2D};
+    use sphstab::forms::{Material, ModelParams};
     use sphstab::lattice::Lattice2D;
     use sphstab::shape::KernelParams;
     use sphstab::vonneumann::linearise::Linearisation2D;
     let lat = Lattice2D::square(1.0).unwrap();
     let mk = |dx: f64| {
-        let p = ModelParams2D {
+        let p = ModelParams {
             form: FormKind::Classical,
             shape: ShapeFamily::Sph,
             kp: KernelParams {
                 kernel: k("m4"),
                 h: 1.2 * dx,
             },
-            material: Material2D::Hydro { bulk: 1.0 },
+            material: Material::Hydro { bulk: 1.0 },
             rho0: 1.0,
             c_partition: 0.5,
             av: None,
             art_stress: None,
             diffusion: None,
+            alpha_s: 0.0,
+            ls_length: 1.0,
         };
         Linearisation2D::new(p, &lat, dx, 0.02).unwrap()
     };

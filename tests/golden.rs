@@ -15,8 +15,8 @@ mod common;
 
 use common::{k, material_specs};
 use serde_json::{Value, json};
+use sphstab::analysis::{Query, query2d};
 use sphstab::analysis::{Query1D, dispersion};
-use sphstab::analysis::{Query2D, query2d};
 use sphstab::forms::FormKind;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
@@ -96,7 +96,7 @@ fn bloch_2d() -> Value {
                 ("hex", Lattice2D::hexagonal()),
             ] {
                 for sig in [-0.02, 0.05] {
-                    let mut q = Query2D::new(form, k("m4"), 1.2, sig);
+                    let mut q = Query::<2>::new(form, k("m4"), 1.2, sig);
                     q.material = mat;
                     q.lattice = lat;
                     q.grid = 12;

@@ -24,12 +24,12 @@
 
 use serde_json::{Value, json};
 use sphstab::forms::{
-    ArtificialViscosity, DensityDiffusion, DiffusionForm, FormKind, Model1D, ModelParams,
+    ArtificialViscosity, DensityDiffusion, DiffusionForm, FormKind, Material, Model, ModelParams,
 };
 use sphstab::integrator::Integrator;
 use sphstab::kernel;
 use sphstab::shape::{KernelParams, ShapeFamily};
-use sphstab::solver::Run1D;
+use sphstab::solver::Run;
 use sphstab::solver::rod::{RodConfig, run_rod};
 use sphstab::solver::thesis_wave::{ThesisWave, run_thesis_wave};
 use std::f64::consts::PI;
@@ -207,38 +207,39 @@ fn run_case(c: &Case) -> Value {
             kernel: kernel::by_name(c.kernel).unwrap(),
             h: c.h,
         },
-        modulus: 1.0,
+        material: Material::bar(1.0),
         rho0: 1.0,
-        sigma0: c.sigma0,
         c_partition: 0.5,
         alpha_s: c.alpha_s,
+        ls_length: 1.0,
+        art_stress: None,
         av: c.av.then_some(ArtificialViscosity {
             alpha: 1.0,
             beta: 2.0,
             sound_speed: sound,
             approaching_only: true,
         }),
-        dx: 1.0,
         diffusion: c.delta.then_some(DensityDiffusion {
             delta: 0.1,
             form: DiffusionForm::Antuono,
             sound_speed: sound,
         }),
     };
-    let period = c.periodic.then_some(n as f64);
-    let model = Model1D::new(p, x.clone(), vec![1.0; n], period).unwrap();
-    let mut z = model.rest_state();
+    let period = c.periodic.then_some([[n as f64]]);
+    let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
+    let model = Model::new(p, x_ref, vec![1.0; n], 1.0, c.sigma0, period).unwrap();
+    let mut z = model.rest_state(1.0);
     let l = n as f64;
     for (i, &xi) in x.iter().enumerate() {
-        z.v[i] = 0.05 * (2.0 * PI * xi / l).sin() + 0.02 * (6.0 * PI * xi / l).cos();
+        z.v[i][0] = 0.05 * (2.0 * PI * xi / l).sin() + 0.02 * (6.0 * PI * xi / l).cos();
         if let Some(r) = z.rho.get_mut(i) {
             *r *= 1.0 + 0.01 * (4.0 * PI * xi / l).sin();
         }
     }
-    let prescribed = (0..n)
-        .map(|i| (i < c.fixed || i + c.fixed >= n).then_some(0.0))
+    let prescribed: Vec<Option<[f64; 1]>> = (0..n)
+        .map(|i| (i < c.fixed || i + c.fixed >= n).then_some([0.0]))
         .collect();
-    let mut run = Run1D::new(model, z, prescribed).unwrap();
+    let mut run = Run::with_prescribed(model, z, &prescribed).unwrap();
     run.set_integrator(c.integrator);
     for _ in 0..c.steps {
         run.step(c.dt).unwrap();
@@ -248,8 +249,10 @@ fn run_case(c: &Case) -> Value {
         "name": c.name,
         "steps": run.steps,
         "t": run.t,
-        "x": z.x, "v": z.v, "rho": z.rho, "sigma": z.sigma, "tau": z.tau,
-        "sp_x": z.sp_x, "sp_sigma": z.sp_sigma, "sp_vol": z.sp_vol,
+        "x": z.x.as_flattened(), "v": z.v.as_flattened(), "rho": z.rho,
+        "sigma": z.sigma.as_flattened().as_flattened(), "tau": z.tau.as_flattened().as_flattened(),
+        "sp_x": z.sp_x.as_flattened(), "sp_sigma": z.sp_sigma.as_flattened().as_flattened(),
+        "sp_vol": z.sp_vol,
     })
 }
 

@@ -25,7 +25,7 @@
 use serde_json::{Value, json};
 use sphstab::forms::{
     ArtificialStress, ArtificialViscosity, DensityDiffusion, DiffusionForm, FormKind, Material,
-    Model, ModelParams2D, ObjectiveRate, State,
+    Model, ModelParams, ObjectiveRate, State,
 };
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
@@ -70,8 +70,8 @@ fn m4() -> &'static dyn kernel::Kernel {
     kernel::by_name("m4").unwrap()
 }
 
-fn params(form: FormKind, material: Material) -> ModelParams2D {
-    ModelParams2D {
+fn params(form: FormKind, material: Material) -> ModelParams {
+    ModelParams {
         form,
         shape: form.default_shape_2d(),
         kp: KernelParams {
@@ -89,6 +89,8 @@ fn params(form: FormKind, material: Material) -> ModelParams2D {
         }),
         art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: 1.0,
     }
 }
 
@@ -102,7 +104,7 @@ fn jitter(seed: &mut u64) -> f64 {
 
 /// An n^D lattice (Δx = 1) jittered by ±`amp`, velocities ±`vamp` (random), density 1 ± 1 %.
 fn jittered<const D: usize>(
-    p: ModelParams2D,
+    p: ModelParams,
     n: usize,
     periodic: bool,
     amp: f64,

@@ -5,9 +5,10 @@
 mod common;
 
 use common::*;
-use sphstab::forms::{FlatSystem, FormKind, Model1D};
+use sphstab::forms::{FormKind, Model};
 use sphstab::integrator::{Scratch, kdk_step};
 use sphstab::shape::ShapeFamily;
+use sphstab::solver::{BoundaryDensity, System, SystemBuffers};
 use sphstab::vonneumann::amplification::{
     AMPLIFICATION_TOL, amplification_matrix, critical_dt, critical_dt_bisection, spectral_radius,
 };
@@ -134,12 +135,27 @@ fn run_mode_k(
     dt: f64,
     steps: usize,
 ) -> Vec<f64> {
-    let p = params(form, kern, shape, h, sig);
+    let p = params(form, kern, shape, h);
     let x_ref: Vec<f64> = (0..n).map(|i| i as f64).collect();
-    let model = Model1D::new(p, x_ref.clone(), vec![1.0; n], Some(n as f64)).unwrap();
-    let rest = model.rest_state();
-    let sys = FlatSystem::new(&model, rest.clone()).unwrap();
-    let (mut x, mut v, mut q) = sys.flatten(&rest);
+    let model = Model::new(
+        p,
+        x_ref.iter().map(|&x| [x]).collect(),
+        vec![1.0; n],
+        1.0,
+        sig,
+        Some([[n as f64]]),
+    )
+    .unwrap();
+    let rest = model.rest_state(1.0);
+    let bufs = SystemBuffers::new(&model).unwrap();
+    let fixed = vec![false; n];
+    let sys = System::new(&model, &fixed, BoundaryDensity::Evolve, &bufs);
+    let (mut x, mut v) = (
+        rest.x.as_flattened().to_vec(),
+        rest.v.as_flattened().to_vec(),
+    );
+    let mut q = Vec::new();
+    sys.flatten_into(&rest, &mut q);
     let kap = 2.0 * PI * m as f64 / n as f64;
     // Seed a velocity (not a displacement: displacing particles while keeping ρ and σ uniform
     // is itself an equilibrium of the rate-form system).
@@ -175,7 +191,7 @@ fn single_mode_frequency_matches_engine() {
         (FormKind::TotalLagrangian, ShapeFamily::Mls, 0.2),
         (FormKind::EulerianStressPoints, ShapeFamily::Mls, 0.0),
         (FormKind::EulerianNodal, ShapeFamily::Mls, 0.5),
-        // consistent mass: FlatSystem solves M a = f (LU of the dense M)
+        // consistent mass: the system solves M a = f (banded LU)
         (FormKind::LeastSquares, ShapeFamily::Mls, 0.2),
     ] {
         let (n, m, dt) = (32, 5, 0.05);

@@ -458,11 +458,12 @@ fn seeded_mode_run(
     m: usize,
     cycles: usize,
 ) -> (f64, f64, f64) {
-    use sphstab::forms::{ArtificialViscosity, FieldKind, FlatSystem, FormKind, Model1D};
+    use sphstab::forms::{ArtificialViscosity, FieldKind, FormKind, Model};
     use sphstab::shape::ShapeFamily;
+    use sphstab::solver::{BoundaryDensity, System, SystemBuffers};
     use sphstab::vonneumann::amplification::Modes;
     use sphstab::vonneumann::linearise::{Lattice1D, Linearisation};
-    let mut p = common::params(FormKind::Nonlocal, "m4", ShapeFamily::Sph, 1.3, 0.01);
+    let mut p = common::params(FormKind::Nonlocal, "m4", ShapeFamily::Sph, 1.3);
     if alpha > 0.0 {
         p.av = Some(ArtificialViscosity {
             alpha,
@@ -471,13 +472,13 @@ fn seeded_mode_run(
             approaching_only: false,
         });
     }
-    let lin = Linearisation::new(p, Lattice1D::default()).unwrap();
+    let lin = Linearisation::new(p, 0.01, Lattice1D::default()).unwrap();
     let kap = 2.0 * std::f64::consts::PI * m as f64 / n as f64;
     let g = lin.amplification_with(kap, dt, integ);
     let (lam, e) = dominant(&g);
     let predicted = lam.norm().powf(1.0 / integ.cycle() as f64);
     // dof layout of the linearisation: cell fields in order, then the memory parts
-    let kinds: Vec<FieldKind> = lin.dofs.iter().map(|d| d.field.kind()).collect();
+    let kinds: Vec<FieldKind> = lin.dofs.iter().map(|d| d.comp.kind()).collect();
     let nd = kinds.len();
     let of_kind = |k: FieldKind| -> Vec<usize> { (0..nd).filter(|&i| kinds[i] == k).collect() };
     let (ix, iv, iq) = (
@@ -485,16 +486,25 @@ fn seeded_mode_run(
         of_kind(FieldKind::Velocity),
         of_kind(FieldKind::Auxiliary),
     );
-    let model = Model1D::new(
+    let model = Model::new(
         p,
-        (0..n).map(|i| i as f64).collect(),
+        (0..n).map(|i| [i as f64]).collect(),
         vec![1.0; n],
-        Some(n as f64),
+        1.0,
+        0.01,
+        Some([[n as f64]]),
     )
     .unwrap();
-    let rest = model.rest_state();
-    let sys = FlatSystem::new(&model, rest.clone()).unwrap();
-    let (x0, v0, q0) = sys.flatten(&rest);
+    let rest = model.rest_state(1.0);
+    let bufs = SystemBuffers::new(&model).unwrap();
+    let fixed = vec![false; n];
+    let sys = System::new(&model, &fixed, BoundaryDensity::Evolve, &bufs);
+    let (x0, v0) = (
+        rest.x.as_flattened().to_vec(),
+        rest.v.as_flattened().to_vec(),
+    );
+    let mut q0 = Vec::new();
+    sys.flatten_into(&rest, &mut q0);
     let amp = 1e-8;
     let wave = |c: C, j: usize| amp * (c * C::from_polar(1.0, kap * j as f64)).re;
     let mut x = x0.clone();
@@ -587,14 +597,14 @@ fn critical_step_holds_in_the_time_domain() {
     let ks: Vec<f64> = (1..n / 2)
         .map(|m| 2.0 * std::f64::consts::PI * m as f64 / n as f64)
         .collect();
-    let mut p = common::params(FormKind::Nonlocal, "m4", ShapeFamily::Sph, 1.3, 0.01);
+    let mut p = common::params(FormKind::Nonlocal, "m4", ShapeFamily::Sph, 1.3);
     p.av = Some(ArtificialViscosity {
         alpha: 1.0,
         beta: 0.0,
         sound_speed: 1.0,
         approaching_only: false,
     });
-    let lin = Linearisation::new(p, Lattice1D::default()).unwrap();
+    let lin = Linearisation::new(p, 0.01, Lattice1D::default()).unwrap();
     let mut worst: f64 = 0.0;
     for integ in Integrator::all(40) {
         let dtc = step_stability(&lin, &ks, integ)
@@ -818,14 +828,14 @@ fn verlet_euler_with_viscosity_long_cycles() {
     use sphstab::shape::ShapeFamily;
     use sphstab::vonneumann::amplification::{Modes, spectral_radius_with};
     use sphstab::vonneumann::linearise::{Lattice1D, Linearisation};
-    let mut p = common::params(FormKind::Nonlocal, "m4", ShapeFamily::Sph, 1.3, 0.01);
+    let mut p = common::params(FormKind::Nonlocal, "m4", ShapeFamily::Sph, 1.3);
     p.av = Some(ArtificialViscosity {
         alpha: 1.0,
         beta: 0.0,
         sound_speed: 1.0,
         approaching_only: false,
     });
-    let lin = Linearisation::new(p, Lattice1D::default()).unwrap();
+    let lin = Linearisation::new(p, 0.01, Lattice1D::default()).unwrap();
     let mut worst: f64 = 0.0;
     for every in [1, 2, 40, 100] {
         let integ = Integrator::VerletEuler { every };

@@ -3,9 +3,9 @@
 mod common;
 
 use common::*;
-use sphstab::forms::{FormKind, Model1D};
+use sphstab::forms::{FormKind, Model};
 use sphstab::shape::ShapeFamily;
-use sphstab::solver::Run1D;
+use sphstab::solver::Run;
 use std::f64::consts::PI;
 
 /// A periodic total-Lagrangian chain (mls, efg-quartic, D_mx = 1.5; 32 particles) with one
@@ -21,21 +21,22 @@ fn million_steps_bounded_energy() {
         "efg-quartic",
         ShapeFamily::Mls,
         1.5,
-        0.0,
     );
-    let model = Model1D::new(
+    let model = Model::new(
         p,
-        (0..n).map(|i| i as f64).collect(),
+        (0..n).map(|i| [i as f64]).collect(),
         vec![1.0; n],
-        Some(n as f64),
+        1.0,
+        0.0,
+        Some([[n as f64]]),
     )
     .unwrap();
-    let mut z = model.rest_state();
+    let mut z = model.rest_state(1.0);
     let kap = 2.0 * PI * 5.0 / n as f64;
     for (i, v) in z.v.iter_mut().enumerate() {
-        *v = 1e-6 * (kap * i as f64).cos();
+        *v = [1e-6 * (kap * i as f64).cos()];
     }
-    let mut run = Run1D::new(model, z, vec![None; n]).unwrap();
+    let mut run = Run::with_prescribed(model, z, &vec![None; n]).unwrap();
     let dt = 1.0; // Δt_crit = 2 (ω_max = 1, [B00] Table II)
     let steps = 1_000_000;
     let window = steps / 100;
@@ -43,7 +44,7 @@ fn million_steps_bounded_energy() {
     let t = std::time::Instant::now();
     for s in 0..steps {
         run.step(dt).unwrap();
-        let ke: f64 = run.z.v.iter().map(|v| 0.5 * v * v).sum();
+        let ke: f64 = run.z.v.iter().map(|[v]| 0.5 * v * v).sum();
         if s < window {
             first = first.max(ke);
         } else if s >= steps - window {

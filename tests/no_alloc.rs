@@ -19,13 +19,12 @@
 //! tests of one binary run in parallel.
 
 use sphstab::forms::{
-    ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model2D, ModelParams2D,
-    ObjectiveRate,
+    ArtificialStress, ArtificialViscosity, FormKind, Material, Model, ModelParams, ObjectiveRate,
 };
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
 use sphstab::solver::throughput::{ThroughputConfig, build_block};
-use sphstab::solver::{BoundaryDensity, Run2D};
+use sphstab::solver::{BoundaryDensity, Run};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
@@ -90,8 +89,8 @@ fn allocations() -> u64 {
 }
 
 /// An open n × n block (Δx = 1, ρ0 = 1, P-wave modulus 1) with a smooth velocity field.
-fn block(n: usize, form: FormKind, material: Material2D, av: bool, art: bool) -> Run2D {
-    let p = ModelParams2D {
+fn block(n: usize, form: FormKind, material: Material, av: bool, art: bool) -> Run<2> {
+    let p = ModelParams {
         form,
         shape: form.default_shape_2d(),
         kp: KernelParams {
@@ -118,6 +117,8 @@ fn block(n: usize, form: FormKind, material: Material2D, av: bool, art: bool) ->
             form: sphstab::forms::DiffusionForm::Antuono,
             sound_speed: 1.0,
         }),
+        alpha_s: 0.0,
+        ls_length: 1.0,
     };
     let mut x = Vec::new();
     for i in 0..n {
@@ -125,22 +126,22 @@ fn block(n: usize, form: FormKind, material: Material2D, av: bool, art: bool) ->
             x.push([i as f64, j as f64]);
         }
     }
-    let model = Model2D::new(p, x, vec![1.0; n * n], 1.0, 0.0, None).unwrap();
+    let model = Model::<2>::new(p, x, vec![1.0; n * n], 1.0, 0.0, None).unwrap();
     let mut z = model.rest_state(1.0);
     let l = (n - 1) as f64;
     for (v, x) in z.v.iter_mut().zip(&model.x_ref) {
         let pi = std::f64::consts::PI;
         *v = [1e-3 * (pi * x[1] / l).sin(), 1e-3 * (pi * x[0] / l).sin()];
     }
-    Run2D::new(model, z, vec![false; n * n], BoundaryDensity::Evolve).unwrap()
+    Run::<2>::new(model, z, vec![false; n * n], BoundaryDensity::Evolve).unwrap()
 }
 
 /// Allocations during 10 steps after 2 warm-up steps, in each of three consecutive windows of
 /// 10 steps (with the sizes of the first few of each); `pool`: each window inside one `install`.
-fn count(mut run: Run2D, pool: Option<&rayon::ThreadPool>) -> Vec<(u64, Vec<usize>)> {
+fn count(mut run: Run<2>, pool: Option<&rayon::ThreadPool>) -> Vec<(u64, Vec<usize>)> {
     run.step(0.2).unwrap();
     run.step(0.2).unwrap();
-    let steps = |run: &mut Run2D| {
+    let steps = |run: &mut Run<2>| {
         for _ in 0..10 {
             run.step(0.2).unwrap();
         }
@@ -175,8 +176,8 @@ fn fewest(w: &[(u64, Vec<usize>)]) -> u64 {
 
 #[test]
 fn time_loop_does_not_allocate() {
-    let jaumann = Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
-    let hydro = Material2D::Hydro { bulk: 1.0 };
+    let jaumann = Material::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
+    let hydro = Material::Hydro { bulk: 1.0 };
     let cases = [
         (
             "classical elastic (Jaumann) + AV + art. stress + δ-SPH (antuono)",

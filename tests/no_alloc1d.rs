@@ -18,12 +18,12 @@
 //! parallel.
 
 use sphstab::forms::{
-    ArtificialViscosity, DensityDiffusion, DiffusionForm, FormKind, Model1D, ModelParams,
+    ArtificialViscosity, DensityDiffusion, DiffusionForm, FormKind, Material, Model, ModelParams,
 };
 use sphstab::integrator::Integrator;
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
-use sphstab::solver::Run1D;
+use sphstab::solver::Run;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -64,7 +64,7 @@ fn allocations() -> u64 {
 
 /// A chain of `n` particles (Δx = 1, ρ0 = 1, C = 1), periodic or with 3 fixed layers at each
 /// end, with a smooth velocity field.
-fn chain(form: FormKind, n: usize, periodic: bool, av: bool, integ: Integrator) -> Run1D {
+fn chain(form: FormKind, n: usize, periodic: bool, av: bool, integ: Integrator) -> Run<1> {
     let p = ModelParams {
         form,
         shape: form.default_shape(),
@@ -72,18 +72,18 @@ fn chain(form: FormKind, n: usize, periodic: bool, av: bool, integ: Integrator) 
             kernel: kernel::by_name("m4").unwrap(),
             h: 1.3,
         },
-        modulus: 1.0,
+        material: Material::bar(1.0),
         rho0: 1.0,
-        sigma0: 0.1,
         c_partition: 0.5,
         alpha_s: 0.1,
+        ls_length: 1.0,
+        art_stress: None,
         av: av.then_some(ArtificialViscosity {
             alpha: 1.0,
             beta: 2.0,
             sound_speed: 1.0,
             approaching_only: true,
         }),
-        dx: 1.0,
         diffusion: av.then_some(DensityDiffusion {
             delta: 0.1,
             form: DiffusionForm::Antuono,
@@ -91,23 +91,25 @@ fn chain(form: FormKind, n: usize, periodic: bool, av: bool, integ: Integrator) 
         }),
     };
     let x: Vec<f64> = (0..n).map(|i| i as f64).collect();
-    let model = Model1D::new(p, x.clone(), vec![1.0; n], periodic.then_some(n as f64)).unwrap();
-    let mut z = model.rest_state();
+    let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
+    let period = periodic.then_some([[n as f64]]);
+    let model = Model::new(p, x_ref, vec![1.0; n], 1.0, 0.1, period).unwrap();
+    let mut z = model.rest_state(1.0);
     for (v, &xi) in z.v.iter_mut().zip(&x) {
-        *v = 0.05 * (2.0 * std::f64::consts::PI * xi / n as f64).sin();
+        *v = [0.05 * (2.0 * std::f64::consts::PI * xi / n as f64).sin()];
     }
     let fixed = if periodic { 0 } else { 3 };
-    let prescribed = (0..n)
-        .map(|i| (i < fixed || i + fixed >= n).then_some(0.0))
+    let prescribed: Vec<Option<[f64; 1]>> = (0..n)
+        .map(|i| (i < fixed || i + fixed >= n).then_some([0.0]))
         .collect();
-    let mut run = Run1D::new(model, z, prescribed).unwrap();
+    let mut run = Run::with_prescribed(model, z, &prescribed).unwrap();
     run.set_integrator(integ);
     run
 }
 
 /// Allocations in 10 steps after 2 warm-up steps: the fewest over three consecutive windows of
 /// 10 steps (module docs).
-fn count(run: &mut Run1D) -> u64 {
+fn count(run: &mut Run<1>) -> u64 {
     for _ in 0..2 {
         run.step(0.2).unwrap();
     }

@@ -14,7 +14,7 @@
 
 use sphstab::forms::{FormKind, ObjectiveRate};
 use sphstab::kernel;
-use sphstab::solver::Run3D;
+use sphstab::solver::Run;
 use sphstab::solver::throughput::{BlockMaterial, Domain, ThroughputConfig, build_block_nd};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -55,7 +55,7 @@ fn allocations() -> u64 {
 }
 
 /// The periodic n³ box of `throughput --dim 3` (m4, h = 1.3Δx, smooth velocity field).
-fn block(n: usize, form: FormKind, material: BlockMaterial, av: bool) -> Run3D {
+fn block(n: usize, form: FormKind, material: BlockMaterial, av: bool) -> Run<3> {
     let mut cfg = ThroughputConfig::new(kernel::by_name("m4").unwrap()).with_dim(3);
     assert_eq!(cfg.domain, Domain::Periodic);
     cfg.form = form;
@@ -66,10 +66,10 @@ fn block(n: usize, form: FormKind, material: BlockMaterial, av: bool) -> Run3D {
 }
 
 /// Allocations during 10 steps after 2 warm-up steps; `pool`: all 10 inside one `install`.
-fn count(mut run: Run3D, pool: Option<&rayon::ThreadPool>) -> u64 {
+fn count(mut run: Run<3>, pool: Option<&rayon::ThreadPool>) -> u64 {
     run.step(0.2).unwrap();
     run.step(0.2).unwrap();
-    let steps = |run: &mut Run3D| {
+    let steps = |run: &mut Run<3>| {
         for _ in 0..10 {
             run.step(0.2).unwrap();
         }

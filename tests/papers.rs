@@ -201,10 +201,10 @@ fn b00_eq108_matches_least_squares() {
         ("efg-cubic", 2.0),
     ] {
         for alpha_s in [0.0, 0.001, 0.01, 0.1] {
-            let mut p = params(FormKind::LeastSquares, kern, MLS, d_mx, 0.0);
+            let mut p = params(FormKind::LeastSquares, kern, MLS, d_mx);
             p.alpha_s = alpha_s;
-            let l =
-                sphstab::vonneumann::linearise::Linearisation::new(p, Default::default()).unwrap();
+            let l = sphstab::vonneumann::linearise::Linearisation::new(p, 0.0, Default::default())
+                .unwrap();
             let phi = shape_fn(MLS, kern, d_mx);
             let d = rel_diff(
                 |q| l.omega2(q).0,
@@ -363,10 +363,10 @@ fn v21_a72_continuum_against_discrete_lnl() {
     }
     for c in [0.0, 0.5] {
         for h in [1.2, 2.0] {
-            let mut p = params(FormKind::Lnl, "m4", SPH, h, 0.0);
+            let mut p = params(FormKind::Lnl, "m4", SPH, h);
             p.c_partition = c;
-            let l =
-                sphstab::vonneumann::linearise::Linearisation::new(p, Default::default()).unwrap();
+            let l = sphstab::vonneumann::linearise::Linearisation::new(p, 0.0, Default::default())
+                .unwrap();
             // Long waves: discrete ω²/κ² → (1 − c) M1² + c (M1 = −Σ j φ'(j), the discrete first
             // moment of the sph lattice shape), continuous → 1; the gap is the quadrature error
             // of the lattice sum.

@@ -8,8 +8,8 @@
 //! against the pre-workspace rate to 1e-14), for exactly the configurations and states built
 //! here; stresses there are stored as [xx, yy, xy].
 use sphstab::forms::{
-    ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model2D, ModelParams2D,
-    ObjectiveRate, RateOut2D, RateWorkspace, State2D,
+    ArtificialStress, ArtificialViscosity, FormKind, Material, Model, ModelParams, ObjectiveRate,
+    RateOut, RateWorkspace, State,
 };
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
@@ -22,8 +22,8 @@ fn noise(k: usize, salt: f64) -> f64 {
     ((k as f64 * 12.9898 + salt * 78.233).sin() * 43758.5453).fract()
 }
 
-fn params(form: FormKind, shape: ShapeFamily, material: Material2D, kern: &str) -> ModelParams2D {
-    ModelParams2D {
+fn params(form: FormKind, shape: ShapeFamily, material: Material, kern: &str) -> ModelParams {
+    ModelParams {
         form,
         shape,
         kp: KernelParams {
@@ -36,15 +36,17 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material2D, kern: &str) 
         av: None,
         art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: 1.0,
     }
 }
 
 /// An open, jittered 11 × 9 block (or a periodic 8 × 7 patch of `lat`) with a disordered state:
 /// velocities, densities and anisotropic stresses (tensile and compressive) of every field the
 /// form carries.
-fn case(p: ModelParams2D, periodic: Option<&Lattice2D>) -> (Model2D, State2D<f64>) {
+fn case(p: ModelParams, periodic: Option<&Lattice2D>) -> (Model<2>, State<f64, 2>) {
     // the neo-Hookean reference state is unstressed
-    let s0 = if matches!(p.material, Material2D::NeoHookean { .. }) {
+    let s0 = if matches!(p.material, Material::NeoHookean { .. }) {
         0.0
     } else {
         0.05
@@ -58,9 +60,9 @@ fn case(p: ModelParams2D, periodic: Option<&Lattice2D>) -> (Model2D, State2D<f64
                 }
             }
             let n = x.len();
-            Model2D::new(p, x, vec![1.0; n], 1.0, s0, None).unwrap()
+            Model::<2>::new(p, x, vec![1.0; n], 1.0, s0, None).unwrap()
         }
-        Some(lat) => Model2D::periodic_patch(p, lat, 1.0, [8, 7], 1.0, s0).unwrap(),
+        Some(lat) => Model::<2>::periodic_patch(p, lat, 1.0, [8, 7], 1.0, s0).unwrap(),
     };
     let mut z = model.rest_state(1.0);
     for (k, x) in z.x.iter_mut().enumerate() {
@@ -105,8 +107,8 @@ fn field_err(a: &[f64], b: &[f64]) -> f64 {
 /// Largest relative difference over the fields of two states (values and, for duals,
 /// derivative parts), with the name of the worst field.
 fn state_err<S: Scalar>(
-    a: &State2D<S>,
-    b: &State2D<S>,
+    a: &State<S, 2>,
+    b: &State<S, 2>,
     re: impl Fn(S) -> f64,
 ) -> (f64, &'static str) {
     let flat2 = |v: &[[S; 2]]| v.iter().flatten().map(|&s| re(s)).collect::<Vec<_>>();
@@ -132,10 +134,10 @@ fn state_err<S: Scalar>(
 const TOL: f64 = 1e-14;
 
 /// Every configuration: (label, params, periodic lattice).
-fn configs() -> Vec<(String, ModelParams2D, Option<Lattice2D>)> {
-    let elastic_j = Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
-    let elastic_t = Material2D::elastic(1.0, 0.25, ObjectiveRate::Truesdell).unwrap();
-    let hydro = Material2D::Hydro { bulk: 1.0 };
+fn configs() -> Vec<(String, ModelParams, Option<Lattice2D>)> {
+    let elastic_j = Material::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
+    let elastic_t = Material::elastic(1.0, 0.25, ObjectiveRate::Truesdell).unwrap();
+    let hydro = Material::Hydro { bulk: 1.0 };
     let av = |approaching_only| ArtificialViscosity {
         alpha: 1.0,
         beta: 1.0,
@@ -205,7 +207,7 @@ fn configs() -> Vec<(String, ModelParams2D, Option<Lattice2D>)> {
     let p = params(
         FormKind::TotalLagrangian,
         ShapeFamily::Sph,
-        Material2D::NeoHookean {
+        Material::NeoHookean {
             lambda: 0.6,
             shear: 0.3,
         },
@@ -234,7 +236,7 @@ fn numbers(v: &serde_json::Value) -> Vec<f64> {
 }
 
 /// The fields of a rate as the golden file stores them: v, ρ, σ and τ as [xx, yy, xy].
-fn fields<S: Scalar>(z: &State2D<S>, re: impl Fn(S) -> f64) -> [(&'static str, Vec<f64>); 4] {
+fn fields<S: Scalar>(z: &State<S, 2>, re: impl Fn(S) -> f64) -> [(&'static str, Vec<f64>); 4] {
     let voigt = |t: &[[[S; 2]; 2]]| {
         t.iter()
             .flat_map(|s| [re(s[0][0]), re(s[1][1]), re(s[0][1])])
@@ -250,7 +252,7 @@ fn fields<S: Scalar>(z: &State2D<S>, re: impl Fn(S) -> f64) -> [(&'static str, V
 
 /// Largest relative difference from a golden record over the fields, and the worst field.
 fn golden_err<S: Scalar>(
-    z: &State2D<S>,
+    z: &State<S, 2>,
     want: &serde_json::Value,
     re: impl Fn(S) -> f64,
 ) -> (f64, &'static str) {
@@ -266,7 +268,7 @@ fn rate_matches_the_golden_data() {
     let cases = g["cases"].as_array().unwrap();
     // one workspace for every configuration: leftovers of another model must not matter
     let mut ws = RateWorkspace::<f64>::new();
-    let mut out_ws = State2D::default();
+    let mut out_ws = State::<_, 2>::default();
     let mut checked = 0;
     let cfgs = configs();
     assert_eq!(
@@ -277,7 +279,7 @@ fn rate_matches_the_golden_data() {
     for ((label, p, lat), want) in cfgs.into_iter().zip(cases) {
         assert_eq!(want["label"].as_str().unwrap(), label);
         let (model, z) = case(p, lat.as_ref());
-        let mut fresh = State2D::default();
+        let mut fresh = State::<_, 2>::default();
         model.rate(&z, &mut fresh).unwrap();
         let (e, f) = golden_err(&fresh, want, |s| s);
         assert!(
@@ -289,7 +291,7 @@ fn rate_matches_the_golden_data() {
         assert!(e <= TOL, "{label}: rate_with differs in {f} by {e:e}");
         // the parts separately, as the solver asks for them
         let mut acc = vec![[f64::NAN; 2]; z.x.len()];
-        let out = RateOut2D {
+        let out = RateOut {
             v: Some(&mut acc),
             ..Default::default()
         };
@@ -297,9 +299,9 @@ fn rate_matches_the_golden_data() {
         let flat = |v: &[[f64; 2]]| v.iter().flatten().copied().collect::<Vec<_>>();
         let e = field_err(&flat(&acc), &numbers(&want["v"]));
         assert!(e <= TOL, "{label}: accelerations alone differ by {e:e}");
-        let mut aux = State2D::zeros_like(&z);
+        let mut aux = State::<_, 2>::zeros_like(&z);
         aux.rho.fill(f64::NAN);
-        let out = RateOut2D {
+        let out = RateOut {
             aux: aux.as_rate_out().aux,
             ..Default::default()
         };
@@ -325,12 +327,12 @@ fn rate_matches_the_golden_data_in_dual_numbers() {
     let g = golden();
     let duals = g["duals"].as_array().unwrap();
     let mut ws = RateWorkspace::<Dual>::new();
-    let mut out = State2D::default();
+    let mut out = State::<_, 2>::default();
     let mut checked = 0;
     for ((label, p, lat), want) in configs().into_iter().step_by(5).zip(duals) {
         assert_eq!(want["label"].as_str().unwrap(), label);
         let (model, z) = case(p, lat.as_ref());
-        let mut zd: State2D<Dual> = z.map(Dual::cst);
+        let mut zd: State<Dual, 2> = z.map(Dual::cst);
         zd.x[17][0].d = 1.0;
         zd.v[23][1].d = 0.5;
         if !zd.rho.is_empty() {
@@ -350,15 +352,15 @@ fn rate_matches_the_golden_data_in_dual_numbers() {
 /// The old solver step (state split into flat copies, joined back, the rate with a fresh output
 /// per call) as a second-order system for the shared integrator.
 struct ReferenceSys<'a> {
-    model: &'a Model2D,
-    template: &'a State2D<f64>,
+    model: &'a Model<2>,
+    template: &'a State<f64, 2>,
     fixed: &'a [bool],
     frozen: bool,
-    aux: Vec<sphstab::forms::Comp2>,
+    aux: Vec<sphstab::forms::Comp>,
 }
 
 impl ReferenceSys<'_> {
-    fn join(&self, x: &[f64], v: &[f64], q: &[f64]) -> State2D<f64> {
+    fn join(&self, x: &[f64], v: &[f64], q: &[f64]) -> State<f64, 2> {
         let n = self.template.x.len();
         let mut z = self.template.clone();
         for i in 0..n {
@@ -372,9 +374,9 @@ impl ReferenceSys<'_> {
         }
         z
     }
-    fn rate(&self, x: &[f64], v: &[f64], q: &[f64]) -> State2D<f64> {
+    fn rate(&self, x: &[f64], v: &[f64], q: &[f64]) -> State<f64, 2> {
         let z = self.join(x, v, q);
-        let mut out = State2D::default();
+        let mut out = State::<_, 2>::default();
         self.model.rate(&z, &mut out).unwrap();
         out
     }
@@ -407,15 +409,15 @@ impl sphstab::integrator::SecondOrderSystem<f64> for ReferenceSys<'_> {
     }
 }
 
-/// Run2D's in-place step reproduces the old split/join step: 6 steps of an open elastic block
+/// Run<2>'s in-place step reproduces the old split/join step: 6 steps of an open elastic block
 /// (Jaumann, AV, artificial stress) with a frozen fixed frame, a hydro mixed form, and a
 /// total-Lagrangian block.
 #[test]
 fn in_place_step_matches_the_split_join_step() {
     use sphstab::forms::FieldKind;
     use sphstab::integrator::{Scratch, kdk_step};
-    use sphstab::solver::{BoundaryDensity, Run2D};
-    let elastic = Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
+    use sphstab::solver::{BoundaryDensity, Run};
+    let elastic = Material::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
     let mut p1 = params(FormKind::Classical, ShapeFamily::Sph, elastic, "m4");
     p1.av = Some(ArtificialViscosity {
         alpha: 1.0,
@@ -431,7 +433,7 @@ fn in_place_step_matches_the_split_join_step() {
     let p2 = params(
         FormKind::Lnl,
         ShapeFamily::Sph,
-        Material2D::Hydro { bulk: 1.0 },
+        Material::Hydro { bulk: 1.0 },
         "m4",
     );
     let p3 = params(FormKind::TotalLagrangian, ShapeFamily::Sph, elastic, "m4");
@@ -446,7 +448,7 @@ fn in_place_step_matches_the_split_join_step() {
         let fixed: Vec<bool> = (0..n).map(|i| i % 9 == 0 || i < 9).collect();
         let aux: Vec<_> = p
             .form
-            .comps_2d(&p.material)
+            .comps(2, &p.material)
             .into_iter()
             .filter(|c| c.kind() == FieldKind::Auxiliary)
             .collect();
@@ -470,7 +472,7 @@ fn in_place_step_matches_the_split_join_step() {
             kdk_step(&sys, &mut x, &mut v, &mut q, 0.2, &mut scratch);
             zr = sys.join(&x, &v, &q);
         }
-        let mut run = Run2D::new(model, z, fixed, boundary).unwrap();
+        let mut run = Run::<2>::new(model, z, fixed, boundary).unwrap();
         for _ in 0..6 {
             run.step(0.2).unwrap();
         }

@@ -268,10 +268,11 @@ fn b00_fig11() -> Row {
         let w: Vec<f64> = alphas
             .iter()
             .map(|&a| {
-                let mut p = params(FormKind::LeastSquares, "efg-quartic", MLS, d, 0.0);
+                let mut p = params(FormKind::LeastSquares, "efg-quartic", MLS, d);
                 p.alpha_s = a;
                 let l = sphstab::vonneumann::linearise::Linearisation::new(
                     p,
+                    0.0,
                     sphstab::vonneumann::linearise::Lattice1D::default(),
                 )
                 .unwrap();
@@ -441,7 +442,7 @@ fn v21_fig7() -> Row {
 // ---------------------------------------------------------------------------------------------
 // Time-domain rows (the solver of `simulate` and `swegle`) and the thesis rows.
 
-use sphstab::forms::State1D;
+use sphstab::forms::State;
 use sphstab::solver::scene::{self, InitialVelocity, Scene1D, SceneReport};
 use sphstab::solver::swegle::{FinalState, SwegleConfig, run_swegle};
 
@@ -464,7 +465,27 @@ fn ref_x(s: &Scene1D) -> (Vec<f64>, f64) {
 
 /// The stress a scene's form reports: σ, or for the mixed forms (1 − c)σ + cτ (each of σ and
 /// τ is integrated from its own velocity gradient; the mix is what the momentum equation uses).
-fn total_stress(s: &Scene1D, z: &State1D<f64>) -> Vec<f64> {
+/// A 1D state's fields as plain arrays (the model's D = 1 state holds `[f64; 1]` and
+/// `[[f64; 1]; 1]` entries).
+struct Bar {
+    x: Vec<f64>,
+    v: Vec<f64>,
+    sigma: Vec<f64>,
+    tau: Vec<f64>,
+}
+
+impl From<State<f64, 1>> for Bar {
+    fn from(z: State<f64, 1>) -> Self {
+        Bar {
+            x: z.x.iter().map(|[a]| *a).collect(),
+            v: z.v.iter().map(|[a]| *a).collect(),
+            sigma: z.sigma.iter().map(|[[a]]| *a).collect(),
+            tau: z.tau.iter().map(|[[a]]| *a).collect(),
+        }
+    }
+}
+
+fn total_stress(s: &Scene1D, z: &Bar) -> Vec<f64> {
     if z.tau.is_empty() {
         z.sigma.clone()
     } else {
@@ -477,10 +498,10 @@ fn total_stress(s: &Scene1D, z: &State1D<f64>) -> Vec<f64> {
     }
 }
 
-fn run_scene(s: &Scene1D) -> (SceneReport, State1D<f64>) {
+fn run_scene(s: &Scene1D) -> (SceneReport, Bar) {
     let mut r = s.run(|_| {}).unwrap();
     let z = r.final_state.take().unwrap();
-    (r, z)
+    (r, z.into())
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -672,7 +693,7 @@ fn v21_fig13() -> Row {
 
 /// Compressive-wave profile measures at the scene's t_end: (plateau stress behind the front,
 /// front offset from c t in Δx).
-fn compressive_front(s: &Scene1D) -> (f64, f64, State1D<f64>) {
+fn compressive_front(s: &Scene1D) -> (f64, f64, Bar) {
     let (_, z) = run_scene(s);
     let (x, dx) = ref_x(s);
     let wall = s.origin + (s.left.as_ref().unwrap().layers - 1) as f64 * dx;
@@ -1057,10 +1078,11 @@ fn b00_fig4() -> Row {
         let neg_b = a.iter().filter(|&&w| -w < 0.0).count();
         // the exact EFG system (engine, mls), (a) C = 1, σ = −1 and (b) C = −1, σ = +1
         let engine = |modulus: f64, sigma: f64| {
-            let mut p = params(FormKind::EulerianNodal, "efg-quartic", MLS, d, sigma);
-            p.modulus = modulus;
+            let mut p = params(FormKind::EulerianNodal, "efg-quartic", MLS, d);
+            p.material = sphstab::forms::Material::bar(modulus);
             sphstab::vonneumann::linearise::Linearisation::new(
                 p,
+                sigma,
                 sphstab::vonneumann::linearise::Lattice1D::default(),
             )
             .map(|l| g.iter().filter(|&&q| l.omega2(q).0 < -1e-12).count())

@@ -1,13 +1,13 @@
 //! 2D solver against the engine: box-size convergence of the Swegle growth rate and single-mode
 //! runs on a periodic box.
 
-use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D, ObjectiveRate};
+use sphstab::forms::{FormKind, Material, Model, ModelParams, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::solver::swegle::{SwegleConfig, run_swegle};
-use sphstab::solver::{BoundaryDensity, Run2D};
+use sphstab::solver::{BoundaryDensity, Run};
 use sphstab::vonneumann::linearise::{Linearisation2D, base_state};
 use std::f64::consts::PI;
 
@@ -47,7 +47,7 @@ fn swegle_growth_converges_with_box_size() {
 /// Runs a periodic n × n square box seeded with velocity amp·ê·cos(k·x) (ê the engine's
 /// polarisation of the branch) and returns the history of the displacement projected on the mode.
 fn periodic_mode(
-    p: ModelParams2D,
+    p: ModelParams,
     sb: f64,
     n: usize,
     m: [usize; 2],
@@ -57,7 +57,7 @@ fn periodic_mode(
 ) -> (Vec<f64>, f64) {
     let lat = Lattice2D::square(1.0).unwrap();
     let (rho, s0) = base_state(&p.material, p.rho0, sb).unwrap();
-    let model = Model2D::periodic_patch(p, &lat, 1.0, [n, n], rho, s0).unwrap();
+    let model = Model::<2>::periodic_patch(p, &lat, 1.0, [n, n], rho, s0).unwrap();
     let k = [
         2.0 * PI * m[0] as f64 / n as f64,
         2.0 * PI * m[1] as f64 / n as f64,
@@ -74,7 +74,7 @@ fn periodic_mode(
         *v = [1e-7 * e[0] * c, 1e-7 * e[1] * c];
     }
     let fixed = vec![false; z.x.len()];
-    let mut run = Run2D::new(model, z, fixed, BoundaryDensity::Evolve).unwrap();
+    let mut run = Run::<2>::new(model, z, fixed, BoundaryDensity::Evolve).unwrap();
     let proj = |zx: &[[f64; 2]]| -> f64 {
         let (mut s, mut nrm) = (0.0, 0.0);
         for (x, r) in zx.iter().zip(&x0) {
@@ -92,8 +92,8 @@ fn periodic_mode(
     (h, w2.re)
 }
 
-fn params(form: FormKind, shape: ShapeFamily, material: Material2D) -> ModelParams2D {
-    ModelParams2D {
+fn params(form: FormKind, shape: ShapeFamily, material: Material) -> ModelParams {
+    ModelParams {
         form,
         shape,
         kp: KernelParams {
@@ -106,6 +106,8 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material2D) -> ModelPara
         av: None,
         art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: 1.0,
     }
 }
 
@@ -113,12 +115,12 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material2D) -> ModelPara
 /// (through the leapfrog relation cos ω_dΔt = 1 − ω²Δt²/2) to 1%.
 #[test]
 fn periodic_box_single_mode_frequency() {
-    let elastic = Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
+    let elastic = Material::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
     for (form, shape, mat, sb, m, branch) in [
         (
             FormKind::Nonlocal,
             ShapeFamily::Sph,
-            Material2D::Hydro { bulk: 1.0 },
+            Material::Hydro { bulk: 1.0 },
             0.05,
             [3, 0],
             1,
@@ -171,7 +173,7 @@ fn periodic_box_single_mode_growth() {
     let p = params(
         FormKind::Classical,
         ShapeFamily::Sph,
-        Material2D::Hydro { bulk: 1.0 },
+        Material::Hydro { bulk: 1.0 },
     );
     // k = (π, 0), the fastest wave vector of the Swegle lattice (longitudinal)
     let (sb, n, m, dt) = (0.05, 16, [8, 0], 0.05);

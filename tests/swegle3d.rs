@@ -8,14 +8,14 @@
 mod common;
 
 use common::{json, sphstab};
-use sphstab::forms::{FormKind, Material, Model, ModelParams2D, ObjectiveRate};
+use sphstab::forms::{FormKind, Material, Model, ModelParams, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::lattice::Lattice3D;
 use sphstab::shape::KernelParams;
 use sphstab::solver::swegle::{
     SwegleConfig, SwegleReport, default_size, dense_size_limit, run_swegle,
 };
-use sphstab::solver::{BoundaryDensity, Run3D};
+use sphstab::solver::{BoundaryDensity, Run};
 use sphstab::vonneumann::classify::GROWTH_TOL;
 use sphstab::vonneumann::linearise::base_state;
 
@@ -127,7 +127,7 @@ fn periodic_box_at_rest_stays_at_rest() {
         ] {
             for material in [hydro, jaumann] {
                 for sigma_bar in [0.05, -0.05] {
-                    let p = ModelParams2D {
+                    let p = ModelParams {
                         form,
                         shape: form.default_shape_2d(),
                         kp: KernelParams { kernel: m4, h: 1.2 },
@@ -137,6 +137,8 @@ fn periodic_box_at_rest_stays_at_rest() {
                         av: None,
                         art_stress: None,
                         diffusion: None,
+                        alpha_s: 0.0,
+                        ls_length: 1.0,
                     };
                     let (rho, s0) = base_state(&material, 1.0, sigma_bar).unwrap();
                     let vol = vec![lattice.area(); x.len()];
@@ -144,7 +146,7 @@ fn periodic_box_at_rest_stays_at_rest() {
                     let z0 = model.rest_state(rho);
                     let n = z0.x.len();
                     let mut run =
-                        Run3D::new(model, z0.clone(), vec![false; n], BoundaryDensity::Evolve)
+                        Run::<3>::new(model, z0.clone(), vec![false; n], BoundaryDensity::Evolve)
                             .unwrap();
                     for _ in 0..20 {
                         run.step(0.2).unwrap();

@@ -1,7 +1,7 @@
 //! 2D in-plane Bloch analysis: derived closed-form dynamical matrices vs the engine, the Swegle
 //! tension statements, and the reduction to 1D along an axis.
 
-use sphstab::forms::{FormKind, Material2D, ModelParams2D, ObjectiveRate};
+use sphstab::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
@@ -15,9 +15,9 @@ fn params(
     kern: &str,
     shape: ShapeFamily,
     h: f64,
-    material: Material2D,
-) -> ModelParams2D {
-    ModelParams2D {
+    material: Material,
+) -> ModelParams {
+    ModelParams {
         form,
         shape,
         kp: KernelParams {
@@ -30,19 +30,21 @@ fn params(
         av: None,
         art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: 1.0,
     }
 }
 
-fn materials() -> Vec<(&'static str, Material2D)> {
+fn materials() -> Vec<(&'static str, Material)> {
     vec![
-        ("hydro", Material2D::Hydro { bulk: 1.0 }),
+        ("hydro", Material::Hydro { bulk: 1.0 }),
         (
             "elastic-jaumann",
-            Material2D::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap(),
+            Material::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap(),
         ),
         (
             "elastic-truesdell",
-            Material2D::elastic(1.0, 0.25, ObjectiveRate::Truesdell).unwrap(),
+            Material::elastic(1.0, 0.25, ObjectiveRate::Truesdell).unwrap(),
         ),
     ]
 }
@@ -116,7 +118,7 @@ fn derived_dynamical_matrices_agree_with_engine() {
 #[test]
 fn swegle_lattice_classical_unstable_in_tension_nonlocal_and_tl_not() {
     let lat = Lattice2D::square(1.0).unwrap();
-    let hydro = Material2D::Hydro { bulk: 1.0 };
+    let hydro = Material::Hydro { bulk: 1.0 };
     let n = 24;
     for h in [1.0, 1.2, 1.3] {
         for f in [0.95, 0.99] {
@@ -176,7 +178,7 @@ fn swegle_lattice_classical_unstable_in_tension_nonlocal_and_tl_not() {
 #[test]
 fn along_an_axis_the_2d_classical_form_reduces_to_the_1d_relation() {
     let lat = Lattice2D::square(1.0).unwrap();
-    let mat = Material2D::elastic(1.0, 0.2, ObjectiveRate::Truesdell).unwrap();
+    let mat = Material::elastic(1.0, 0.2, ObjectiveRate::Truesdell).unwrap();
     for h in [1.0, 1.3] {
         for sb in [0.1, -0.3] {
             let p = params(FormKind::Classical, "m4", ShapeFamily::Sph, h, mat);
@@ -210,7 +212,7 @@ fn along_an_axis_the_2d_classical_form_reduces_to_the_1d_relation() {
 fn finite_box_prediction_converges_to_the_infinite_lattice() {
     use sphstab::analysis::box_prediction;
     let lat = Lattice2D::square(1.0).unwrap();
-    let hydro = Material2D::Hydro { bulk: 1.0 };
+    let hydro = Material::Hydro { bulk: 1.0 };
     let lin = Linearisation2D::new(
         params(FormKind::Classical, "m4", ShapeFamily::Sph, 1.2, hydro),
         &lat,
@@ -252,11 +254,11 @@ fn finite_box_prediction_converges_to_the_infinite_lattice() {
 #[test]
 fn neo_hookean_linearises_to_hooke() {
     let lat = Lattice2D::square(1.0).unwrap();
-    let (lambda, shear) = match Material2D::elastic(1.0, 0.3, ObjectiveRate::Truesdell).unwrap() {
-        Material2D::Elastic { lambda, shear, .. } => (lambda, shear),
+    let (lambda, shear) = match Material::elastic(1.0, 0.3, ObjectiveRate::Truesdell).unwrap() {
+        Material::Elastic { lambda, shear, .. } => (lambda, shear),
         _ => unreachable!(),
     };
-    let nh = Material2D::NeoHookean { lambda, shear };
+    let nh = Material::NeoHookean { lambda, shear };
     for shape in [ShapeFamily::Sph, ShapeFamily::Mls] {
         let p = params(FormKind::TotalLagrangian, "m4", shape, 1.3, nh);
         let lin = Linearisation2D::new(p, &lat, 1.0, 0.0).unwrap();
@@ -282,10 +284,10 @@ fn neo_hookean_linearises_to_hooke() {
 /// material the extra repulsion cannot stabilise it — and growth rises again (0.167 at ε = 0.3).
 #[test]
 fn artificial_stress_trades_longitudinal_for_transverse_growth() {
-    use sphstab::analysis::{MaterialSpec, Query2D, query2d};
+    use sphstab::analysis::{MaterialSpec, Query, query2d};
     let mut rates = Vec::new();
     for eps in [0.0, 0.1, 0.2, 0.3] {
-        let mut q = Query2D::new(
+        let mut q = Query::<2>::new(
             FormKind::Classical,
             kernel::by_name("m4").unwrap(),
             1.2,

@@ -18,8 +18,8 @@ mod common;
 use common::{k, material_specs};
 use num_complex::Complex64;
 use sphstab::analysis::Query1D;
-use sphstab::analysis::{MaterialSpec, Query3D, continuum_moduli};
-use sphstab::forms::{FormKind, Material, ModelParams2D, ObjectiveRate};
+use sphstab::analysis::{MaterialSpec, Query, continuum_moduli};
+use sphstab::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use sphstab::kernel::{self, Kernel};
 use sphstab::lattice::{Lattice2D, Lattice3D};
 use sphstab::shape::KernelParams;
@@ -38,8 +38,8 @@ fn params(
     kern: &'static dyn Kernel,
     h: f64,
     material: Material,
-) -> ModelParams2D {
-    ModelParams2D {
+) -> ModelParams {
+    ModelParams {
         form,
         shape,
         kp: KernelParams { kernel: kern, h },
@@ -49,6 +49,8 @@ fn params(
         av: None,
         art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: 1.0,
     }
 }
 
@@ -59,8 +61,8 @@ fn query(
     lat: Lattice3D,
     spec: MaterialSpec,
     sb: f64,
-) -> Query3D {
-    let mut q = Query3D::new(form, k("m4"), 1.2, sb);
+) -> Query<3> {
+    let mut q = Query::<3>::new(form, k("m4"), 1.2, sb);
     q.shape = shape;
     q.lattice = lat;
     q.material = spec;
@@ -125,7 +127,7 @@ fn sum_shape(form: FormKind, shape: ShapeFamily) -> ShapeFamily {
 }
 
 /// Closed-form normalised D(k) = ρD/(ρ C) of `derived` for the configuration of `p`.
-fn closed_form(p: &ModelParams2D, lat: &Lattice3D, sigma_bar: f64, kv: [f64; 3]) -> [[f64; 3]; 3] {
+fn closed_form(p: &ModelParams, lat: &Lattice3D, sigma_bar: f64, kv: [f64; 3]) -> [[f64; 3]; 3] {
     let (rho, s) = base_state(&p.material, 1.0, sigma_bar).unwrap();
     let sm = sums(lat, sum_shape(p.form, p.shape), p.kp, kv).unwrap();
     let cf = rho_d(p.form, &p.material, s, rho, &sm).unwrap();
@@ -144,7 +146,7 @@ fn nan_max(a: f64, b: f64) -> f64 {
 /// (worst |engine − closed form| over `ks`, largest |closed-form entry|); NaN if any is NaN.
 fn compare(
     lin: &Linearisation3D,
-    p: &ModelParams2D,
+    p: &ModelParams,
     lat: &Lattice3D,
     sigma_bar: f64,
     ks: &[[f64; 3]],

@@ -6,7 +6,7 @@ use super::common::{
     IntegratorReport, Setup, check_common, check_count, density_diffusion, linearised_av,
 };
 use crate::error::{Error, Result, check_range};
-use crate::forms::{DiffusionForm, FormKind, ModelParams};
+use crate::forms::{DiffusionForm, FormKind, Material, ModelParams};
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
 use crate::shape::{KernelParams, ShapeFamily};
@@ -108,8 +108,8 @@ impl Query1D {
         .support_over_dx
     }
 
-    /// Model parameters in physical units of the lattice.
-    pub fn params(&self, stress: f64) -> ModelParams {
+    /// Model parameters in physical units of the lattice ([`Material::bar`]).
+    pub fn params(&self) -> ModelParams {
         let lat = self.lattice;
         let c = (lat.modulus / lat.rho0).sqrt();
         ModelParams {
@@ -119,16 +119,26 @@ impl Query1D {
                 kernel: self.kernel,
                 h: self.h_over_dx * lat.dx,
             },
-            modulus: lat.modulus,
+            material: Material::bar(lat.modulus),
             rho0: lat.rho0,
-            sigma0: stress * lat.modulus,
             c_partition: self.c_partition,
-            alpha_s: self.alpha_s,
             av: linearised_av(self.av, c),
-            dx: lat.dx,
+            art_stress: None,
             // checked by `validate`
             diffusion: density_diffusion(self.diffusion, c, self.form).unwrap_or(None),
+            alpha_s: self.alpha_s,
+            ls_length: lat.dx,
         }
+    }
+
+    /// The pre-stress σ0 = σ̄ C of normalised stress `stress`, physical units.
+    pub fn sigma0(&self, stress: f64) -> f64 {
+        stress * self.lattice.modulus
+    }
+
+    /// Linearisation at normalised stress `stress` (not validated: [`Self::linearise`] is).
+    pub fn linearise_at(&self, stress: f64) -> Result<Linearisation> {
+        Linearisation::new(self.params(), self.sigma0(stress), self.lattice)
     }
 
     /// The κΔx grid π k / n, k = 1..n.
@@ -141,7 +151,7 @@ impl Query1D {
     /// Linearisation at the query's stress.
     pub fn linearise(&self) -> Result<Linearisation> {
         self.validate()?;
-        Linearisation::new(self.params(self.stress), self.lattice)
+        self.linearise_at(self.stress)
     }
 }
 
@@ -286,7 +296,7 @@ pub fn query(q: &Query1D) -> Result<QueryReport> {
         let kind = growth_kind(cbar <= 0.0, q.stress, || {
             let l0 = match &mut lin0 {
                 Some(l) => l,
-                slot @ None => slot.insert(Linearisation::new(q.params(0.0), q.lattice)?),
+                slot @ None => slot.insert(q.linearise_at(0.0)?),
             };
             l0.growth(b.kappa_at_max)
         })?;

@@ -193,6 +193,8 @@ impl<const D: usize> Query<D> {
                     spacing: 1.0,
                 }),
             diffusion: super::common::density_diffusion(self.diffusion, 1.0, self.form)?,
+            alpha_s: 0.0,
+            ls_length: 1.0,
         })
     }
 

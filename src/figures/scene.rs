@@ -113,7 +113,7 @@ impl SceneSeries {
                     .ok_or(Error::NonFinite("scene series: no final state"))?;
                 let q = match self.quantity {
                     SceneQuantity::Stress => s.stress_profile(&z),
-                    SceneQuantity::Velocity => z.v,
+                    SceneQuantity::Velocity => z.v.iter().map(|[v]| *v).collect(),
                 };
                 let mut l = s.form.clone();
                 if matches!(FormKind::by_name(&s.form)?, FormKind::Lnl | FormKind::Cll) {

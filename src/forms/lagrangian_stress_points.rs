@@ -12,24 +12,25 @@
 //! `lagrangian-stress-points`, the mid-points (w_p = V0/2). For `mls` shapes Σφ' = 0 so the
 //! ū shift changes nothing; for `sph` it makes F invariant under rigid translation.
 
-use super::model::{Model1D, RefStencil, State1D, Workspace1D};
-use crate::error::Result;
+use super::chain_data::RefStencil;
+use super::chain_rates::{ChainModel, ChainState};
+use super::chain_search::ChainWorkspace;
 use crate::scalar::Scalar;
 
 pub(crate) fn rate<S: Scalar>(
-    m: &Model1D,
-    z: &State1D<S>,
-    out: &mut State1D<S>,
-    ws: &mut Workspace1D<S>,
-) -> Result<()> {
-    out.x.copy_from_slice(&z.v);
+    m: &ChainModel<'_>,
+    z: ChainState<'_, S>,
+    ws: &mut ChainWorkspace<S>,
+) {
+    let out = &mut ws.rate;
+    out.x.copy_from_slice(z.v);
     for a in out.v.iter_mut() {
         *a = S::zero();
     }
     ws.u.clear();
-    ws.u.extend(z.x.iter().zip(&m.x_ref).map(|(&x, &xr)| x - xr));
+    ws.u.extend(z.x.iter().zip(m.x_ref).map(|(&x, &xr)| x - xr));
     let u = &ws.u;
-    let big = m.p.sigma0 + m.p.modulus;
+    let big = m.sigma0 + m.modulus;
     let mut scatter = |st: &RefStencil, w: f64| {
         let mut sphi = 0.0;
         let mut ubar = S::zero();
@@ -42,19 +43,19 @@ pub(crate) fn rate<S: Scalar>(
         for &(k, [_, dphi, _]) in &st.entries {
             f += (u[k] - ubar) * dphi;
         }
-        let p = f * big - m.p.modulus;
+        let p = f * big - m.modulus;
         for &(k, [_, dphi, _]) in &st.entries {
             out.v[k] -= p * (w * dphi);
         }
     };
-    for (st, &w) in m.ref_master.iter().zip(&m.master_weight_ref) {
+    let d = m.data;
+    for (st, &w) in d.ref_master.iter().zip(&d.master_weight_ref) {
         scatter(st, w);
     }
-    for (st, &w) in m.ref_sp.iter().zip(&m.sp_vol_ref) {
+    for (st, &w) in d.ref_sp.iter().zip(&d.sp_vol_ref) {
         scatter(st, w);
     }
-    for (a, &mass) in out.v.iter_mut().zip(&m.mass) {
+    for (a, &mass) in out.v.iter_mut().zip(m.mass) {
         *a = *a / mass;
     }
-    Ok(())
 }

@@ -14,16 +14,17 @@
 //! Evaluation: neighbour stencils from a cell list, then per-particle sums, in parallel over
 //! particles (rayon), with every buffer in a reusable [`RateWorkspace`]: a time loop that keeps
 //! its workspace does not allocate. Accelerations and auxiliary rates can be asked for
-//! separately ([`RateOut2D`]); each is the same function of the state either way.
+//! separately ([`RateOut`]); each is the same function of the state either way.
 
 // Small-tensor algebra (D × D, D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::FormKind;
-use super::model_nd::{
-    AuxRates, DensityDiffusion, DiffusionForm, Material, Model, ObjectiveRate, RateOut, State,
-    StateView, Tensor,
+use super::kind::FormKind;
+use super::model::Model;
+use super::params::{
+    ArtificialViscosity, DensityDiffusion, DiffusionForm, Material, ObjectiveRate,
 };
+use super::state::{AuxRates, RateOut, State, StateView, Tensor};
 use super::workspace::{NbD, RateWorkspace, Shared, Stencils};
 use crate::error::Result;
 use crate::kernel;
@@ -169,7 +170,7 @@ pub(crate) fn stress_rate<S: Scalar, const D: usize>(
 #[inline(always)]
 fn av_pair<S: Scalar, const D: usize>(
     m: &Model<D>,
-    av: &super::ArtificialViscosity,
+    av: &ArtificialViscosity,
     d: [S; D],
     dv: [S; D],
     rho_bar: S,
@@ -476,7 +477,10 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
     if let Some(acc) = out.v {
         accelerations(m, z, acc, ws, mixed);
     }
-    if let Some(AuxRates { rho, sigma, tau }) = out.aux {
+    if let Some(AuxRates {
+        rho, sigma, tau, ..
+    }) = out.aux
+    {
         let n = z.x.len();
         ws.rho_grad.clear();
         if let Some(DensityDiffusion {
@@ -799,6 +803,9 @@ impl<const D: usize> Model<D> {
         out: RateOut<'_, S, D>,
         ws: &mut RateWorkspace<S, D>,
     ) -> Result<()> {
+        if let Some(data) = &self.chain {
+            return super::chain_rates::rate(self, data, z, out, ws);
+        }
         match self.p.form {
             FormKind::TotalLagrangian => rate_tl(self, z, out, ws),
             _ => rate(self, z, out, ws),

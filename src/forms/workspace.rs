@@ -64,7 +64,9 @@
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::model_nd::{Model, StateView, Tensor};
+use super::chain_search::ChainWorkspace;
+use super::model::Model;
+use super::state::{StateView, Tensor};
 use crate::error::{Error, Result};
 use crate::kernel;
 use crate::neighbours::CellList;
@@ -241,6 +243,8 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     reuse: bool,
     /// Full builds and pair refreshes so far.
     builds: (u64, u64),
+    /// The buffers of the 1D-only forms of \[B00\] (empty for the others).
+    pub(crate) chain: ChainWorkspace<S>,
 }
 
 /// The parameters the stencils depend on besides x (and ρ, m for non-SPH families).
@@ -275,6 +279,7 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             drift: f64::INFINITY,
             reuse: true,
             builds: (0, 0),
+            chain: ChainWorkspace::default(),
         }
     }
 }
@@ -375,6 +380,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             + self.key_x.capacity() * size_of::<[S; D]>()
             + self.key_rho.capacity() * size_of::<S>()
             + self.key_mass.capacity() * size_of::<f64>()
+            + self.chain.reserved_bytes()
     }
 
     /// Fills the volumes V_J = m_J/ρ_J and (re)builds the stencils of every particle of `z`:

@@ -1,18 +1,15 @@
-//! The reference time-domain solver: it integrates the forms' rate functions
-//! ([`crate::forms::Model2D::rate`], [`crate::forms::Model1D::rate`]) with the shared leapfrog
-//! step [`crate::integrator::kdk_step`] — the same definitions the von Neumann engine
-//! linearises (SPEC §4).
+//! The reference time-domain solver: it integrates the forms' rate function
+//! ([`crate::forms::Model::rate`], in 1D, 2D and 3D, every form) with the shared integrators
+//! ([`crate::integrator`]) — the same definitions the von Neumann engine linearises (SPEC §4).
 
 pub mod box_operator;
 pub mod diagnostics;
 pub mod output;
 pub mod rod;
-pub mod run1d;
-pub mod run2d;
+pub mod run;
 pub mod scene;
 pub mod swegle;
 pub mod thesis_wave;
 pub mod throughput;
 
-pub use run1d::Run1D;
-pub use run2d::{BoundaryDensity, Run, Run2D, Run3D};
+pub use run::{BoundaryDensity, Run, System, SystemBuffers};

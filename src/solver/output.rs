@@ -1,7 +1,7 @@
 //! Output formats as pure functions returning strings: CSV time histories and legacy-VTK
 //! particle snapshots (POLYDATA with vertices, readable by ParaView).
 
-use crate::forms::{State, State1D, State2D};
+use crate::forms::State;
 use std::fmt::Write;
 
 /// CSV with a header row.
@@ -60,41 +60,35 @@ fn vtk<const D: usize>(
     s
 }
 
-/// Legacy VTK of a 1D state (points on the x axis; velocity, density, stress when carried).
-pub fn vtk_1d(title: &str, z: &State1D<f64>) -> String {
-    let pts: Vec<[f64; 2]> = z.x.iter().map(|&x| [x, 0.0]).collect();
-    let mut sc = vec![("velocity", z.v.clone())];
-    if !z.rho.is_empty() {
-        sc.push(("density", z.rho.clone()));
-    }
-    if !z.sigma.is_empty() {
-        sc.push(("stress", z.sigma.clone()));
-    }
-    vtk(title, &pts, &sc, &[])
-}
-
-/// Legacy VTK of a 2D or 3D state (velocity vectors; density and the independent σ
-/// components when carried). 2D points are written with z = 0.
-pub fn vtk_nd<const D: usize>(title: &str, z: &State<f64, D>) -> String {
+/// Legacy VTK of a state in D dimensions (points with the missing coordinates 0; density and
+/// the independent σ components when carried). In 2D and 3D the velocity is a vector; in 1D it
+/// is the scalar `velocity` and the stress the scalar `stress`.
+pub fn vtk_state<const D: usize>(title: &str, z: &State<f64, D>) -> String {
     const NAMES: [&str; 6] = [
         "sigma_xx", "sigma_yy", "sigma_xy", "sigma_zz", "sigma_xz", "sigma_yz",
     ];
     let mut sc = Vec::new();
+    if D == 1 {
+        sc.push(("velocity", z.v.iter().map(|v| v[0]).collect()));
+    }
     if !z.rho.is_empty() {
         sc.push(("density", z.rho.clone()));
     }
     if !z.sigma.is_empty() {
-        for (k, name) in NAMES.iter().enumerate().take(crate::forms::n_sym(D)) {
-            let (a, b) = crate::forms::voigt(k);
-            sc.push((*name, z.sigma.iter().map(|s| s[a][b]).collect()));
+        if D == 1 {
+            sc.push(("stress", z.sigma.iter().map(|s| s[0][0]).collect()));
+        } else {
+            for (k, name) in NAMES.iter().enumerate().take(crate::forms::n_sym(D)) {
+                let (a, b) = crate::forms::voigt(k);
+                sc.push((*name, z.sigma.iter().map(|s| s[a][b]).collect()));
+            }
         }
     }
-    vtk(title, &z.x, &sc, &[("velocity", z.v.clone())])
-}
-
-/// Legacy VTK of a 2D state ([`vtk_nd`] with D = 2).
-pub fn vtk_2d(title: &str, z: &State2D<f64>) -> String {
-    vtk_nd(title, z)
+    if D == 1 {
+        vtk(title, &z.x, &sc, &[])
+    } else {
+        vtk(title, &z.x, &sc, &[("velocity", z.v.clone())])
+    }
 }
 
 #[cfg(test)]
@@ -103,12 +97,12 @@ mod tests {
 
     #[test]
     fn vtk_has_consistent_counts() {
-        let z = State1D {
-            x: vec![0.0, 1.0, 2.0],
-            v: vec![0.1, 0.2, 0.3],
+        let z = State::<f64, 1> {
+            x: vec![[0.0], [1.0], [2.0]],
+            v: vec![[0.1], [0.2], [0.3]],
             ..Default::default()
         };
-        let s = vtk_1d("t", &z);
+        let s = vtk_state("t", &z);
         assert!(
             s.contains("POINTS 3 double")
                 && s.contains("VERTICES 3 6")

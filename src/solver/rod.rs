@@ -4,9 +4,9 @@
 //! unstable, the Lagrangian kernel is not. Fixed ends are `layers` particles thick so that every
 //! free particle has a complete support.
 
-use super::run1d::Run1D;
+use super::run::Run;
 use crate::error::Result;
-use crate::forms::{FormKind, Model1D, ModelParams};
+use crate::forms::{FormKind, Material, Model, ModelParams};
 use crate::kernel::Kernel;
 use crate::shape::{KernelParams, ShapeFamily};
 use serde::Serialize;
@@ -82,7 +82,7 @@ pub struct RodReport {
 pub fn run_rod(cfg: &RodConfig) -> Result<RodReport> {
     let n = cfg.nodes;
     let dx = cfg.length / (n - 1) as f64;
-    let x: Vec<f64> = (0..n).map(|i| i as f64 * dx).collect();
+    let x: Vec<[f64; 1]> = (0..n).map(|i| [i as f64 * dx]).collect();
     let p = ModelParams {
         form: cfg.form,
         shape: cfg.shape,
@@ -90,28 +90,28 @@ pub fn run_rod(cfg: &RodConfig) -> Result<RodReport> {
             kernel: cfg.kernel,
             h: cfg.h_over_dx * dx,
         },
-        modulus: cfg.modulus,
+        material: Material::bar(cfg.modulus),
         rho0: cfg.rho,
-        sigma0: cfg.sigma0,
         c_partition: 0.5,
-        alpha_s: 0.0,
         av: None,
-        dx,
+        art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: dx,
     };
-    let model = Model1D::new(p, x, vec![dx; n], None)?;
-    let mut z = model.rest_state();
-    z.v[n / 2] = cfg.v0;
-    let prescribed = (0..n)
+    let model = Model::new(p, x, vec![dx; n], cfg.rho, cfg.sigma0, None)?;
+    let mut z = model.rest_state(cfg.rho);
+    z.v[n / 2] = [cfg.v0];
+    let prescribed: Vec<Option<[f64; 1]>> = (0..n)
         .map(|i| {
             if i < cfg.layers || i >= n - cfg.layers {
-                Some(0.0)
+                Some([0.0])
             } else {
                 None
             }
         })
         .collect();
-    let mut run = Run1D::new(model, z, prescribed)?;
+    let mut run = Run::with_prescribed(model, z, &prescribed)?;
     let c = (cfg.modulus / cfg.rho).sqrt();
     let dt = cfg.cfl * dx / c;
     let mut vmax: f64 = cfg.v0;
@@ -121,7 +121,7 @@ pub fn run_rod(cfg: &RodConfig) -> Result<RodReport> {
             diverged = true;
             break;
         }
-        vmax = vmax.max(run.z.v.iter().fold(0.0f64, |m, v| m.max(v.abs())));
+        vmax = vmax.max(run.z.v.iter().fold(0.0f64, |m, [v]| m.max(v.abs())));
         if vmax > 1e3 * cfg.v0 {
             break;
         }

@@ -6,9 +6,9 @@
 //! field, which every form has), and a run reports the relative L2 error of the velocity of the
 //! free particles at `t_end`: ‖v − v_exact‖₂ / ‖v_exact‖₂ (or / (v_scale √N) where v_exact ≡ 0).
 
-use super::run1d::Run1D;
+use super::run::Run;
 use crate::error::{Error, Result};
-use crate::forms::{ArtificialViscosity, FormKind, Model1D, ModelParams};
+use crate::forms::{ArtificialViscosity, FormKind, Material, Model, ModelParams, State};
 use crate::kernel;
 use crate::shape::{KernelParams, ShapeFamily};
 use serde::{Deserialize, Serialize};
@@ -218,7 +218,7 @@ pub struct SceneReport {
     pub history: Vec<(f64, f64, f64)>,
     /// Final positions, velocities and (if carried) stresses.
     #[serde(skip)]
-    pub final_state: Option<crate::forms::State1D<f64>>,
+    pub final_state: Option<State<f64, 1>>,
 }
 
 /// A run is stopped as diverged when max |v| exceeds this multiple of c + max |v(0)|: a
@@ -371,11 +371,9 @@ impl Scene1D {
                 kernel: k,
                 h: self.h_over_dx * dx,
             },
-            modulus: self.modulus,
+            material: Material::bar(self.modulus),
             rho0: self.rho0,
-            sigma0: self.initial_stress,
             c_partition: self.c_partition,
-            alpha_s: 0.0,
             av: self
                 .artificial_viscosity
                 .map(|(alpha, beta)| ArtificialViscosity {
@@ -384,11 +382,14 @@ impl Scene1D {
                     sound_speed: c,
                     approaching_only: true,
                 }),
-            dx,
+            art_stress: None,
             diffusion: None,
+            alpha_s: 0.0,
+            ls_length: dx,
         };
-        let model = Model1D::new(p, x.clone(), vec![dx; n], None)?;
-        let mut z = model.rest_state();
+        let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
+        let model = Model::new(p, x_ref, vec![dx; n], self.rho0, self.initial_stress, None)?;
+        let mut z = model.rest_state(self.rho0);
         if let InitialVelocity::Point { index, .. } = self.initial_velocity
             && index >= n
         {
@@ -398,11 +399,12 @@ impl Scene1D {
                 range: format!("must be < particles = {n}"),
             });
         }
-        z.v = self.initial_velocities(&x);
-        let prescribed = self.prescribed(&z.v);
-        let v_init = z.v.clone();
+        let v_init = self.initial_velocities(&x);
+        z.v = v_init.iter().map(|&v| [v]).collect();
+        let prescribed = self.prescribed(&v_init);
         let free: Vec<bool> = prescribed.iter().map(|p| p.is_none()).collect();
-        let mut run = Run1D::new(model, z, prescribed.clone())?;
+        let pv: Vec<Option<[f64; 1]>> = prescribed.iter().map(|p| p.map(|v| [v])).collect();
+        let mut run = Run::with_prescribed(model, z, &pv)?;
         let integ = self.integrator()?;
         run.set_integrator(integ);
         let dt = self.cfl * dx / c;
@@ -427,7 +429,7 @@ impl Scene1D {
                     max_amplitude: f64::INFINITY,
                 });
             }
-            let vm = run.z.v.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let vm = run.z.v.iter().fold(0.0f64, |m, [v]| m.max(v.abs()));
             if vm > runaway {
                 return Err(Error::Diverged {
                     step: s + 1,
@@ -437,7 +439,7 @@ impl Scene1D {
                 });
             }
             vmax = vmax.max(vm);
-            let ke = 0.5 * mass * run.z.v.iter().map(|v| v * v).sum::<f64>();
+            let ke = 0.5 * mass * run.z.v.iter().map(|[v]| v * v).sum::<f64>();
             history.push((run.t, vm, ke));
             if s % 256 == 0 {
                 progress(run.t / self.t_end);
@@ -448,7 +450,7 @@ impl Scene1D {
             let (mut num, mut den, mut cnt) = (0.0, 0.0, 0usize);
             let mut scale: f64 = 0.0;
             for i in (0..n).filter(|&i| free[i]) {
-                num += (run.z.v[i] - exact[i]).powi(2);
+                num += (run.z.v[i][0] - exact[i]).powi(2);
                 den += exact[i].powi(2);
                 cnt += 1;
                 scale = scale.max(exact[i].abs()).max(v_init[i].abs());
@@ -566,15 +568,15 @@ impl Scene1D {
     /// The stress the scene's form reports at each particle of state `z`: σ, or for the mixed
     /// forms (lnl, cll) (1 − c)σ + cτ, the partition the momentum equation uses (each of σ
     /// and τ integrated from its own velocity gradient).
-    pub fn stress_profile(&self, z: &crate::forms::State1D<f64>) -> Vec<f64> {
+    pub fn stress_profile(&self, z: &State<f64, 1>) -> Vec<f64> {
         if z.tau.is_empty() {
-            return z.sigma.clone();
+            return z.sigma.iter().map(|[[s]]| *s).collect();
         }
         let c = self.c_partition;
         z.sigma
             .iter()
             .zip(&z.tau)
-            .map(|(s, t)| (1.0 - c) * s + c * t)
+            .map(|([[s]], [[t]])| (1.0 - c) * s + c * t)
             .collect()
     }
 

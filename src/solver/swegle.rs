@@ -9,7 +9,7 @@
 
 use super::box_operator::{MAX_DENSE_DOFS, box_growth};
 use super::diagnostics::{GrowthFit, growth_fit};
-use super::run2d::{BoundaryDensity, Run};
+use super::run::{BoundaryDensity, Run};
 use crate::analysis::box_prediction;
 use crate::error::{Error, Result, check_range};
 use crate::forms::{FormKind, Material2D, Model, ModelParams2D, State, State2D, State3D};
@@ -256,6 +256,8 @@ impl SwegleConfig {
                     form,
                     sound_speed: self.sound_speed(),
                 }),
+            alpha_s: 0.0,
+            ls_length: self.dx,
         }
     }
 
@@ -338,8 +340,8 @@ impl FinalState {
     /// Legacy VTK of the particles ([`crate::solver::output::vtk_nd`]; 3D points in both cases).
     pub fn vtk(&self, title: &str) -> String {
         match self {
-            FinalState::Two(z) => super::output::vtk_nd(title, z),
-            FinalState::Three(z) => super::output::vtk_nd(title, z),
+            FinalState::Two(z) => super::output::vtk_state(title, z),
+            FinalState::Three(z) => super::output::vtk_state(title, z),
         }
     }
 }

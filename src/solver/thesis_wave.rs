@@ -7,9 +7,9 @@
 //! particle velocity: v_r/v_i = −C_r, v_t/v_i = 2 Z_A/(Z_A + Z_B).
 //! Seeding a stress pulse needs a form that carries stress (the Eulerian forms).
 
-use super::run1d::Run1D;
+use super::run::Run;
 use crate::error::{Error, Result};
-use crate::forms::{FormKind, Model1D, ModelParams};
+use crate::forms::{FormKind, Material, Model, ModelParams};
 use crate::kernel::Kernel;
 use crate::shape::KernelParams;
 use serde::Serialize;
@@ -89,20 +89,22 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
             kernel: cfg.kernel,
             h: cfg.h_over_dx * dx,
         },
-        modulus: e,
+        material: Material::bar(e),
         rho0: rho_a,
-        sigma0: 0.0,
         c_partition: 0.5,
-        alpha_s: 0.0,
         av: None,
-        dx,
+        art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: dx,
     };
-    let mut model = Model1D::new(p, x.clone(), vec![dx; n], None)?;
+    let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
+    let mut model = Model::new(p, x_ref, vec![dx; n], rho_a, 0.0, None)?;
     let a = 0.5 * len;
     let rho_of = |xi: f64| if xi < a { rho_a } else { rho_b };
-    model.set_masses(x.iter().map(|&xi| rho_of(xi) * dx).collect())?;
-    let mut z = model.rest_state();
+    // a bar of two materials
+    model.mass = x.iter().map(|&xi| rho_of(xi) * dx).collect();
+    let mut z = model.rest_state(rho_a);
     for (r, &xi) in z.rho.iter_mut().zip(&x) {
         *r = rho_of(xi);
     }
@@ -118,11 +120,11 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
     };
     let mut incident = 0.0;
     for ((v, s), &xi) in z.v.iter_mut().zip(z.sigma.iter_mut()).zip(&x) {
-        *v = g(xi);
-        *s = -rho_a * ca * g(xi);
+        *v = [g(xi)];
+        *s = [[-rho_a * ca * g(xi)]];
         incident += g(xi) * dx;
     }
-    let mut run = Run1D::new(model, z, vec![None; n])?;
+    let mut run = Run::with_prescribed(model, z, &vec![None; n])?;
     // the incident pulse reaches the interface after (a − x0)/c_A; wait until the reflected and
     // transmitted pulses are clear of it
     let t_end = (a - x0) / ca + 1.5 * w / cb.min(ca);
@@ -131,7 +133,7 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
         run.step(dt)?;
     }
     let (mut left, mut right) = (0.0, 0.0);
-    for (xi, vi) in x.iter().zip(&run.z.v) {
+    for (xi, [vi]) in x.iter().zip(&run.z.v) {
         if *xi < a {
             left += vi * dx;
         } else {

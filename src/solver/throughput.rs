@@ -12,7 +12,7 @@
 //! caller's allocator ([`MemoryProbe`]): the peak of the bytes allocated while the block is
 //! built and run, above those allocated before, per particle.
 
-use super::run2d::{BoundaryDensity, Run, Run2D};
+use super::run::{BoundaryDensity, Run};
 use crate::error::{Error, Result, check_range};
 use crate::forms::{
     ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model, ModelParams2D,
@@ -221,6 +221,8 @@ impl ThroughputConfig {
                 spacing: 1.0,
             }),
             diffusion: None,
+            alpha_s: 0.0,
+            ls_length: 1.0,
         })
     }
 }
@@ -262,7 +264,7 @@ pub fn check_size(
 }
 
 /// The 2D block of the module docs, ready to run ([`build_block_nd`] with D = 2).
-pub fn build_block(cfg: &ThroughputConfig, size: usize) -> Result<Run2D> {
+pub fn build_block(cfg: &ThroughputConfig, size: usize) -> Result<Run<2>> {
     build_block_nd::<2>(cfg, size)
 }
 

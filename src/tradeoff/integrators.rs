@@ -8,7 +8,7 @@
 //! | `weak_growth_rate` | weakly unstable schemes: their spurious growth per unit time at Δt = 1/ω_max, c/Δx (the `spurious_growth_rate` of `timestep`) |
 //! | `dt_used` | `safety` × `critical_dt`; weakly unstable schemes: the largest Δt for which no mode of the κ grid grows by more than [`WEAK_TOL`] while a wave travels one wavelength at 10 points per wavelength ([`T_REF`] = 10 Δx/c), by bisection on the raw spectral radius of the scheme |
 //! | `evaluations_per_step` | [`Stepper::evaluations_per_step`]: the scheme's nominal count (one `rates` call = one evaluation; `kdk` 2 without artificial viscosity, whose acceleration does not depend on v, 3 with it) |
-//! | `rate_calls_per_step` | `accel` + `qrate` calls per step counted on the 1D solver's system (steps 2–5 of a wave run; a `rates` call counts 2). The 1D system ([`FlatSystem`]) evaluates the form's rate function once per exact state and serves both calls at that state from it, so whole evaluations can be fewer: `kdk` 2 calls = 2 evaluations without artificial viscosity (3 and 3 with it), `rk4` 8 calls = 4 evaluations |
+//! | `rate_calls_per_step` | `accel` + `qrate` calls per step counted by the solver's run ([`Run::rate_calls`], steps 2–5 of a wave run; a `rates` call counts 2): `kdk` 2 without artificial viscosity (3 with it), `rk4` 8 |
 //! | `ns_per_particle_step` | the wave scene of the study (real 1D solver, this integrator, the same number of steps, Δt = min(0.2, `dt_used`)), median of `repeats` runs |
 //! | `ns_per_evaluation` | `ns_per_particle_step` / `rate_calls_per_step` |
 //! | `ns_per_particle_time` | `ns_per_particle_step` / `dt_used`: the cost of advancing one particle by Δx/c |
@@ -20,16 +20,16 @@
 
 use crate::analysis::{IntegratorReport, Query1D};
 use crate::error::{Error, Result};
-use crate::forms::{FieldKind, FlatSystem, FormKind, Model1D};
-use crate::integrator::{Integrator, SecondOrderSystem, Stepper};
+use crate::forms::{FieldKind, FormKind, Model, State};
+use crate::integrator::{Integrator, Stepper};
 use crate::kernel::Kernel;
+use crate::solver::Run;
 use crate::vonneumann::amplification::{Modes, max_spectral_radius_with};
 use crate::vonneumann::classify::GROWTH_TOL;
 use crate::vonneumann::linearise::{Linearisation, eigen};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
-use std::cell::Cell;
 use std::f64::consts::PI;
 
 /// Largest amplitude growth a weakly unstable scheme may give any mode of the κ grid while the
@@ -115,7 +115,7 @@ pub fn physical_eigenvalue(
     let g = Modes::amplification_with(lin, kappa, dt, integ);
     let n = integ.cycle() as f64;
     let target = Complex64::from_polar(1.0, -kappa * n * dt);
-    let find = |kind: FieldKind| lin.dofs.iter().position(|d| d.field.kind() == kind);
+    let find = |kind: FieldKind| lin.dofs.iter().position(|d| d.comp.kind() == kind);
     let (Some(ix), Some(iv)) = (find(FieldKind::Position), find(FieldKind::Velocity)) else {
         return Err(Error::Incompatible(
             "physical eigenvalue: the linearisation has no position or velocity dof".into(),
@@ -285,52 +285,26 @@ pub fn analyse(
     Ok(())
 }
 
-/// A system that counts the calls into the one it wraps.
-struct Counting<'a, S> {
-    sys: &'a S,
-    calls: Cell<usize>,
-}
-
-impl<S: SecondOrderSystem<f64>> SecondOrderSystem<f64> for Counting<'_, S> {
-    fn accel(&self, x: &[f64], v: &[f64], q: &[f64], a: &mut [f64]) {
-        self.calls.set(self.calls.get() + 1);
-        self.sys.accel(x, v, q, a);
-    }
-    fn qrate(&self, x: &[f64], v: &[f64], q: &[f64], r: &mut [f64]) {
-        self.calls.set(self.calls.get() + 1);
-        self.sys.qrate(x, v, q, r);
-    }
-    fn accel_depends_on_velocity(&self) -> bool {
-        self.sys.accel_depends_on_velocity()
-    }
-}
-
-/// `accel` + `qrate` calls per step of `integ` on the 1D solver's system of `model` (a run
-/// from `z`), counted over steps 2–5 (the first step of `pec`/`verlet-euler` starts the memory).
+/// `accel` + `qrate` calls per step of `integ` on the solver's run of `model` (from `z`),
+/// counted over steps 2–5 (the first step of `pec`/`verlet-euler` starts the memory).
 pub fn rate_calls_per_step(
-    model: &Model1D,
-    z: &crate::forms::State1D<f64>,
+    model: &Model<1>,
+    z: &State<f64, 1>,
     integ: Integrator,
     dt: f64,
 ) -> Result<f64> {
-    let flat = FlatSystem::new(model, z.clone())?;
-    let (mut x, mut v, mut q) = flat.flatten(z);
-    let sys = Counting {
-        sys: &flat,
-        calls: Cell::new(0),
-    };
-    let mut st = Stepper::new(integ);
-    st.step(&sys, &mut x, &mut v, &mut q, dt);
-    sys.calls.set(0);
+    let mut run = Run::with_prescribed(model.clone(), z.clone(), &vec![None; z.x.len()])?;
+    run.set_integrator(integ);
+    run.step(dt)?;
+    let first = run.rate_calls();
     const STEPS: usize = 4;
     for _ in 0..STEPS {
-        st.step(&sys, &mut x, &mut v, &mut q, dt);
+        run.step(dt)?;
     }
-    Ok(sys.calls.get() as f64 / STEPS as f64)
+    Ok((run.rate_calls() - first) as f64 / STEPS as f64)
 }
 
-/// The nominal evaluations per step of `integ` for the 1D solver's system of `model`.
-pub fn evaluations_per_step(model: &Model1D, integ: Integrator) -> Result<usize> {
-    let flat = FlatSystem::new(model, model.rest_state())?;
-    Ok(Stepper::<f64>::new(integ).evaluations_per_step(flat.accel_depends_on_velocity()))
+/// The nominal evaluations per step of `integ` for the solver's run of `model`.
+pub fn evaluations_per_step(model: &Model<1>, integ: Integrator) -> usize {
+    Stepper::<f64>::new(integ).evaluations_per_step(model.p.av.is_some())
 }

@@ -59,7 +59,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::error::Result;
-use crate::forms::{FormKind, Material2D, ObjectiveRate};
+use crate::forms::{FormKind, Material, ObjectiveRate};
 use crate::kernel;
 use crate::lattice::{Lattice, det};
 use crate::shape::{KernelParams, ShapeFamily, eval_d};
@@ -213,16 +213,16 @@ fn solve<const D: usize>(m: &[[f64; D]; D], v: [f64; D]) -> [f64; D] {
     x
 }
 
-fn incremental(mat: &Material2D, s: f64, rho_over_rho0: f64) -> (f64, f64) {
+fn incremental(mat: &Material, s: f64, rho_over_rho0: f64) -> (f64, f64) {
     match *mat {
-        Material2D::Hydro { bulk } => (bulk * rho_over_rho0, 0.0),
-        Material2D::NeoHookean { lambda, shear } => (lambda, shear),
-        Material2D::Elastic {
+        Material::Hydro { bulk } => (bulk * rho_over_rho0, 0.0),
+        Material::NeoHookean { lambda, shear } => (lambda, shear),
+        Material::Elastic {
             lambda,
             shear,
             rate: ObjectiveRate::Jaumann,
         } => (lambda, shear),
-        Material2D::Elastic {
+        Material::Elastic {
             lambda,
             shear,
             rate: ObjectiveRate::Truesdell,
@@ -234,7 +234,7 @@ fn incremental(mat: &Material2D, s: f64, rho_over_rho0: f64) -> (f64, f64) {
 /// shape for total-Lagrangian), pre-stress `s`, density ratio ρ/ρ0.
 pub fn rho_d<const D: usize>(
     form: FormKind,
-    mat: &Material2D,
+    mat: &Material,
     s: f64,
     rho_ratio: f64,
     sm: &Sums<D>,
@@ -269,14 +269,14 @@ pub fn rho_d<const D: usize>(
             }
         }
         FormKind::TotalLagrangian => match *mat {
-            Material2D::Hydro { bulk } => {
+            Material::Hydro { bulk } => {
                 for a in 0..D {
                     for b in 0..D {
                         d[a][b] = bulk * rho_ratio * ss[a][b];
                     }
                 }
             }
-            Material2D::NeoHookean { lambda, shear } => {
+            Material::NeoHookean { lambda, shear } => {
                 // linearises to Hooke's law about the unstressed state (s = 0)
                 for a in 0..D {
                     for b in 0..D {
@@ -284,7 +284,7 @@ pub fn rho_d<const D: usize>(
                     }
                 }
             }
-            Material2D::Elastic {
+            Material::Elastic {
                 lambda,
                 shear,
                 rate,
@@ -310,7 +310,7 @@ pub fn rho_d<const D: usize>(
 /// C = λ + 2G = 1, written with G = 0, λ = C as the 1D model does
 /// (`forms::ModelParams::nd_params`; in 1D only λ + 2G enters), so that λ' + 2G' = 1 + σ̄ = C̃
 /// at pre-stress s = σ̄.
-pub const MATERIAL_1D: Material2D = Material2D::Elastic {
+pub const MATERIAL_1D: Material = Material::Elastic {
     lambda: 1.0,
     shear: 0.0,
     rate: ObjectiveRate::Truesdell,

@@ -4,7 +4,7 @@
 pub mod exact;
 
 use sphstab::analysis::MaterialSpec;
-use sphstab::forms::{FormKind, ModelParams, ObjectiveRate};
+use sphstab::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use sphstab::kernel::{self, Kernel};
 use sphstab::lattice::Lattice;
 use sphstab::shape::{KernelParams, ShapeFamily, lattice_shape};
@@ -16,25 +16,20 @@ pub fn k(name: &str) -> &'static dyn Kernel {
     kernel::by_name(name).unwrap()
 }
 
-pub fn params(
-    form: FormKind,
-    kern: &str,
-    shape: ShapeFamily,
-    h: f64,
-    sigma_bar: f64,
-) -> ModelParams {
+/// The parameters of a 1D bar (C = 1, ρ0 = 1, Δx = 1) for `form`, kernel `kern` at h.
+pub fn params(form: FormKind, kern: &str, shape: ShapeFamily, h: f64) -> ModelParams {
     ModelParams {
         form,
         shape,
         kp: KernelParams { kernel: k(kern), h },
-        modulus: 1.0,
+        material: Material::bar(1.0),
         rho0: 1.0,
-        sigma0: sigma_bar,
         c_partition: 0.5,
-        alpha_s: 0.0,
         av: None,
-        dx: 1.0,
+        art_stress: None,
         diffusion: None,
+        alpha_s: 0.0,
+        ls_length: 1.0,
     }
 }
 
@@ -46,7 +41,8 @@ pub fn lin(
     sigma_bar: f64,
 ) -> Linearisation {
     Linearisation::new(
-        params(form, kern, shape, h, sigma_bar),
+        params(form, kern, shape, h),
+        sigma_bar,
         Lattice1D::default(),
     )
     .unwrap()

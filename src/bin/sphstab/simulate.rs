@@ -1,7 +1,7 @@
 //! `sphstab simulate`: run a 1D scene (JSON file or built-in name).
 
 use anyhow::{Context, Result};
-use sphstab::solver::output::{csv, vtk_1d};
+use sphstab::solver::output::{csv, vtk_state};
 use sphstab::solver::scene::{builtin, parse};
 
 /// Flags of `simulate`.
@@ -139,7 +139,7 @@ pub fn run(a: Args) -> Result<()> {
         if let Some(z) = &r.final_state {
             std::fs::write(
                 dir.join("final.vtk"),
-                vtk_1d(&format!("{} {} t={:e}", r.name, r.form, r.t), z),
+                vtk_state(&format!("{} {} t={:e}", r.name, r.form, r.t), z),
             )
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
         }

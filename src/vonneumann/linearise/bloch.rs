@@ -16,9 +16,7 @@
 
 use super::columns::{Columns, LANES, Linearisable, SparseJacobian, eigen};
 use crate::error::{Error, Result};
-use crate::forms::{
-    Comp, FieldKind, FormKind, Material, Model, ModelParams2D, RateWorkspace, State,
-};
+use crate::forms::{Comp, FieldKind, FormKind, Material, Model, ModelParams, RateWorkspace, State};
 use crate::integrator::Integrator;
 use crate::lattice::{Lattice, grid_index};
 use crate::scalar::{Dual, DualN, Lanes};
@@ -71,7 +69,7 @@ pub fn base_state(material: &Material, rho0: f64, sigma_bar: f64) -> Result<(f64
 /// The periodic patch of the linearisation (module docs) and the relative position of every
 /// particle from particle 0.
 fn patch<const D: usize>(
-    p: ModelParams2D,
+    p: ModelParams,
     lat: &Lattice<D>,
     dx: f64,
     rho: f64,
@@ -168,7 +166,7 @@ fn cube_basis<const D: usize>(lat: &Lattice<D>) -> Vec<[f64; D]> {
 
 impl<const D: usize> Bloch<D> {
     /// Linearises the form `p` on lattice `lat` (spacing `dx`) at pre-stress σ̄.
-    pub fn new(p: ModelParams2D, lat: &Lattice<D>, dx: f64, sigma_bar: f64) -> Result<Self> {
+    pub fn new(p: ModelParams, lat: &Lattice<D>, dx: f64, sigma_bar: f64) -> Result<Self> {
         if D == 3
             && !matches!(
                 lat.kind,
@@ -525,7 +523,7 @@ fn branches3<const D: usize>(d: &[[Complex64; D]; D]) -> Vec<(Complex64, [Comple
 /// particle) neighbours each, with a quarter of spare capacity; plus the dual state and rate of
 /// every particle.
 pub fn check_patch_budget<const D: usize>(
-    p: &ModelParams2D,
+    p: &ModelParams,
     lat: &Lattice<D>,
     dx: f64,
     count: usize,
@@ -544,7 +542,7 @@ pub fn check_patch_budget<const D: usize>(
 /// evaluated with scalar type `S` (stencil entries of `NbD<S, D>`), and neighbours per
 /// particle.
 fn patch_bytes<S, const D: usize>(
-    p: &ModelParams2D,
+    p: &ModelParams,
     lat: &Lattice<D>,
     dx: f64,
     count: usize,

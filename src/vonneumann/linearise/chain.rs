@@ -1,4 +1,4 @@
-//! The 1D front end: a periodic chain of N cells of a [`Model1D`] — every 1D form, including the
+//! The 1D front end: a periodic chain of N cells of a [`Model<1>`](Model) — every 1D form, including the
 //! \[B00\]-only ones with several points per cell (stress points) and a consistent mass (least
 //! squares) — linearised by the shared core ([`super::columns`]) and projected onto Fourier modes
 //! e^{iκX}.
@@ -14,7 +14,7 @@
 
 use super::columns::{Columns, Entry, LANES, Linearisable, Phase, eigen};
 use crate::error::Result;
-use crate::forms::{Field, FieldKind, FormKind, MassOperator, Model1D, ModelParams, State1D};
+use crate::forms::{Comp, FieldKind, FormKind, MassOperator, Model, ModelParams, State};
 use crate::integrator::Integrator;
 use crate::scalar::{DualN, Scalar};
 use crate::vonneumann::amplification::Modes;
@@ -24,8 +24,8 @@ use num_complex::Complex64;
 /// One degree of freedom of a lattice cell.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dof {
-    /// The field.
-    pub field: Field,
+    /// The state component (of the cell's particle, or of its stress point).
+    pub comp: Comp,
 }
 
 /// The Fourier-projected linearisation of a 1D form.
@@ -144,10 +144,10 @@ impl Default for Lattice1D {
 
 /// The periodic chain being differentiated.
 struct Chain {
-    model: Model1D,
-    base: State1D<f64>,
-    fields: Vec<Field>,
-    out: State1D<DualN<LANES>>,
+    model: Model<1>,
+    base: State<f64, 1>,
+    comps: Vec<Comp>,
+    out: State<DualN<LANES>, 1>,
     n: usize,
 }
 
@@ -165,7 +165,7 @@ impl Chain {
 impl Linearisable for Chain {
     type Offset = i64;
     fn kinds(&self) -> Vec<FieldKind> {
-        self.fields.iter().map(|f| f.kind()).collect()
+        self.comps.iter().map(|f| f.kind()).collect()
     }
     fn cells(&self) -> usize {
         self.n
@@ -177,17 +177,16 @@ impl Linearisable for Chain {
         LANES
     }
     fn seeded_rates(&mut self, b0: usize) -> Result<()> {
-        let mut z: State1D<DualN<LANES>> = self.base.map(DualN::cst);
-        for (l, &f) in self.fields.iter().skip(b0).take(LANES).enumerate() {
-            z.field_mut(f)[0].d[l] = 1.0;
+        let mut z: State<DualN<LANES>, 1> = self.base.map(DualN::cst);
+        for (l, &c) in self.comps.iter().skip(b0).take(LANES).enumerate() {
+            let mut seeded = z.get(c, 0);
+            seeded.d[l] = 1.0;
+            z.set(c, 0, seeded);
         }
         self.model.rate(&z, &mut self.out)
     }
     fn tangent(&self, a: usize, i: usize, l: usize) -> f64 {
-        self.out
-            .field(self.fields[a])
-            .get(i)
-            .map_or(0.0, |v| v.d[l])
+        self.out.get(self.comps[a], i).d[l]
     }
 }
 
@@ -233,27 +232,27 @@ impl CosineSeries {
 }
 
 impl Linearisation {
-    /// Linearises the form described by `p` (its `sigma0` is the pre-stress, physical units) on
+    /// Linearises the form described by `p` about the pre-stress `sigma0` (physical units) on
     /// the uniform periodic lattice `lat`.
-    pub fn new(p: ModelParams, lat: Lattice1D) -> Result<Self> {
+    pub fn new(p: ModelParams, sigma0: f64, lat: Lattice1D) -> Result<Self> {
         let support_cells = p.kp.support() / lat.dx;
         // Coupling range: shape functions at a point depend on masters within R, the stress of a
         // master on velocities within R, and the force on stresses within R: < 3R + 2 cells.
         let range = (3.0 * support_cells).ceil() as usize + 3;
         let n = (2 * range + 1).max(9);
-        let x_ref: Vec<f64> = (0..n).map(|i| i as f64 * lat.dx).collect();
+        let x_ref: Vec<[f64; 1]> = (0..n).map(|i| [i as f64 * lat.dx]).collect();
         let vol = vec![lat.dx; n];
-        let model = Model1D::new(p, x_ref, vol, Some(n as f64 * lat.dx))?;
-        let fields: Vec<Field> = p.form.fields().to_vec();
+        let model = Model::new(p, x_ref, vol, p.rho0, sigma0, Some([[n as f64 * lat.dx]]))?;
+        let comps = p.form.comps(1, &p.material);
         let mut chain = Chain {
-            base: model.rest_state(),
+            base: model.rest_state(p.rho0),
             model,
-            fields,
-            out: State1D::default(),
+            comps,
+            out: State::default(),
             n,
         };
         let core = Columns::of(&mut chain)?;
-        let mass = match &chain.model.mass_op {
+        let mass = match chain.model.mass_operator() {
             MassOperator::Lumped => Vec::new(),
             MassOperator::Consistent(rows) => {
                 rows[0].iter().map(|&(k, mk)| (chain.wrap(k), mk)).collect()
@@ -261,7 +260,7 @@ impl Linearisation {
         };
         let c = (lat.modulus / lat.rho0).sqrt();
         Ok(Self::assemble(
-            chain.fields.iter().map(|&field| Dof { field }).collect(),
+            chain.comps.iter().map(|&comp| Dof { comp }).collect(),
             core,
             mass,
             lat.dx * lat.dx / (c * c),

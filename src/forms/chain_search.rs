@@ -1,11 +1,6 @@
-//! Pieces of the 1D-only Eulerian-kernel forms of \[B00\] (stress points, nodal Galerkin):
-//! neighbour stencils on the current configuration and the master volumes, built into the
-//! reusable buffers of a [`Workspace1D`](super::Workspace1D) (no allocation once grown).
-
-use super::model::{Model1D, State1D};
-use crate::error::Result;
-use crate::scalar::Scalar;
-use crate::shape::{self, ShapeFamily};
+//! The neighbour search and stencil storage of the 1D-only forms of \[B00\] (stress points,
+//! nodal Galerkin, least squares): a sliding-window search along a chain and flat stencils,
+//! kept in the reusable buffers of a [`ChainWorkspace`] (no allocation once grown).
 
 /// One neighbour J of an evaluation point: index, φ_J, ∂φ_J/∂x.
 #[derive(Clone, Copy, Debug)]
@@ -19,8 +14,8 @@ pub(crate) struct Nb<S> {
 /// `nb[start[p]..start[p + 1]]`.
 #[derive(Clone, Debug)]
 pub(crate) struct Stencils<S> {
-    nb: Vec<Nb<S>>,
-    start: Vec<usize>,
+    pub(crate) nb: Vec<Nb<S>>,
+    pub(crate) start: Vec<usize>,
 }
 
 impl<S> Default for Stencils<S> {
@@ -54,10 +49,10 @@ impl<S> Stencils<S> {
 /// Scratch of the stencil build: (relative position, volume), indices, (φ, φ').
 #[derive(Clone, Debug)]
 pub(crate) struct StencilScratch<S> {
-    nodes: Vec<([S; 1], S)>,
-    idx: Vec<usize>,
-    vals: Vec<(S, [S; 1])>,
-    search: ChainSearch,
+    pub(crate) nodes: Vec<([S; 1], S)>,
+    pub(crate) idx: Vec<usize>,
+    pub(crate) vals: Vec<(S, [S; 1])>,
+    pub(crate) search: ChainSearch,
 }
 
 impl<S> Default for StencilScratch<S> {
@@ -83,43 +78,6 @@ impl<S> StencilScratch<S> {
             + self.vals.capacity() * size_of::<(S, [S; 1])>()
             + self.search.capacity_bytes()
     }
-}
-
-/// Stencils of the masters around the evaluation points `pts` on the current configuration,
-/// with shape family `family` and master volumes `vol`, into `out` (cleared and refilled).
-/// `sc.search` must have been prepared for `z` ([`ChainSearch::prepare`]).
-pub(crate) fn stencils<S: Scalar>(
-    m: &Model1D,
-    z: &State1D<S>,
-    pts: &[S],
-    family: ShapeFamily,
-    vol: &[S],
-    sc: &mut StencilScratch<S>,
-    out: &mut Stencils<S>,
-) -> Result<()> {
-    let r = m.p.kp.support();
-    out.nb.clear();
-    out.start.clear();
-    out.start.push(0);
-    sc.search.restart();
-    for &xp in pts {
-        sc.nodes.clear();
-        sc.idx.clear();
-        sc.search.candidates(xp.re(), r, &mut sc.idx);
-        sc.idx.retain(|&j| m.rel(xp, z.x[j]).re().abs() < r);
-        for &j in sc.idx.iter() {
-            sc.nodes.push(([m.rel(xp, z.x[j])], vol[j]));
-        }
-        shape::eval_d(family, m.p.kp, &sc.nodes, xp.re(), &mut sc.vals)?;
-        out.nb.extend(
-            sc.idx
-                .iter()
-                .zip(&sc.vals)
-                .map(|(&j, &(phi, [dphi]))| Nb { j, phi, dphi }),
-        );
-        out.start.push(out.nb.len());
-    }
-    Ok(())
 }
 
 /// Neighbour search along a 1D chain, O(N) for an ordered chain: the masters' (wrapped)
@@ -152,11 +110,6 @@ impl ChainSearch {
     fn capacity_bytes(&self) -> usize {
         self.order.capacity() * std::mem::size_of::<usize>()
             + self.sorted.capacity() * std::mem::size_of::<f64>()
-    }
-
-    /// Prepares the search for the masters of `z`.
-    pub(crate) fn prepare<S: Scalar>(&mut self, m: &Model1D, z: &State1D<S>) {
-        self.prepare_positions(m.period, z.x.iter().map(|x| x.re()));
     }
 
     /// Prepares the search for masters at `pos` in a chain of period `period`.
@@ -267,70 +220,137 @@ impl ChainSearch {
     }
 }
 
-/// Current master volumes V_J = m_J / ρ_J, into `out`.
-pub(crate) fn volumes<S: Scalar>(m: &Model1D, z: &State1D<S>, out: &mut Vec<S>) {
-    out.clear();
-    out.extend(
-        z.rho
-            .iter()
-            .zip(&m.mass)
-            .map(|(&rho, &mass)| S::cst(mass) / rho),
-    );
+/// Reusable buffers of the 1D-only forms of \[B00\] (part of a
+/// [`RateWorkspace`](super::RateWorkspace)): the master volumes, the flat stencils of masters
+/// and stress points, the neighbour search, the displacements, and the full rate the partial
+/// outputs are copied from. Cleared and refilled, never freed.
+#[derive(Clone, Debug)]
+pub(crate) struct ChainWorkspace<S> {
+    pub(crate) vol: Vec<S>,
+    pub(crate) st_m: Stencils<S>,
+    pub(crate) st_s: Stencils<S>,
+    pub(crate) scratch: StencilScratch<S>,
+    pub(crate) u: Vec<S>,
+    /// The full rate the requested parts are copied from.
+    pub(crate) rate: ChainRates<S>,
+}
+
+/// The rates of a 1D-only form, one entry per master or stress point (fields the form does
+/// not carry are empty).
+#[derive(Clone, Debug)]
+pub(crate) struct ChainRates<S> {
+    /// ẋ.
+    pub(crate) x: Vec<S>,
+    /// v̇ (lumped mass), or the force f of M a = f (consistent mass).
+    pub(crate) v: Vec<S>,
+    /// ρ̇.
+    pub(crate) rho: Vec<S>,
+    /// σ̇.
+    pub(crate) sigma: Vec<S>,
+    /// ẋ^S.
+    pub(crate) sp_x: Vec<S>,
+    /// σ̇^S.
+    pub(crate) sp_sigma: Vec<S>,
+    /// V̇^S.
+    pub(crate) sp_vol: Vec<S>,
+}
+
+impl<S> Default for ChainRates<S> {
+    fn default() -> Self {
+        Self {
+            x: Vec::new(),
+            v: Vec::new(),
+            rho: Vec::new(),
+            sigma: Vec::new(),
+            sp_x: Vec::new(),
+            sp_sigma: Vec::new(),
+            sp_vol: Vec::new(),
+        }
+    }
+}
+
+impl<S> ChainRates<S> {
+    fn capacity(&self) -> usize {
+        [
+            &self.x,
+            &self.v,
+            &self.rho,
+            &self.sigma,
+            &self.sp_x,
+            &self.sp_sigma,
+            &self.sp_vol,
+        ]
+        .iter()
+        .map(|v| v.capacity())
+        .sum()
+    }
+}
+
+impl<S> Default for ChainWorkspace<S> {
+    fn default() -> Self {
+        Self {
+            vol: Vec::new(),
+            st_m: Stencils::default(),
+            st_s: Stencils::default(),
+            scratch: StencilScratch::default(),
+            u: Vec::new(),
+            rate: Default::default(),
+        }
+    }
+}
+
+impl<S> ChainWorkspace<S> {
+    /// Bytes reserved by the buffers (capacities).
+    pub(crate) fn reserved_bytes(&self) -> usize {
+        let s = std::mem::size_of::<S>();
+        (self.vol.capacity() + self.u.capacity() + self.rate.capacity()) * s
+            + self.st_m.capacity_bytes()
+            + self.st_s.capacity_bytes()
+            + self.scratch.capacity_bytes()
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::forms::{FormKind, ModelParams};
-    use crate::shape::KernelParams;
 
-    fn model(n: usize, period: Option<f64>) -> Model1D {
-        let p = ModelParams {
-            form: FormKind::EulerianStressPoints,
-            shape: ShapeFamily::Mls,
-            kp: KernelParams {
-                kernel: crate::kernel::by_name("m4").unwrap(),
-                h: 1.3,
-            },
-            modulus: 1.0,
-            rho0: 1.0,
-            sigma0: 0.0,
-            c_partition: 0.5,
-            alpha_s: 0.0,
-            av: None,
-            dx: 1.0,
-            diffusion: None,
-        };
-        Model1D::new(p, (0..n).map(|i| i as f64).collect(), vec![1.0; n], period).unwrap()
+    /// Minimum-image b − a on a chain of period `period`.
+    fn rel(period: Option<f64>, a: f64, b: f64) -> f64 {
+        let d = b - a;
+        match period {
+            Some(l) => d - (d / l).round() * l,
+            None => d,
+        }
     }
 
     /// The brute-force neighbour list: every master within r (minimum image), by index.
-    fn brute(m: &Model1D, x: &[f64], c: f64, r: f64) -> Vec<usize> {
-        (0..x.len()).filter(|&j| m.rel(c, x[j]).abs() < r).collect()
+    fn brute(period: Option<f64>, x: &[f64], c: f64, r: f64) -> Vec<usize> {
+        (0..x.len())
+            .filter(|&j| rel(period, c, x[j]).abs() < r)
+            .collect()
     }
 
     /// Ordered, crossed and wrapped chains, evaluation points in order and out of order: the
     /// sliding window and each fallback give the brute-force neighbour sets.
     #[test]
     fn sliding_window_and_fallbacks_match_a_full_scan() {
+        // m4 at h = 1.3Δx: support 2.6Δx
+        let r = 2.6;
         for period in [None, Some(20.0)] {
-            let m = model(20, period);
-            let r = m.p.kp.support();
-            let mut z = m.rest_state();
+            let x_ref: Vec<f64> = (0..20).map(|i| i as f64).collect();
             let mut cases = Vec::new();
-            cases.push((z.x.clone(), false));
+            cases.push((x_ref.clone(), false));
             // two particles crossed
-            z.x.swap(7, 8);
-            z.x[7] += 0.1;
-            cases.push((z.x.clone(), true));
+            let mut crossed = x_ref.clone();
+            crossed.swap(7, 8);
+            crossed[7] += 0.1;
+            cases.push((crossed, true));
             // the chain shifted across the periodic origin (or to negative x)
-            let shifted: Vec<f64> = m.x_ref.iter().map(|x| x - 2.5).collect();
+            let shifted: Vec<f64> = x_ref.iter().map(|x| x - 2.5).collect();
             cases.push((shifted, period.is_some()));
             for (x, unordered) in cases {
-                let mut zz = m.rest_state();
-                zz.x = x.clone();
                 let mut s = ChainSearch::default();
-                s.prepare(&m, &zz);
+                s.prepare_positions(period, x.iter().copied());
                 assert_eq!(s.sorts, usize::from(unordered), "{period:?} {x:?}");
                 // points in increasing order, then a few going back (bisection fallback)
                 let mut pts: Vec<f64> = (0..40).map(|i| -1.0 + 0.55 * i as f64).collect();
@@ -339,8 +359,8 @@ mod tests {
                 for &c in &pts {
                     let mut idx = Vec::new();
                     s.candidates(c, r, &mut idx);
-                    idx.retain(|&j| m.rel(c, x[j]).abs() < r);
-                    assert_eq!(idx, brute(&m, &x, c, r), "{period:?} at {c}");
+                    idx.retain(|&j| rel(period, c, x[j]).abs() < r);
+                    assert_eq!(idx, brute(period, &x, c, r), "{period:?} at {c}");
                 }
                 assert!(s.bisections > 0);
             }

@@ -1,0 +1,103 @@
+//! The SPH forms by name ([`FormKind`]) and what each needs: kernel kind (Eulerian or
+//! Lagrangian), default shape family, stress points.
+
+use crate::error::{Error, Result};
+use crate::shape::ShapeFamily;
+
+/// The nine SPH forms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FormKind {
+    /// Eulerian kernel, collocation, Monaghan's symmetric "sum" momentum form \[V21 eq 55\].
+    Classical,
+    /// Eulerian kernel, "difference" momentum form \[V21 eq 54\].
+    Nonlocal,
+    /// Normalised corrected SPH \[V21 eq 43–44\].
+    Local,
+    /// Mixed local–nonlocal with partition coefficient c \[V21 eq 50–56\].
+    Lnl,
+    /// Mixed classical–local with coefficient c \[V21 §7.2\].
+    Cll,
+    /// Lagrangian kernel, nodal integration \[B00 eq 77–81\].
+    TotalLagrangian,
+    /// Stress points at mid-intervals, Eulerian kernel \[B00 eq 83–92\].
+    EulerianStressPoints,
+    /// Stress points at mid-intervals, Lagrangian kernel \[B00 eq 99–102\].
+    LagrangianStressPoints,
+    /// Beissel–Belytschko least-squares stabilised nodal integration \[B00 eq 104–107\].
+    LeastSquares,
+    /// Eulerian kernel, nodal integration of the Galerkin weak form \[B00 §4.1.1, eq 65–68\]:
+    /// the system whose linearisation is \[B00 eq 74\]. Not one of SPEC's nine names; added
+    /// because the sum-form `classical` differs from eq 74 (analysis/ERRATA.md).
+    EulerianNodal,
+}
+
+impl FormKind {
+    /// All forms with their CLI names.
+    pub const ALL: [(FormKind, &'static str); 10] = [
+        (FormKind::Classical, "classical"),
+        (FormKind::Nonlocal, "nonlocal"),
+        (FormKind::Local, "local"),
+        (FormKind::Lnl, "lnl"),
+        (FormKind::Cll, "cll"),
+        (FormKind::TotalLagrangian, "total-lagrangian"),
+        (FormKind::EulerianStressPoints, "eulerian-stress-points"),
+        (FormKind::LagrangianStressPoints, "lagrangian-stress-points"),
+        (FormKind::LeastSquares, "least-squares"),
+        (FormKind::EulerianNodal, "eulerian-nodal"),
+    ];
+
+    /// CLI name.
+    pub fn name(self) -> &'static str {
+        crate::error::name_in(&Self::ALL, self)
+    }
+
+    /// Looks a form up by CLI name.
+    pub fn by_name(name: &str) -> Result<Self> {
+        crate::error::lookup("form", &Self::ALL, name)
+    }
+
+    /// Lagrangian kernel (reference-configuration shape functions, fixed neighbours).
+    pub fn is_lagrangian(self) -> bool {
+        matches!(
+            self,
+            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints | FormKind::LeastSquares
+        )
+    }
+
+    /// Default shape family: `sph` for the SPH (V21) forms, `corrected` for the local form,
+    /// and `mls` (EFG, the choice of \[B00\]) for the B00 forms.
+    pub fn default_shape(self) -> ShapeFamily {
+        match self {
+            FormKind::Classical | FormKind::Nonlocal | FormKind::Lnl | FormKind::Cll => {
+                ShapeFamily::Sph
+            }
+            FormKind::Local => ShapeFamily::Corrected,
+            FormKind::TotalLagrangian
+            | FormKind::EulerianStressPoints
+            | FormKind::LagrangianStressPoints
+            | FormKind::LeastSquares
+            | FormKind::EulerianNodal => ShapeFamily::Mls,
+        }
+    }
+
+    /// Checks that `shape` is meaningful for this form.
+    pub fn check_shape(self, shape: ShapeFamily) -> Result<()> {
+        if self == FormKind::Local && !shape.linear_consistent_gradient() {
+            return Err(Error::Incompatible(format!(
+                "--shape {} is not allowed with --form local: the local form needs a first-order \
+                 corrected gradient (allowed: corrected, mls)",
+                shape.name()
+            )));
+        }
+        Ok(())
+    }
+
+    /// Whether the form has stress points.
+    pub fn has_stress_points(self) -> bool {
+        matches!(
+            self,
+            FormKind::EulerianStressPoints | FormKind::LagrangianStressPoints
+        )
+    }
+}
