@@ -105,6 +105,44 @@ fn analysis_matches_the_pre_issue_13_golden_data() {
     println!("worst relative difference {:.2e} at {}", worst.0, worst.1);
 }
 
+/// Golden data of issue 23's consolidation (one model, run and query for every dimension):
+/// 54 commands recorded with the binary of revision ad41a62, before `Model1D`, `Run1D` and the
+/// 1D stack were deleted — `query`, `dispersion` and `timestep` for all ten forms in 1D (the
+/// 1D-only forms of \[B00\] included) and 2D/3D cases, and `simulate` scenes stepping every
+/// 1D-only form. Every number must be reproduced to 1e-12 relative (`runtime_s` skipped).
+#[test]
+fn consolidated_crate_matches_the_pre_issue_23_golden_data() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/golden/cli/cases.json"
+    ))
+    .unwrap();
+    let gold: Value = serde_json::from_str(&text).unwrap();
+    let cases = gold["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 54);
+    let mut worst = (0.0, String::new());
+    for c in cases {
+        let args: Vec<&str> = c["args"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| a.as_str().unwrap())
+            .collect();
+        let out = Command::new(env!("CARGO_BIN_EXE_sphstab"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let new: Value = serde_json::from_slice(&out.stdout).unwrap();
+        compare(&args.join(" "), &c["output"], &new, 0.0, &mut worst);
+    }
+    println!("worst relative difference {:.2e} at {}", worst.0, worst.1);
+}
+
 /// The comparison is not vacuous: a change of 1e-10 in one number of a golden case fails it.
 #[test]
 #[should_panic(expected = "golden")]
