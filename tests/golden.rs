@@ -148,7 +148,7 @@ fn table1() -> Value {
 }
 
 fn swegle() -> Value {
-    use sphstab::solver::swegle::{SwegleConfig, run_swegle};
+    use sphstab::studies::swegle::{SwegleConfig, run_swegle};
     let mut out = Vec::new();
     for (form, kern, h, f) in [
         (FormKind::Classical, "m4", 1.2, 0.99),
@@ -171,7 +171,7 @@ fn swegle() -> Value {
 }
 
 fn tradeoff_rows() -> Value {
-    use sphstab::tradeoff::{TradeoffConfig, run};
+    use sphstab::studies::tradeoff::{TradeoffConfig, run};
     let cfg = TradeoffConfig {
         forms: vec![
             "classical".into(),

@@ -29,7 +29,7 @@ use sphstab::forms::{
 };
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
-use sphstab::solver::throughput::{
+use sphstab::studies::throughput::{
     BlockMaterial, Domain, ThroughputConfig, build_block, build_block_nd,
 };
 use sphstab::solver::{BoundaryDensity, Run};

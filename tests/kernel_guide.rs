@@ -9,12 +9,12 @@ use common::{assert_bad_inputs, json, sphstab};
 use sphstab::forms::FormKind;
 use sphstab::integrator::Integrator;
 use sphstab::kernel::{self, Kernel};
-use sphstab::kernel_guide::{
+use sphstab::studies::kernel_guide::{
     GUIDE_FORMS, GUIDE_H, Interval, REFERENCE_TENSION, SAFETY, WSTAR_K_STEP, compression_scan,
     intervals, tensile_onset, time_step_cell,
 };
-use sphstab::pairing::wstar::{NEGATIVE_TOL, Transform, sign_criterion_with};
-use sphstab::tradeoff::cfl::cfl_cell;
+use sphstab::studies::pairing::wstar::{NEGATIVE_TOL, Transform, sign_criterion_with};
+use sphstab::studies::tradeoff::cfl::cfl_cell;
 use sphstab::vonneumann::transform::{gauss_legendre, lucy_ft};
 use std::f64::consts::PI;
 use std::path::Path;

@@ -24,7 +24,7 @@ use sphstab::forms::{
 };
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
-use sphstab::solver::throughput::{ThroughputConfig, build_block};
+use sphstab::studies::throughput::{ThroughputConfig, build_block};
 use sphstab::solver::{BoundaryDensity, Run2D};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};

@@ -15,7 +15,7 @@
 use sphstab::forms::{FormKind, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::solver::Run3D;
-use sphstab::solver::throughput::{BlockMaterial, Domain, ThroughputConfig, build_block_nd};
+use sphstab::studies::throughput::{BlockMaterial, Domain, ThroughputConfig, build_block_nd};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 

@@ -3,7 +3,7 @@
 
 mod common;
 
-use sphstab::tradeoff::{TradeoffConfig, TradeoffReport, figure_svg, grid, parse_config, run};
+use sphstab::studies::tradeoff::{TradeoffConfig, TradeoffReport, figure_svg, grid, parse_config, run};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -110,7 +110,7 @@ fn committed_tradeoff_figures_are_drawn_from_their_stored_data() {
         let g = grid(&cfg).unwrap();
         assert_eq!(rep.dim, cfg.dim);
         assert_eq!(rep.rows.len(), g.len(), "{name}");
-        let integs = sphstab::tradeoff::integrator_list(&cfg).unwrap();
+        let integs = sphstab::studies::tradeoff::integrator_list(&cfg).unwrap();
         assert_eq!(rep.integrator_rows.len(), g.len() * integs.len(), "{name}");
         for (r, (f, k, h)) in rep.rows.iter().zip(&g) {
             assert_eq!((r.form.as_str(), r.kernel.as_str()), (f.name(), k.name()));
@@ -359,7 +359,7 @@ fn integrator_rows_match_closed_forms_on_the_oscillator() {
             // the 10-ppw mode is within the tolerance of the worst mode over T_REF = its period
             // (κΔx = 2π/10 lies between two grid points: 1% slack)
             assert!(
-                r.amplitude_error_10ppw.unwrap() <= 1.01 * sphstab::tradeoff::integrators::WEAK_TOL,
+                r.amplitude_error_10ppw.unwrap() <= 1.01 * sphstab::studies::tradeoff::integrators::WEAK_TOL,
                 "{r:?}"
             );
         }
@@ -398,7 +398,7 @@ fn cfl_table_matches_the_leapfrog_and_rk4_limits() {
     use sphstab::forms::FormKind;
     use sphstab::integrator::Integrator;
     use sphstab::kernel;
-    use sphstab::tradeoff::cfl::{CFL_POINTS, cfl_cell};
+    use sphstab::studies::tradeoff::cfl::{CFL_POINTS, cfl_cell};
     for form in ["classical", "total-lagrangian"] {
         for kern in ["m4", "wendland-c2", "gaussian", "efg-quartic"] {
             for h in [1.2, 2.0] {

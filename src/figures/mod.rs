@@ -22,7 +22,7 @@
 //! ```
 //!
 //! or `swegle` series — the Swegle test of \[V21 §7.2\] run by
-//! [`crate::solver::swegle::run_swegle`] (the code of `sphstab swegle`), log10 of a velocity
+//! [`crate::studies::swegle::run_swegle`] (the code of `sphstab swegle`), log10 of a velocity
 //! history against time in Δx/c, with the box prediction's growth rate drawn dashed over the fit
 //! window, anchored on the least-squares fit of the plotted history ([`SwegleSeries`]):
 //!

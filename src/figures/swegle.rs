@@ -6,10 +6,10 @@ use crate::forms::FormKind;
 use crate::kernel;
 use crate::plot::Curve;
 use crate::solver::diagnostics::growth_fit;
-use crate::solver::swegle::{SwegleConfig, run_swegle};
+use crate::studies::swegle::{SwegleConfig, run_swegle};
 use serde::Deserialize;
 
-/// Which velocity history of a Swegle run is drawn ([`crate::solver::swegle::SwegleReport`]'s
+/// Which velocity history of a Swegle run is drawn ([`crate::studies::swegle::SwegleReport`]'s
 /// `history_full` columns).
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "kebab-case")]

@@ -3,16 +3,13 @@
 //! step [`crate::integrator::kdk_step`] — the same definitions the von Neumann engine
 //! linearises (SPEC §4).
 
-pub mod box_operator;
 pub mod diagnostics;
 pub mod output;
 pub mod rod;
 pub mod run1d;
 pub mod run2d;
 pub mod scene;
-pub mod swegle;
 pub mod thesis_wave;
-pub mod throughput;
 
 pub use run1d::Run1D;
 pub use run2d::{BoundaryDensity, Run, Run2D, Run3D};

@@ -6,7 +6,7 @@
 
 use crate::{progress, study};
 use anyhow::Result;
-use sphstab::art_stress::{ArtStressConfig, ArtStressReport};
+use sphstab::studies::art_stress::{ArtStressConfig, ArtStressReport};
 use sphstab::solver::BoundaryDensity;
 use std::path::{Path, PathBuf};
 
@@ -96,7 +96,7 @@ pub fn run(a: Args) -> Result<()> {
             from,
             a.plot.as_ref(),
             others,
-            sphstab::art_stress::figure_svg,
+            sphstab::studies::art_stress::figure_svg,
         );
     }
     let cfg = match &a.config {
@@ -107,7 +107,7 @@ pub fn run(a: Args) -> Result<()> {
                     flags.join(", ")
                 );
             }
-            study::read_config(p, sphstab::art_stress::parse_config)?
+            study::read_config(p, sphstab::studies::art_stress::parse_config)?
         }
         None => {
             let d = ArtStressConfig::quick();
@@ -161,25 +161,25 @@ pub fn run(a: Args) -> Result<()> {
             };
             let text = std::fs::read_to_string(p)
                 .map_err(|e| anyhow::anyhow!("{flag}: cannot read {p}: {e}"))?;
-            Some(sphstab::art_stress::comparison_from_pysph(p, &text)?)
+            Some(sphstab::studies::art_stress::comparison_from_pysph(p, &text)?)
         }
         None => None,
     };
     let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::art_stress::run(&cfg, compare.as_ref(), |d, t| {
+    let rep = sphstab::studies::art_stress::run(&cfg, compare.as_ref(), |d, t| {
         progress::set(&pb, d as f64 / t.max(1) as f64)
     })?;
     pb.finish_and_clear();
     if let Some(path) = &a.plot {
-        study::write_plot(sphstab::art_stress::figure_svg(&rep), path)?;
+        study::write_plot(sphstab::studies::art_stress::figure_svg(&rep), path)?;
     }
     if let Some(name) = &cfg.output {
-        study::write_figure_and_data(&rep, name, sphstab::art_stress::figure_svg)?;
+        study::write_figure_and_data(&rep, name, sphstab::studies::art_stress::figure_svg)?;
     }
     if a.json {
         println!("{}", serde_json::to_string(&rep)?);
     } else {
-        print!("{}", sphstab::art_stress::table(&rep));
+        print!("{}", sphstab::studies::art_stress::table(&rep));
     }
     Ok(())
 }

@@ -3,7 +3,7 @@
 
 use crate::progress;
 use anyhow::{Context, Result};
-use sphstab::atlas::{AtlasConfig, AtlasReport, Shard};
+use sphstab::studies::atlas::{AtlasConfig, AtlasReport, Shard};
 use std::path::PathBuf;
 
 /// Flags of `atlas`.
@@ -61,7 +61,7 @@ pub fn run(a: Args) -> Result<()> {
     };
     let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
     let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::atlas::run(&cfg, shard, |d, t| {
+    let rep = sphstab::studies::atlas::run(&cfg, shard, |d, t| {
         progress::set(&pb, d as f64 / t.max(1) as f64)
     })?;
     pb.finish_and_clear();
@@ -79,7 +79,7 @@ pub fn output(rep: &AtlasReport, out: Option<&PathBuf>, json: bool) -> Result<()
     if json {
         println!("{}", serde_json::to_string(rep)?);
     } else {
-        print!("{}", sphstab::atlas::summary(rep));
+        print!("{}", sphstab::studies::atlas::summary(rep));
         let what = match rep.shard {
             Some(s) => format!("shard {}/{}: ", s.index, s.count),
             None => String::new(),
@@ -92,7 +92,7 @@ pub fn output(rep: &AtlasReport, out: Option<&PathBuf>, json: bool) -> Result<()
             rep.runtime_s,
             rep.threads
         );
-        let terms = sphstab::atlas::lattice_sum_terms(rep);
+        let terms = sphstab::studies::atlas::lattice_sum_terms(rep);
         println!(
             "lattice-sum limit: {terms:.3e} Fourier terms (κ points × neighbours within the support, over the cells) at 1 ns each = {:.2} s of CPU",
             terms * 1e-9

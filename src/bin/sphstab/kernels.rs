@@ -1,9 +1,9 @@
 //! `sphstab kernels`: the kernel table, and with `--table` the kernel guide
-//! ([`sphstab::kernel_guide`]).
+//! ([`sphstab::studies::kernel_guide`]).
 
 use anyhow::{Result, bail};
 use serde::Serialize;
-use sphstab::kernel_guide::{DEFAULT_H_STEP, GuideConfig, kernel_guide, markdown};
+use sphstab::studies::kernel_guide::{DEFAULT_H_STEP, GuideConfig, kernel_guide, markdown};
 
 /// Flags of `kernels`.
 #[derive(clap::Args, Debug)]

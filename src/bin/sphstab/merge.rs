@@ -1,7 +1,7 @@
 //! `sphstab merge`: join the shards of an atlas computed with `atlas --shard i/n --out f`.
 
 use anyhow::{Context, Result};
-use sphstab::atlas::AtlasReport;
+use sphstab::studies::atlas::AtlasReport;
 use std::path::PathBuf;
 
 /// Flags of `merge`.
@@ -58,6 +58,6 @@ pub fn run(a: Args) -> Result<()> {
             })?;
         parts.push((name, r));
     }
-    let rep = sphstab::atlas::merge(&parts)?;
+    let rep = sphstab::studies::atlas::merge(&parts)?;
     crate::atlas::output(&rep, a.out.as_ref(), a.json)
 }

@@ -4,7 +4,7 @@
 use anyhow::{Context, Result};
 use sphstab::forms::FormKind;
 use sphstab::solver::BoundaryDensity;
-use sphstab::solver::swegle::{SwegleConfig, default_size, run_swegle};
+use sphstab::studies::swegle::{SwegleConfig, default_size, run_swegle};
 
 /// Flags of `swegle`.
 #[derive(clap::Args, Debug)]
@@ -286,7 +286,7 @@ pub fn run(a: Args) -> Result<()> {
 }
 
 /// Exit status 3 (via the error) after the report when the run diverged.
-fn diverged(r: &sphstab::solver::swegle::SwegleReport) -> Result<()> {
+fn diverged(r: &sphstab::studies::swegle::SwegleReport) -> Result<()> {
     match r.diverged {
         Some(d) => Err(sphstab::error::Error::Diverged {
             step: d.step,

@@ -3,7 +3,7 @@
 use anyhow::Result;
 use sphstab::error::Error;
 use sphstab::forms::{FormKind, ObjectiveRate};
-use sphstab::solver::throughput::{BlockMaterial, Domain, ThroughputConfig, run_throughput};
+use sphstab::studies::throughput::{BlockMaterial, Domain, ThroughputConfig, run_throughput};
 
 /// Flags of `throughput`.
 #[derive(clap::Args, Debug)]

@@ -142,10 +142,10 @@ impl PairingConfig {
 }
 
 /// Parses a study config; `file` names it in errors (unknown fields are rejected by name, as is
-/// an `output` that is not a plain .svg file name: [`crate::study`]).
+/// an `output` that is not a plain .svg file name: [`crate::studies::config`]).
 pub fn parse_config(file: &str, text: &str) -> Result<PairingConfig> {
-    let cfg: PairingConfig = crate::study::parse_json(file, text)?;
-    crate::study::check_output(file, cfg.output.as_deref())?;
+    let cfg: PairingConfig = crate::studies::config::parse_json(file, text)?;
+    crate::studies::config::check_output(file, cfg.output.as_deref())?;
     Ok(cfg)
 }
 

@@ -12,7 +12,7 @@
 //! caller's allocator ([`MemoryProbe`]): the peak of the bytes allocated while the block is
 //! built and run, above those allocated before, per particle.
 
-use super::run2d::{BoundaryDensity, Run, Run2D};
+use crate::solver::run2d::{BoundaryDensity, Run, Run2D};
 use crate::error::{Error, Result, check_range};
 use crate::forms::{
     ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model, ModelParams2D,

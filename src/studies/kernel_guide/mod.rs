@@ -4,12 +4,12 @@
 //!
 //! | column | code path |
 //! |---|---|
-//! | critical CFL c Δt_crit/h, `kdk`, σ̄ = 0 | the `tradeoff --cfl-table` cells ([`crate::tradeoff::cfl::cfl_cell`]: `timestep`'s bisection on the amplification matrices, [`CFL_POINTS`] κ points), through [`analyse`], which runs the same `IntegratorReport::of` |
-//! | phase and amplitude error per wavelength travelled at 10 and 20 points per wavelength, `kdk` at [`SAFETY`] × Δt_crit | [`crate::tradeoff::integrators::analyse`] (the trade-off study's `phase_error_10ppw`) |
+//! | critical CFL c Δt_crit/h, `kdk`, σ̄ = 0 | the `tradeoff --cfl-table` cells ([`crate::studies::tradeoff::cfl::cfl_cell`]: `timestep`'s bisection on the amplification matrices, [`CFL_POINTS`] κ points), through [`analyse`], which runs the same `IntegratorReport::of` |
+//! | phase and amplitude error per wavelength travelled at 10 and 20 points per wavelength, `kdk` at [`SAFETY`] × Δt_crit | [`crate::studies::tradeoff::integrators::analyse`] (the trade-off study's `phase_error_10ppw`) |
 //! | h/Δx stable in compression, 1D | [`Query1D`] (classical, `sph`, elastic bar) at σ̄ = [`COMPRESSION`]: growth over the κ grid (`query`) |
-//! | h/Δx without pairing / without any growth in compression, 2D | [`crate::pairing::zone_growth`] (the pairing study's zone scan, on the square lattice): classical, `sph`, hydro, σ̄ = [`COMPRESSION`] |
-//! | tensile onset | the trade-off study's tension scan and bisection ([`crate::tradeoff`]), 1D classical |
-//! | first κh with W* < 0 in 1D, 2D, 3D | [`crate::pairing::wstar::sign_criterion_with`] (the pairing study's W* scan, step [`WSTAR_K_STEP`]) |
+//! | h/Δx without pairing / without any growth in compression, 2D | [`crate::studies::pairing::zone_growth`] (the pairing study's zone scan, on the square lattice): classical, `sph`, hydro, σ̄ = [`COMPRESSION`] |
+//! | tensile onset | the trade-off study's tension scan and bisection ([`crate::studies::tradeoff`]), 1D classical |
+//! | first κh with W* < 0 in 1D, 2D, 3D | [`crate::studies::pairing::wstar::sign_criterion_with`] (the pairing study's W* scan, step [`WSTAR_K_STEP`]) |
 //!
 //! Conventions as everywhere (crate docs): h/Δx in the kernel's own convention, R = ζh, time
 //! steps in Δx/c, σ̄ = σ/C positive in tension, growth when γ > [`GROWTH_TOL`] c/Δx. The
@@ -22,10 +22,10 @@ use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::integrator::Integrator;
 use crate::kernel::{self, Kernel};
-use crate::pairing::wstar::{self, WStarSign};
+use crate::studies::pairing::wstar::{self, WStarSign};
 use crate::shape::ShapeFamily;
-use crate::tradeoff::cfl::CFL_POINTS;
-use crate::tradeoff::integrators::{IntegratorRow, analyse};
+use crate::studies::tradeoff::cfl::CFL_POINTS;
+use crate::studies::tradeoff::integrators::{IntegratorRow, analyse};
 use crate::vonneumann::classify::GROWTH_TOL;
 use crate::vonneumann::linearise::Linearisation;
 use rayon::prelude::*;
@@ -251,7 +251,7 @@ pub struct KernelGuide {
 }
 
 /// The time-step cell of `form` at `h`: [`analyse`] of the trade-off study at [`CFL_POINTS`] κ
-/// points, whose critical Δt is the `timestep` code path of [`crate::tradeoff::cfl::cfl_cell`]
+/// points, whose critical Δt is the `timestep` code path of [`crate::studies::tradeoff::cfl::cfl_cell`]
 /// (`IntegratorReport::of` on the same linearisation and κ grid; CFL = Δt_crit/h as there —
 /// `tests/kernel_guide.rs` checks the two agree bit for bit).
 pub fn time_step_cell(form: FormKind, k: &'static dyn Kernel, h: f64) -> Result<TimeStepCell> {
@@ -333,7 +333,7 @@ pub fn compression_scan(k: &'static dyn Kernel, dim: u8, h: &[f64]) -> Result<Co
                 let g = grows_1d(k, x, COMPRESSION)?;
                 Ok((!g, !g))
             } else {
-                let z = crate::pairing::zone_growth(&query_2d(k, x, COMPRESSION))?;
+                let z = crate::studies::pairing::zone_growth(&query_2d(k, x, COMPRESSION))?;
                 Ok((z.max_growth_rate == 0.0, z.pairing_growth_rate == 0.0))
             }
         })
@@ -371,7 +371,7 @@ pub fn tensile_onset(k: &'static dyn Kernel, h: f64) -> Result<TensileOnset> {
         });
     }
     let (lo, hi) =
-        crate::tradeoff::tension_limit(TENSION_CAP, ONSET_BISECTIONS, TENSION_FLOOR, grows)?;
+        crate::studies::tradeoff::tension_limit(TENSION_CAP, ONSET_BISECTIONS, TENSION_FLOOR, grows)?;
     Ok(match hi {
         Some(s) => TensileOnset {
             h_over_dx: h,

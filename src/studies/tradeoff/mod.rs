@@ -28,7 +28,7 @@ use crate::forms::{FormKind, Model1D, Model2D};
 use crate::integrator::{DEFAULT_EULER_EVERY, Integrator};
 use crate::kernel::{self, Kernel};
 use crate::lattice::Lattice2D;
-use crate::solver::throughput::MemoryProbe;
+use crate::studies::throughput::MemoryProbe;
 use crate::solver::{BoundaryDensity, Run1D, Run2D};
 use crate::vonneumann::amplification::{critical_dt, critical_dt_bisection};
 use crate::vonneumann::classify::GROWTH_TOL;
@@ -220,7 +220,7 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
             range: "must be an integer in [1, 64]".into(),
         });
     }
-    crate::study::check_output("tradeoff config", cfg.output.as_deref())?;
+    crate::studies::config::check_output("tradeoff config", cfg.output.as_deref())?;
     if cfg.repeats == 0 || cfg.repeats > 100 {
         return Err(Error::OutOfRange {
             name: "--repeats",
@@ -952,7 +952,7 @@ pub fn figure_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
     }
 }
 
-/// Parses a study config; errors name the file and the field ([`crate::study`]).
+/// Parses a study config; errors name the file and the field ([`crate::studies::config`]).
 pub fn parse_config(file: &str, text: &str) -> Result<TradeoffConfig> {
-    crate::study::parse_json(file, text)
+    crate::studies::config::parse_json(file, text)
 }

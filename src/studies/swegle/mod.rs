@@ -7,9 +7,9 @@
 //! of the same finite particle set (dense, up to [`MAX_DENSE_BOX_DOFS`] free degrees of
 //! freedom) or of its admitted standing modes, and with the infinite lattice.
 
-use super::box_operator::{MAX_DENSE_DOFS, box_growth};
-use super::diagnostics::{GrowthFit, growth_fit};
-use super::run2d::{BoundaryDensity, Run};
+use crate::studies::box_operator::{MAX_DENSE_DOFS, box_growth};
+use crate::solver::diagnostics::{GrowthFit, growth_fit};
+use crate::solver::run2d::{BoundaryDensity, Run};
 use crate::analysis::box_prediction;
 use crate::error::{Error, Result, check_range};
 use crate::forms::{FormKind, Material2D, Model, ModelParams2D, State, State2D, State3D};
@@ -338,8 +338,8 @@ impl FinalState {
     /// Legacy VTK of the particles ([`crate::solver::output::vtk_nd`]; 3D points in both cases).
     pub fn vtk(&self, title: &str) -> String {
         match self {
-            FinalState::Two(z) => super::output::vtk_nd(title, z),
-            FinalState::Three(z) => super::output::vtk_nd(title, z),
+            FinalState::Two(z) => crate::solver::output::vtk_nd(title, z),
+            FinalState::Three(z) => crate::solver::output::vtk_nd(title, z),
         }
     }
 }

@@ -2,7 +2,7 @@
 //! (R = −ε σ⁺/ρ², force Σ m (R_I + R_J) fⁿ ∇W, f = W(r)/W(Δx)) slows the Swegle growth of the
 //! classical form in a zero-shear material under tension, predicted by the engine on the
 //! infinite lattice and for the finite Swegle box, and measured by Swegle runs — all three from
-//! the one rate function of [`crate::forms`] ([`crate::solver::swegle`]).
+//! the one rate function of [`crate::forms`] ([`crate::studies::swegle`]).
 //!
 //! For every h/Δx and density ratio f of the config, the growth rate is computed on a grid of ε
 //! (infinite lattice: the fastest mode over the zone with its polarisation; box: the dense
@@ -18,7 +18,7 @@ use crate::plot::style::{
     text_width, wrap,
 };
 use crate::solver::BoundaryDensity;
-use crate::solver::swegle::{SwegleConfig, predict_swegle, run_swegle};
+use crate::studies::swegle::{SwegleConfig, predict_swegle, run_swegle};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -169,7 +169,7 @@ impl ArtStressConfig {
             true,
         )?;
         if let Some(o) = &self.output {
-            crate::study::check_output("art-stress config", Some(o))?;
+            crate::studies::config::check_output("art-stress config", Some(o))?;
         }
         Ok(())
     }
@@ -188,7 +188,7 @@ impl ArtStressConfig {
 
 /// Parses a config (errors name the file and the field) and validates it.
 pub fn parse_config(file: &str, text: &str) -> Result<ArtStressConfig> {
-    let c: ArtStressConfig = crate::study::parse_json(file, text)?;
+    let c: ArtStressConfig = crate::studies::config::parse_json(file, text)?;
     c.validate().map_err(|e| Error::Config {
         file: file.into(),
         msg: e.to_string(),
