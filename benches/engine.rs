@@ -7,14 +7,14 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphstab::analysis::{MaterialSpec, Query2D, Query3D, growth_map, query_nd, query2d};
 use sphstab::analysis::{Query1D, dispersion};
-use sphstab::studies::atlas::AtlasConfig;
 use sphstab::forms::{FormKind, Material2D, Model2D, ModelParams2D};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::studies::throughput::{ThroughputConfig, build_block};
 use sphstab::solver::{BoundaryDensity, Run2D};
+use sphstab::studies::atlas::AtlasConfig;
+use sphstab::studies::throughput::{ThroughputConfig, build_block};
 use sphstab::vonneumann::linearise::PhaseTable;
 
 fn benches(c: &mut Criterion) {

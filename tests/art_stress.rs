@@ -6,10 +6,10 @@
 mod common;
 
 use common::*;
+use sphstab::kernel::Kernel;
 use sphstab::studies::art_stress::{
     ArtStressConfig, ArtStressReport, comparison_from_pysph, figure_svg, parse_config,
 };
-use sphstab::kernel::Kernel;
 use sphstab::studies::swegle::{predict_swegle, run_swegle};
 use std::f64::consts::PI;
 use std::path::Path;

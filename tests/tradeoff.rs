@@ -3,7 +3,9 @@
 
 mod common;
 
-use sphstab::studies::tradeoff::{TradeoffConfig, TradeoffReport, figure_svg, grid, parse_config, run};
+use sphstab::studies::tradeoff::{
+    TradeoffConfig, TradeoffReport, figure_svg, grid, parse_config, run,
+};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -359,7 +361,8 @@ fn integrator_rows_match_closed_forms_on_the_oscillator() {
             // the 10-ppw mode is within the tolerance of the worst mode over T_REF = its period
             // (κΔx = 2π/10 lies between two grid points: 1% slack)
             assert!(
-                r.amplitude_error_10ppw.unwrap() <= 1.01 * sphstab::studies::tradeoff::integrators::WEAK_TOL,
+                r.amplitude_error_10ppw.unwrap()
+                    <= 1.01 * sphstab::studies::tradeoff::integrators::WEAK_TOL,
                 "{r:?}"
             );
         }

@@ -6,8 +6,8 @@
 
 use crate::{progress, study};
 use anyhow::Result;
-use sphstab::studies::art_stress::{ArtStressConfig, ArtStressReport};
 use sphstab::solver::BoundaryDensity;
+use sphstab::studies::art_stress::{ArtStressConfig, ArtStressReport};
 use std::path::{Path, PathBuf};
 
 /// Flags of `art-stress`.
@@ -161,7 +161,9 @@ pub fn run(a: Args) -> Result<()> {
             };
             let text = std::fs::read_to_string(p)
                 .map_err(|e| anyhow::anyhow!("{flag}: cannot read {p}: {e}"))?;
-            Some(sphstab::studies::art_stress::comparison_from_pysph(p, &text)?)
+            Some(sphstab::studies::art_stress::comparison_from_pysph(
+                p, &text,
+            )?)
         }
         None => None,
     };

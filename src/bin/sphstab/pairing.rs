@@ -142,7 +142,9 @@ pub fn run(a: Args) -> Result<()> {
         crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
     }
     let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::studies::pairing::run(&cfg, |d, t| progress::set(&pb, d as f64 / t.max(1) as f64))?;
+    let rep = sphstab::studies::pairing::run(&cfg, |d, t| {
+        progress::set(&pb, d as f64 / t.max(1) as f64)
+    })?;
     pb.finish_and_clear();
     if let Some(path) = &a.plot {
         study::write_plot(sphstab::studies::pairing::figure_svg(&rep), path)?;

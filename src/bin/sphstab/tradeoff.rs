@@ -117,10 +117,15 @@ pub fn run(a: Args) -> Result<()> {
     })?;
     pb.finish_and_clear();
     if let Some(path) = &a.plot {
-        study::write_plot(sphstab::studies::tradeoff::figure_svg(&rep, &title(&rep)), path)?;
+        study::write_plot(
+            sphstab::studies::tradeoff::figure_svg(&rep, &title(&rep)),
+            path,
+        )?;
     }
     if let Some(name) = config_out {
-        study::write_figure_and_data(&rep, &name, |r| sphstab::studies::tradeoff::figure_svg(r, &title(r)))?;
+        study::write_figure_and_data(&rep, &name, |r| {
+            sphstab::studies::tradeoff::figure_svg(r, &title(r))
+        })?;
     }
     if a.json {
         println!("{}", serde_json::to_string(&rep)?);

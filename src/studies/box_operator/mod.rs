@@ -4,10 +4,10 @@
 //! `D = −(J_vx + J_vq J_qv)` (D·N_free × D·N_free in D dimensions), and its eigenvalues ω²; the growth rate is
 //! max Re sqrt(−ω²). Dense: affordable up to a few thousand free degrees of freedom.
 
-use crate::solver::run2d::{BoundaryDensity, Run};
 use crate::error::{Error, Result};
 use crate::forms::{Comp, FieldKind, RateWorkspace, State};
 use crate::scalar::{Dual, Scalar as _};
+use crate::solver::run2d::{BoundaryDensity, Run};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 

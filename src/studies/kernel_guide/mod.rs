@@ -22,8 +22,8 @@ use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::integrator::Integrator;
 use crate::kernel::{self, Kernel};
-use crate::studies::pairing::wstar::{self, WStarSign};
 use crate::shape::ShapeFamily;
+use crate::studies::pairing::wstar::{self, WStarSign};
 use crate::studies::tradeoff::cfl::CFL_POINTS;
 use crate::studies::tradeoff::integrators::{IntegratorRow, analyse};
 use crate::vonneumann::classify::GROWTH_TOL;
@@ -370,8 +370,12 @@ pub fn tensile_onset(k: &'static dyn Kernel, h: f64) -> Result<TensileOnset> {
             growth_at_reference,
         });
     }
-    let (lo, hi) =
-        crate::studies::tradeoff::tension_limit(TENSION_CAP, ONSET_BISECTIONS, TENSION_FLOOR, grows)?;
+    let (lo, hi) = crate::studies::tradeoff::tension_limit(
+        TENSION_CAP,
+        ONSET_BISECTIONS,
+        TENSION_FLOOR,
+        grows,
+    )?;
     Ok(match hi {
         Some(s) => TensileOnset {
             h_over_dx: h,

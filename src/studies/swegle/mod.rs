@@ -7,9 +7,6 @@
 //! of the same finite particle set (dense, up to [`MAX_DENSE_BOX_DOFS`] free degrees of
 //! freedom) or of its admitted standing modes, and with the infinite lattice.
 
-use crate::studies::box_operator::{MAX_DENSE_DOFS, box_growth};
-use crate::solver::diagnostics::{GrowthFit, growth_fit};
-use crate::solver::run2d::{BoundaryDensity, Run};
 use crate::analysis::box_prediction;
 use crate::error::{Error, Result, check_range};
 use crate::forms::{FormKind, Material2D, Model, ModelParams2D, State, State2D, State3D};
@@ -17,6 +14,9 @@ use crate::kernel::Kernel;
 use crate::lattice::{Lattice, LatticeKind};
 use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
+use crate::solver::diagnostics::{GrowthFit, growth_fit};
+use crate::solver::run2d::{BoundaryDensity, Run};
+use crate::studies::box_operator::{MAX_DENSE_DOFS, box_growth};
 use crate::vonneumann::linearise::Bloch;
 use num_complex::Complex64;
 use serde::Serialize;

@@ -12,7 +12,6 @@
 //! caller's allocator ([`MemoryProbe`]): the peak of the bytes allocated while the block is
 //! built and run, above those allocated before, per particle.
 
-use crate::solver::run2d::{BoundaryDensity, Run, Run2D};
 use crate::error::{Error, Result, check_range};
 use crate::forms::{
     ArtificialStress, ArtificialViscosity, FormKind, Material2D, Model, ModelParams2D,
@@ -22,6 +21,7 @@ use crate::kernel::Kernel;
 use crate::neighbours::CellList;
 use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
+use crate::solver::run2d::{BoundaryDensity, Run, Run2D};
 use serde::Serialize;
 use std::time::Instant;
 
