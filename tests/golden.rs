@@ -184,7 +184,7 @@ fn tradeoff_rows() -> Value {
         repeats: 1,
         ..TradeoffConfig::default()
     };
-    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    let rep = run(&cfg, None, ()).unwrap();
     let rows: Vec<Value> = rep
         .rows
         .iter()

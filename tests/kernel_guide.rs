@@ -238,12 +238,12 @@ fn compression_follows_the_transform_sign() {
         let w_neg = sign_criterion_with(kern, 1, WSTAR_K_STEP)
             .first_negative_k
             .is_some();
-        let c = compression_scan(kern, 1, &h).unwrap();
+        let c = compression_scan(kern, 1, &h, &Default::default()).unwrap();
         let whole = c.scanned.unwrap();
         let all_stable = c.stable == vec![whole];
         assert_eq!(all_stable, !w_neg, "{}: {:?}", kern.name(), c.stable);
     }
-    let c = compression_scan(k("wendland-c2"), 2, &h).unwrap();
+    let c = compression_scan(k("wendland-c2"), 2, &h, &Default::default()).unwrap();
     assert_eq!(c.no_pairing, vec![c.scanned.unwrap()]);
 }
 

@@ -209,7 +209,7 @@ fn study_rows_agree_with_the_closed_form_dynamical_matrix() {
     for name in ["m4", "wendland-c2"] {
         let k = kernel::by_name(name).unwrap();
         for h in [1.0, 1.2] {
-            let row = evaluate_row(k, ("sc", sc), h, s, 8, None).unwrap();
+            let row = evaluate_row(k, ("sc", sc), h, s, 8, None, &Default::default()).unwrap();
             assert!(row.skipped.is_none());
             let (all, long) = closed_form_scan(k, &sc, h, s, 8);
             let (got, got_long) = (

@@ -25,7 +25,7 @@ fn tradeoff_numbers_match_closed_forms_for_m4_at_h_equal_dx() {
         repeats: 1,
         ..Default::default()
     };
-    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    let rep = run(&cfg, None, ()).unwrap();
     let rows: Vec<_> = rep.rows.iter().filter(|r| r.h_over_dx == 1.0).collect();
     assert_eq!(rows.len(), 2);
     for r in rows {
@@ -86,7 +86,7 @@ fn least_squares_runs_with_its_consistent_mass() {
         repeats: 1,
         ..Default::default()
     };
-    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    let rep = run(&cfg, None, ()).unwrap();
     let r = &rep.rows[0];
     assert!(r.error.is_none(), "{r:?}");
     assert!(r.wave_l2_error.unwrap().is_finite());
@@ -257,7 +257,7 @@ fn integrator_rows_match_closed_forms_on_the_oscillator() {
         safety: 0.8,
         ..Default::default()
     };
-    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    let rep = run(&cfg, None, ()).unwrap();
     assert_eq!(rep.integrator_rows.len(), 3 * 12);
     let q = Query1D::new(
         FormKind::by_name("total-lagrangian").unwrap(),

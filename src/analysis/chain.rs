@@ -2,13 +2,12 @@
 //! (`dispersion`), and its critical time step (`timestep`), over κΔx ∈ (0, π] of the chain
 //! engine ([`Linearisation`]; every 1D form).
 
-use super::common::{
-    IntegratorReport, Setup, check_common, check_count, density_diffusion, linearised_av,
-};
+use super::common::{IntegratorReport, Setup, density_diffusion, linearised_av};
 use crate::error::{Error, Result, check_range};
 use crate::forms::{DiffusionForm, FormKind, ModelParams};
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
+use crate::params::{check_common, check_count};
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::vonneumann::amplification::{
     AMPLIFICATION_TOL, critical_dt_given, leapfrog_limit, spectral_radius_with, step_stability,

@@ -146,7 +146,7 @@ impl FormKind {
                 "--shape {} is not allowed with --form local: the local form needs a first-order \
                  corrected gradient (allowed: corrected, mls)",
                 shape.name()
-            )));
+            ).into()));
         }
         Ok(())
     }
@@ -232,10 +232,9 @@ impl Model1D {
                 stress_points::rate(self, z, out, ws)
             }
             FormKind::LeastSquares => least_squares::rate(self, z, out),
-            f => Err(Error::Incompatible(format!(
-                "--form {}: no 1D model was built",
-                f.name()
-            ))),
+            f => Err(Error::Incompatible(
+                format!("--form {}: no 1D model was built", f.name()).into(),
+            )),
         }
     }
 }

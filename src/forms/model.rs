@@ -309,13 +309,13 @@ impl Model1D {
             return Err(crate::error::Error::Incompatible(format!(
                 "--av-alpha (artificial viscosity) is available for classical, nonlocal, local, lnl and cll, not --form {}",
                 p.form.name()
-            )));
+            ).into()));
         }
         if p.diffusion.is_some() && !p.form.in_2d() {
             return Err(crate::error::Error::Incompatible(format!(
                 "--delta (density diffusion) is available for classical, nonlocal, local, lnl and cll, not --form {}",
                 p.form.name()
-            )));
+            ).into()));
         }
         if p.form.in_2d() {
             let vols = model.vol_ref.clone();
@@ -355,11 +355,14 @@ impl Model1D {
     /// D = 1 model that evaluates the forms of every dimension.
     pub fn set_masses(&mut self, mass: Vec<f64>) -> Result<()> {
         if mass.len() != self.x_ref.len() {
-            return Err(crate::error::Error::Incompatible(format!(
-                "masses: {} given for {} particles",
-                mass.len(),
-                self.x_ref.len()
-            )));
+            return Err(crate::error::Error::Incompatible(
+                format!(
+                    "masses: {} given for {} particles",
+                    mass.len(),
+                    self.x_ref.len()
+                )
+                .into(),
+            ));
         }
         if let Some(nd) = &mut self.nd {
             nd.mass.clone_from(&mass);

@@ -147,9 +147,9 @@ impl DiffusionForm {
             "molteni-colagrossi" => Ok(Self::MolteniColagrossi),
             "antuono" => Ok(Self::Antuono),
             _ => Err(Error::UnknownName {
-                what: "density-diffusion form",
+                what: "density-diffusion form".into(),
                 given: name.to_string(),
-                valid: DIFFUSION_FORM_NAMES.join(", "),
+                valid: DIFFUSION_FORM_NAMES.join(", ").into(),
             }),
         }
     }
@@ -167,9 +167,10 @@ impl DensityDiffusion {
     pub fn check(&self, name: &'static str, form: FormKind) -> Result<()> {
         crate::error::check_range(name, self.delta, DELTA_RANGE.0, DELTA_RANGE.1, true, true)?;
         if form == FormKind::TotalLagrangian {
-            return Err(Error::Incompatible(format!(
-                "{name} (density diffusion) does not apply to --form total-lagrangian: it has no density state"
-            )));
+            return Err(Error::Incompatible(
+                crate::error::field(name)
+                    + " (density diffusion) does not apply to --form total-lagrangian: it has no density state",
+            ));
         }
         Ok(())
     }
@@ -531,7 +532,7 @@ impl<const D: usize> Model<D> {
             return Err(Error::Incompatible(format!(
                 "--form {} is not available with --dim {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)",
                 p.form.name()
-            )));
+            ).into()));
         }
         p.form.check_shape(p.shape)?;
         if let Material::NeoHookean { .. } = p.material {
@@ -542,7 +543,7 @@ impl<const D: usize> Model<D> {
             }
             if sigma0 != 0.0 {
                 return Err(Error::OutOfRange {
-                    name: "--stress",
+                    field: "--stress",
                     value: sigma0,
                     range: "neo-hookean: the reference state is unstressed, σ̄ must be 0".into(),
                 });

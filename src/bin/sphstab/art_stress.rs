@@ -6,6 +6,7 @@
 
 use crate::{progress, study};
 use anyhow::Result;
+use sphstab::budget::Budget;
 use sphstab::solver::BoundaryDensity;
 use sphstab::studies::art_stress::{ArtStressConfig, ArtStressReport};
 use std::path::{Path, PathBuf};
@@ -85,7 +86,7 @@ impl Args {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
@@ -115,7 +116,7 @@ pub fn run(a: Args) -> Result<()> {
                 Some(n) if n.fract() == 0.0 && (1.0..=12.0).contains(&n) => n as i32,
                 Some(n) => {
                     return Err(sphstab::error::Error::OutOfRange {
-                        name: "--art-n",
+                        field: "art_n",
                         value: n,
                         range: "an integer in [1, 12]".into(),
                     }
@@ -148,7 +149,11 @@ pub fn run(a: Args) -> Result<()> {
             }
         }
     };
-    cfg.validate_named(a.config.is_none())?;
+    let cfg = ArtStressConfig {
+        budget: *budget,
+        ..cfg
+    };
+    cfg.validate()?;
     if let Some(name) = &cfg.output {
         crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
     }
@@ -167,11 +172,9 @@ pub fn run(a: Args) -> Result<()> {
         }
         None => None,
     };
-    let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::studies::art_stress::run(&cfg, compare.as_ref(), |d, t| {
-        progress::set(&pb, d as f64 / t.max(1) as f64)
-    })?;
-    pb.finish_and_clear();
+    let pb = progress::Bar::new(progress::wanted(a.json));
+    let rep = sphstab::studies::art_stress::run(&cfg, compare.as_ref(), pb.clone())?;
+    pb.finish();
     if let Some(path) = &a.plot {
         study::write_plot(sphstab::studies::art_stress::figure_svg(&rep), path)?;
     }

@@ -3,6 +3,7 @@
 
 use crate::progress;
 use anyhow::{Context, Result};
+use sphstab::budget::Budget;
 use sphstab::studies::atlas::{AtlasConfig, AtlasReport, Shard};
 use std::path::PathBuf;
 
@@ -42,7 +43,7 @@ pub struct Args {
     json: bool,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.out {
         crate::common::check_writable("--out", p)?;
     }
@@ -58,13 +59,12 @@ pub fn run(a: Args) -> Result<()> {
         stress_points: a.stress_points,
         stress_range: (a.stress_min, a.stress_max),
         kappas: a.kappas,
+        budget: *budget,
     };
     let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
-    let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::studies::atlas::run(&cfg, shard, |d, t| {
-        progress::set(&pb, d as f64 / t.max(1) as f64)
-    })?;
-    pb.finish_and_clear();
+    let pb = progress::Bar::new(progress::wanted(a.json));
+    let rep = sphstab::studies::atlas::run(&cfg, shard, pb.clone())?;
+    pb.finish();
     output(&rep, a.out.as_ref(), a.json)
 }
 

@@ -5,6 +5,7 @@
 
 use crate::{progress, study};
 use anyhow::Result;
+use sphstab::budget::Budget;
 use sphstab::studies::pairing::{PairingConfig, PairingReport};
 use std::path::{Path, PathBuf};
 
@@ -81,7 +82,7 @@ fn all_or(v: &[String]) -> Vec<String> {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
@@ -136,16 +137,18 @@ pub fn run(a: Args) -> Result<()> {
             )
         }
     };
+    let cfg = PairingConfig {
+        budget: *budget,
+        ..cfg
+    };
     // validate everything before the first row is computed
     sphstab::studies::pairing::plan(&cfg)?;
     if let Some(name) = &config_out {
         crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
     }
-    let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::studies::pairing::run(&cfg, |d, t| {
-        progress::set(&pb, d as f64 / t.max(1) as f64)
-    })?;
-    pb.finish_and_clear();
+    let pb = progress::Bar::new(progress::wanted(a.json));
+    let rep = sphstab::studies::pairing::run(&cfg, pb.clone())?;
+    pb.finish();
     if let Some(path) = &a.plot {
         study::write_plot(sphstab::studies::pairing::figure_svg(&rep), path)?;
     }

@@ -3,6 +3,7 @@
 
 use crate::{progress, study};
 use anyhow::Result;
+use sphstab::budget::Budget;
 use sphstab::studies::tradeoff::{TradeoffConfig, TradeoffReport};
 use std::path::PathBuf;
 
@@ -69,7 +70,7 @@ pub fn title(rep: &TradeoffReport) -> String {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
@@ -109,13 +110,15 @@ pub fn run(a: Args) -> Result<()> {
             None,
         ),
     };
+    let cfg = TradeoffConfig {
+        budget: *budget,
+        ..cfg
+    };
     let total = sphstab::studies::tradeoff::grid(&cfg)?.len()
         * (1 + sphstab::studies::tradeoff::integrator_list(&cfg)?.len());
-    let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::studies::tradeoff::run(&cfg, Some(&crate::alloc::Probe), |d, t| {
-        progress::set(&pb, d as f64 / t.max(1) as f64)
-    })?;
-    pb.finish_and_clear();
+    let pb = progress::Bar::new(progress::wanted(a.json));
+    let rep = sphstab::studies::tradeoff::run(&cfg, Some(&crate::alloc::Probe), pb.clone())?;
+    pb.finish();
     if let Some(path) = &a.plot {
         study::write_plot(
             sphstab::studies::tradeoff::figure_svg(&rep, &title(&rep)),

@@ -1,7 +1,8 @@
 //! The artificial-stress study's config (`analysis/art_stress.json` or the flags of
 //! `sphstab art-stress`), checked field by field.
 
-use crate::error::{Error, Result, check_range};
+use crate::budget::Budget;
+use crate::error::{Error, Result, check_range, field};
 use crate::forms::FormKind;
 use crate::solver::BoundaryDensity;
 use crate::studies::swegle::SwegleConfig;
@@ -45,6 +46,9 @@ pub struct ArtStressConfig {
     /// What the figure shows (kept with the config and the data).
     #[serde(default)]
     pub note: String,
+    /// The budget the predictions and runs must stay within (not read from the file).
+    #[serde(skip)]
+    pub budget: Budget,
 }
 
 fn default_form() -> String {
@@ -79,80 +83,52 @@ impl ArtStressConfig {
             compare: None,
             output: None,
             note: String::new(),
+            budget: Budget::default(),
         }
     }
 
-    /// Checks every field; errors name the config field.
+    /// Checks every field; errors name the field.
     pub fn validate(&self) -> Result<()> {
-        self.validate_named(false)
-    }
-
-    /// Checks every field; errors name the command-line flag (`cli`) or the config field.
-    pub fn validate_named(&self, cli: bool) -> Result<()> {
-        let name = |field: &'static str, flag: &'static str| if cli { flag } else { field };
         let form = FormKind::by_name(&self.form)?;
         if !matches!(form, FormKind::Classical | FormKind::Cll) {
-            return Err(Error::Incompatible(format!(
-                "form {} has no artificial stress (allowed: classical, cll)",
-                self.form
-            )));
+            return Err(Error::Incompatible(
+                field("form")
+                    + format!(
+                        " {} has no artificial stress (allowed: classical, cll)",
+                        self.form
+                    ),
+            ));
         }
         crate::kernel::by_name(&self.kernel)?;
-        let count = |name: &'static str, n: usize, lo: usize, hi: usize| {
+        let count = |field: &'static str, n: usize, lo: usize, hi: usize| {
             if n < lo || n > hi {
                 Err(Error::OutOfRange {
-                    name,
+                    field,
                     value: n as f64,
-                    range: format!("{lo} to {hi} values"),
+                    range: format!("{lo} to {hi} values").into(),
                 })
             } else {
                 Ok(())
             }
         };
-        count(name("h", "--h"), self.h.len(), 1, 4)?;
-        count(
-            name("density_ratio", "--density-ratio"),
-            self.density_ratio.len(),
-            1,
-            4,
-        )?;
-        count(name("eps", "--eps"), self.eps.len(), 1, 200)?;
-        count(name("runs", "--runs"), self.runs.len(), 0, 40)?;
+        count("h", self.h.len(), 1, 4)?;
+        count("density_ratio", self.density_ratio.len(), 1, 4)?;
+        count("eps", self.eps.len(), 1, 200)?;
+        count("runs", self.runs.len(), 0, 40)?;
         for &h in &self.h {
-            check_range(name("h", "--h"), h, 0.8, 6.0, true, true)?;
+            check_range("h", h, 0.8, 6.0, true, true)?;
         }
         for &f in &self.density_ratio {
-            check_range(
-                name("density_ratio", "--density-ratio"),
-                f,
-                0.5,
-                1.5,
-                true,
-                true,
-            )?;
+            check_range("density_ratio", f, 0.5, 1.5, true, true)?;
         }
         for &e in &self.eps {
-            check_range(name("eps", "--eps"), e, 0.0, 10.0, true, true)?;
+            check_range("eps", e, 0.0, 10.0, true, true)?;
         }
         for &e in &self.runs {
-            check_range(name("runs", "--runs"), e, 0.0, 10.0, true, true)?;
+            check_range("runs", e, 0.0, 10.0, true, true)?;
         }
-        check_range(
-            name("art_n", "--art-n"),
-            self.art_n as f64,
-            1.0,
-            12.0,
-            true,
-            true,
-        )?;
-        check_range(
-            name("size", "--size"),
-            self.size as f64,
-            9.0,
-            81.0,
-            true,
-            true,
-        )?;
+        check_range("art_n", self.art_n as f64, 1.0, 12.0, true, true)?;
+        check_range("size", self.size as f64, 9.0, 81.0, true, true)?;
         if let Some(o) = &self.output {
             crate::studies::config::check_output("art-stress config", Some(o))?;
         }
@@ -163,6 +139,7 @@ impl ArtStressConfig {
     pub fn swegle(&self, h: f64, f: f64, eps: f64) -> Result<SwegleConfig> {
         let form = FormKind::by_name(&self.form)?;
         let mut c = SwegleConfig::new(form, crate::kernel::by_name(&self.kernel)?, h, f);
+        c.budget = self.budget;
         c.size = self.size;
         c.boundary = self.boundary_density;
         c.art_stress = (eps > 0.0).then_some((eps, self.art_n));

@@ -4,18 +4,19 @@
 use super::config::ArtStressConfig;
 use super::report::{ArtStressReport, Case, ComparePoint, Comparison, Point, RunPoint};
 use crate::error::{Error, Result};
+use crate::progress::{Counter, Progress};
 use crate::studies::swegle::{predict_swegle, run_swegle};
 use rayon::prelude::*;
 
-/// Runs the study; `progress(done, total)` after every prediction and run.
+/// Runs the study, telling `progress` the fraction of predictions and runs done.
 pub fn run(
     cfg: &ArtStressConfig,
     compare: Option<&Comparison>,
-    mut progress: impl FnMut(usize, usize),
+    progress: impl Progress,
 ) -> Result<ArtStressReport> {
     cfg.validate()?;
     let total = cfg.h.len() * cfg.density_ratio.len() * (cfg.eps.len() + cfg.runs.len());
-    let mut done = 0;
+    let done = Counter::new(&progress, total, 1);
     let mut cases = Vec::new();
     for &h in &cfg.h {
         for &f in &cfg.density_ratio {
@@ -34,11 +35,10 @@ pub fn run(
                     })
                 })
                 .collect::<Result<Vec<Point>>>()?;
-            done += points.len();
-            progress(done, total);
+            done.add(points.len())?;
             let mut runs = Vec::with_capacity(cfg.runs.len());
             for &eps in &cfg.runs {
-                let r = run_swegle(&cfg.swegle(h, f, eps)?, |_| {})?;
+                let r = run_swegle(&cfg.swegle(h, f, eps)?, ())?;
                 runs.push(RunPoint {
                     eps,
                     measured: r.measured_growth_rate,
@@ -47,8 +47,7 @@ pub fn run(
                     dominant_kappa: r.dominant_kappa,
                     steps: r.steps,
                 });
-                done += 1;
-                progress(done, total);
+                done.add(1)?;
             }
             let argmin = |g: &dyn Fn(&Point) -> f64| {
                 points

@@ -1,7 +1,8 @@
 //! The atlas's config (the flags of `sphstab atlas`): forms, kernels, the h/Δx × σ̄ grid, the κ
 //! points and the shard, checked field by field, and the list of cells it gives.
 
-use crate::error::{Error, Result};
+use crate::budget::{Budget, fmt_count};
+use crate::error::{Error, Result, field, fields};
 use crate::forms::FormKind;
 use crate::kernel::{self, Kernel};
 use serde::{Deserialize, Serialize};
@@ -22,6 +23,9 @@ pub struct AtlasConfig {
     pub stress_range: (f64, f64),
     /// κΔx points in (0, π].
     pub kappas: usize,
+    /// The budget the sweep must stay within (not part of the report).
+    #[serde(skip)]
+    pub budget: Budget,
 }
 
 impl Default for AtlasConfig {
@@ -33,6 +37,7 @@ impl Default for AtlasConfig {
             stress_points: 64,
             stress_range: (-0.5, 0.5),
             kappas: 512,
+            budget: Budget::default(),
         }
     }
 }
@@ -50,9 +55,10 @@ impl Shard {
     /// Parses `i/n` (0 ≤ i < n ≤ 100000).
     pub fn parse(s: &str) -> Result<Self> {
         let bad = || {
-            Error::Incompatible(format!(
-                "--shard '{s}': must be i/n with integers 0 ≤ i < n ≤ 100000 (e.g. 0/8)"
-            ))
+            Error::Incompatible(
+                field("shard")
+                    + format!(" '{s}': must be i/n with integers 0 ≤ i < n ≤ 100000 (e.g. 0/8)"),
+            )
         };
         let (a, b) = s.split_once('/').ok_or_else(bad)?;
         let (index, count): (usize, usize) = (
@@ -71,22 +77,22 @@ pub type CellSpec = (FormKind, &'static dyn Kernel, f64, f64);
 
 /// The validated grid in sweep order.
 pub fn grid(cfg: &AtlasConfig) -> Result<Vec<CellSpec>> {
-    for (name, v, lo, hi) in [
-        ("--h-points", cfg.h_points, 1, 4096),
-        ("--stress-points", cfg.stress_points, 1, 4096),
-        ("--kappas", cfg.kappas, 2, 1_000_000),
+    for (field, v, lo, hi) in [
+        ("h_points", cfg.h_points, 1, 4096),
+        ("stress_points", cfg.stress_points, 1, 4096),
+        ("kappas", cfg.kappas, 2, 1_000_000),
     ] {
         if v < lo || v > hi {
             return Err(Error::OutOfRange {
-                name,
+                field,
                 value: v as f64,
-                range: format!("must be an integer in [{lo}, {hi}]"),
+                range: format!("must be an integer in [{lo}, {hi}]").into(),
             });
         }
     }
     let (s0, s1) = cfg.stress_range;
-    crate::error::check_range("--stress-min", s0, -0.999, 10.0, true, true)?;
-    crate::error::check_range("--stress-max", s1, s0, 10.0, true, true)?;
+    crate::error::check_range("stress_range[0]", s0, -0.999, 10.0, true, true)?;
+    crate::error::check_range("stress_range[1]", s1, s0, 10.0, true, true)?;
     let forms: Vec<FormKind> = cfg
         .forms
         .iter()
@@ -104,20 +110,20 @@ pub fn grid(cfg: &AtlasConfig) -> Result<Vec<CellSpec>> {
             lo + (hi - lo) * i as f64 / (n - 1) as f64
         }
     };
-    // resources before the grid is built (crate::budget): the cell list, results and their
-    // JSON text (~400 B per cell), and the κ-evaluations, which cost ~0.3 µs each on 2 threads
-    // (66 s for the full 450,560 × 512 atlas) and are checked against 10 × --max-steps
+    // resources before the grid is built (the budget): the cell list, results and their JSON
+    // text (~400 B per cell), and the κ-evaluations, which cost ~0.3 µs each on 2 threads (66 s
+    // for the full 450,560 × 512 atlas) and are checked against 10 × max_steps
     let cells = (forms.len() * kernels.len()) as f64 * (cfg.h_points * cfg.stress_points) as f64;
-    crate::budget::check_memory(
-        "--h-points/--stress-points",
-        &format!("the atlas ({} cells)", crate::budget::fmt_count(cells)),
+    let b = &cfg.budget;
+    b.memory(
+        fields(&["h_points", "stress_points"]),
+        &format!("the atlas ({} cells)", fmt_count(cells)),
         cells * 400.0 + 64.0 * cfg.kappas as f64 * 16.0,
     )?;
     let evals = cells * cfg.kappas as f64;
-    let b = crate::budget::current();
     b.work(
-        "--h-points/--stress-points/--kappas",
-        &format!("the atlas ({} cells)", crate::budget::fmt_count(cells)),
+        fields(&["h_points", "stress_points", "kappas"]),
+        &format!("the atlas ({} cells)", fmt_count(cells)),
         evals,
         "κ-evaluations",
         10.0 * b.max_steps,

@@ -56,31 +56,40 @@ pub fn merge(parts: &[(String, AtlasReport)]) -> Result<AtlasReport> {
     let mut runtime = 0.0;
     for (name, r) in parts {
         if r.config != first.config {
-            return Err(Error::Incompatible(format!(
-                "merge: {name} was computed with a different configuration than {first_name}"
-            )));
+            return Err(Error::Incompatible(
+                format!(
+                    "merge: {name} was computed with a different configuration than {first_name}"
+                )
+                .into(),
+            ));
         }
         let s = r.shard.unwrap_or(Shard { index: 0, count: 1 });
         if s.count != count {
-            return Err(Error::Incompatible(format!(
-                "merge: {name} is shard {}/{} but {first_name} is one of {count}",
-                s.index, s.count
-            )));
+            return Err(Error::Incompatible(
+                format!(
+                    "merge: {name} is shard {}/{} but {first_name} is one of {count}",
+                    s.index, s.count
+                )
+                .into(),
+            ));
         }
         if let Some(other) = seen[s.index] {
-            return Err(Error::Incompatible(format!(
-                "merge: shard {}/{count} given twice ({other} and {name})",
-                s.index
-            )));
+            return Err(Error::Incompatible(
+                format!(
+                    "merge: shard {}/{count} given twice ({other} and {name})",
+                    s.index
+                )
+                .into(),
+            ));
         }
         seen[s.index] = Some(name);
         runtime += r.runtime_s;
         cells.extend(r.cells.iter().cloned());
     }
     if let Some(missing) = seen.iter().position(|s| s.is_none()) {
-        return Err(Error::Incompatible(format!(
-            "merge: shard {missing}/{count} is missing"
-        )));
+        return Err(Error::Incompatible(
+            format!("merge: shard {missing}/{count} is missing").into(),
+        ));
     }
     cells.sort_by_key(|c| c.index);
     if cells.len() != first.total_cells || cells.iter().enumerate().any(|(i, c)| c.index != i) {

@@ -7,6 +7,7 @@ use crate::analysis::Query1D;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel;
+use crate::progress::{Counter, Progress};
 use crate::vonneumann::classify::GROWTH_TOL;
 use crate::vonneumann::linearise::{Linearisation, PhaseTable, has_consistent_mass};
 use rayon::prelude::*;
@@ -117,11 +118,11 @@ fn evaluate(
     c
 }
 
-/// Computes the atlas (or one shard), calling `progress(done, total)` as cells finish.
+/// Computes the atlas (or one shard), telling `progress` the fraction of cells finished.
 pub fn run(
     cfg: &AtlasConfig,
     shard: Option<Shard>,
-    progress: impl Fn(usize, usize) + Sync,
+    progress: impl Progress,
 ) -> Result<AtlasReport> {
     let all = grid(cfg)?;
     let total_cells = all.len();
@@ -133,8 +134,7 @@ pub fn run(
         .filter(|(i, _)| shard.is_none_or(|s| i % s.count == s.index))
         .collect();
     let start = std::time::Instant::now();
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let n = mine.len();
+    let done = Counter::new(&progress, mine.len(), 256);
     // one κ grid for every cell (Query1D::kappas), its phase factors tabulated once per thread
     let mut q = Query1D::new(FormKind::Classical, kernel::by_name("m4")?, 1.0, 0.0);
     q.points = cfg.kappas;
@@ -152,15 +152,14 @@ pub fn run(
         .into_par_iter()
         .map_init(
             || PhaseTable::new(&kappas, 0),
-            |table, g| {
+            |table, g| -> Result<Vec<Cell>> {
                 let out = group(g, &sgrid, table);
-                let d = done.fetch_add(out.len(), std::sync::atomic::Ordering::Relaxed) + out.len();
-                if d / 256 != (d - out.len()) / 256 || d == n {
-                    progress(d, n);
-                }
-                out
+                done.add(out.len())?;
+                Ok(out)
             },
         )
+        .collect::<Result<Vec<_>>>()?
+        .into_iter()
         .flatten()
         .collect();
     Ok(AtlasReport {

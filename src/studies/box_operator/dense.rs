@@ -35,7 +35,7 @@ pub fn box_growth<const D: usize>(run: &Run<D>) -> Result<(f64, usize)> {
     if nx > MAX_DENSE_DOFS {
         return Err(Error::Incompatible(format!(
             "dense box operator of {nx} degrees of freedom exceeds {MAX_DENSE_DOFS}; use the standing-mode prediction"
-        )));
+        ).into()));
     }
     if run.model.p.av.is_some() || run.model.p.diffusion.is_some() {
         return Err(Error::Incompatible(

@@ -1,8 +1,10 @@
 //! The kernel guide's settings: which kernels, the h/Δx step of its scans, and the fixed
 //! parameters of every column.
 
-use crate::error::{Error, Result};
+use crate::budget::Budget;
+use crate::error::{Error, Result, field};
 use crate::kernel::{self, Kernel};
+use crate::studies::config::no_duplicates;
 use crate::studies::pairing::wstar;
 
 /// Forms of the time-step columns.
@@ -48,6 +50,8 @@ pub struct GuideConfig {
     pub kernels: Vec<&'static dyn Kernel>,
     /// Step of the h/Δx scans.
     pub h_step: f64,
+    /// The budget the 2D linearisations must stay within.
+    pub budget: Budget,
 }
 
 impl Default for GuideConfig {
@@ -55,15 +59,16 @@ impl Default for GuideConfig {
         Self {
             kernels: kernel::all().to_vec(),
             h_step: DEFAULT_H_STEP,
+            budget: Budget::default(),
         }
     }
 }
 
 impl GuideConfig {
-    /// Validates the step (errors name the CLI flag).
+    /// Validates the step and the kernels (errors name the field).
     pub fn validate(&self) -> Result<()> {
         crate::error::check_range(
-            "--h-step",
+            "h_step",
             self.h_step,
             H_STEP_RANGE.0,
             H_STEP_RANGE.1,
@@ -71,17 +76,12 @@ impl GuideConfig {
             true,
         )?;
         if self.kernels.is_empty() {
-            return Err(Error::Incompatible("--kernels: give at least one".into()));
+            return Err(Error::Incompatible(
+                field("kernels") + ": give at least one",
+            ));
         }
-        for (i, k) in self.kernels.iter().enumerate() {
-            if self.kernels[..i].iter().any(|o| o.name() == k.name()) {
-                return Err(Error::Incompatible(format!(
-                    "--kernels: `{}` is given twice",
-                    k.name()
-                )));
-            }
-        }
-        Ok(())
+        let names: Vec<&str> = self.kernels.iter().map(|k| k.name()).collect();
+        no_duplicates("kernels", &names)
     }
 
     /// The h/Δx grid of the scans (rounded to 1e-10, so 0.8 + 3·0.05 is 0.95).

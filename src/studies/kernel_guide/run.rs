@@ -10,6 +10,7 @@ use super::report::{
     CompressionScan, Interval, KernelGuide, KernelGuideRow, Positivity, TensileOnset, TimeStepCell,
 };
 use crate::analysis::{MaterialSpec, Query1D, Query2D};
+use crate::budget::Budget;
 use crate::error::Result;
 use crate::forms::FormKind;
 use crate::integrator::Integrator;
@@ -91,8 +92,14 @@ pub fn intervals(h: &[f64], ok: &[bool]) -> Vec<Interval> {
     out
 }
 
-/// The compression scan of `k` in `dim` ∈ {1, 2} over `h` (module docs).
-pub fn compression_scan(k: &'static dyn Kernel, dim: u8, h: &[f64]) -> Result<CompressionScan> {
+/// The compression scan of `k` in `dim` ∈ {1, 2} over `h` (module docs); the 2D
+/// linearisations within `budget`.
+pub fn compression_scan(
+    k: &'static dyn Kernel,
+    dim: u8,
+    h: &[f64],
+    budget: &Budget,
+) -> Result<CompressionScan> {
     let hs: Vec<f64> = h
         .iter()
         .copied()
@@ -105,7 +112,11 @@ pub fn compression_scan(k: &'static dyn Kernel, dim: u8, h: &[f64]) -> Result<Co
                 let g = grows_1d(k, x, COMPRESSION)?;
                 Ok((!g, !g))
             } else {
-                let z = crate::studies::pairing::zone_growth(&query_2d(k, x, COMPRESSION))?;
+                let q = Query2D {
+                    budget: *budget,
+                    ..query_2d(k, x, COMPRESSION)
+                };
+                let z = crate::studies::pairing::zone_growth(&q)?;
                 Ok((z.max_growth_rate == 0.0, z.pairing_growth_rate == 0.0))
             }
         })
@@ -166,8 +177,12 @@ pub fn tensile_onset(k: &'static dyn Kernel, h: f64) -> Result<TensileOnset> {
     })
 }
 
-/// One kernel's row.
-pub fn kernel_row(k: &'static dyn Kernel, h_grid: &[f64]) -> Result<KernelGuideRow> {
+/// One kernel's row (the 2D scans within `budget`).
+pub fn kernel_row(
+    k: &'static dyn Kernel,
+    h_grid: &[f64],
+    budget: &Budget,
+) -> Result<KernelGuideRow> {
     let mut ts_jobs = Vec::new();
     for f in GUIDE_FORMS {
         for h in GUIDE_H {
@@ -180,7 +195,7 @@ pub fn kernel_row(k: &'static dyn Kernel, h_grid: &[f64]) -> Result<KernelGuideR
         .collect::<Result<Vec<_>>>()?;
     let compression = [1u8, 2]
         .par_iter()
-        .map(|&d| compression_scan(k, d, h_grid))
+        .map(|&d| compression_scan(k, d, h_grid, budget))
         .collect::<Result<Vec<_>>>()?;
     let tension = GUIDE_H
         .par_iter()
@@ -210,7 +225,7 @@ pub fn kernel_guide(cfg: &GuideConfig) -> Result<KernelGuide> {
     let rows = cfg
         .kernels
         .par_iter()
-        .map(|&k| kernel_row(k, &h))
+        .map(|&k| kernel_row(k, &h, &cfg.budget))
         .collect::<Result<Vec<_>>>()?;
     Ok(KernelGuide {
         integrator: Integrator::Kdk.name().into(),

@@ -2,9 +2,12 @@
 //! checked field by field, and the plan of rows it gives.
 
 use crate::analysis::max_grid;
-use crate::error::{Error, Result};
+use crate::budget::Budget;
+use crate::error::{Error, Result, Text, field, fields};
 use crate::kernel::{self, Kernel};
 use crate::lattice::Lattice3D;
+use crate::params::check_count;
+use crate::studies::config::no_duplicates;
 use serde::{Deserialize, Serialize};
 
 /// Names of the lattices of the study.
@@ -48,6 +51,9 @@ pub struct PairingConfig {
     /// What the figure shows (kept with the config).
     #[serde(default)]
     pub note: String,
+    /// The budget the study must stay within (not read from the file).
+    #[serde(skip)]
+    pub budget: Budget,
 }
 
 fn default_h_min() -> f64 {
@@ -78,6 +84,7 @@ impl Default for PairingConfig {
             grid: default_grid(),
             output: None,
             note: String::new(),
+            budget: Budget::default(),
         }
     }
 }
@@ -138,17 +145,8 @@ impl Plan {
     }
 }
 
-fn no_duplicates(flag: &'static str, names: &[&str]) -> Result<()> {
-    for (i, n) in names.iter().enumerate() {
-        if names[..i].contains(n) {
-            return Err(Error::Incompatible(format!("{flag}: `{n}` is given twice")));
-        }
-    }
-    Ok(())
-}
-
-/// Validates a config (errors name the CLI flag) and checks the work against the budget: the
-/// rows × (grid³ − 1) wave-vector evaluations count against 10 × `--max-steps`, as in the atlas.
+/// Validates a config (errors name the field) and checks the work against its budget: the
+/// rows × (grid³ − 1) wave-vector evaluations count against 10 × `max_steps`, as in the atlas.
 pub fn plan(cfg: &PairingConfig) -> Result<Plan> {
     let kernels: Vec<&'static dyn Kernel> = if cfg.kernels.is_empty() {
         kernel::all().to_vec()
@@ -159,7 +157,7 @@ pub fn plan(cfg: &PairingConfig) -> Result<Plan> {
             .collect::<Result<_>>()?
     };
     no_duplicates(
-        "--kernels",
+        "kernels",
         &kernels.iter().map(|k| k.name()).collect::<Vec<_>>(),
     )?;
     let lattice_names: Vec<&str> = if cfg.lattices.is_empty() {
@@ -167,41 +165,44 @@ pub fn plan(cfg: &PairingConfig) -> Result<Plan> {
     } else {
         cfg.lattices.iter().map(String::as_str).collect()
     };
-    no_duplicates("--lattices", &lattice_names)?;
+    no_duplicates("lattices", &lattice_names)?;
     let lattices =
         lattice_names
             .iter()
             .map(|&n| {
                 let name = LATTICES.iter().copied().find(|&l| l == n).ok_or_else(|| {
                     Error::UnknownName {
-                        what: "lattice (--lattices)",
+                        what: Text::from("lattice (") + field("lattices") + ")",
                         given: n.to_string(),
-                        valid: LATTICES.join(", "),
+                        valid: LATTICES.join(", ").into(),
                     }
                 })?;
                 Ok((name, Lattice3D::by_name(name)?))
             })
             .collect::<Result<Vec<_>>>()?;
     let (lo, hi) = H_LIMITS;
-    crate::error::check_range("--h-min", cfg.h_min, lo, hi, true, true)?;
-    crate::error::check_range("--h-max", cfg.h_max, lo, hi, true, true)?;
+    crate::error::check_range("h_min", cfg.h_min, lo, hi, true, true)?;
+    crate::error::check_range("h_max", cfg.h_max, lo, hi, true, true)?;
     if cfg.h_max < cfg.h_min {
         return Err(Error::OutOfRange {
-            name: "--h-max",
+            field: "h_max",
             value: cfg.h_max,
-            range: format!("must be ≥ --h-min = {}", cfg.h_min),
+            range: Text::from("must be ≥ ") + field("h_min") + format!(" = {}", cfg.h_min),
         });
     }
-    crate::error::check_range("--h-step", cfg.h_step, 1e-3, hi, true, true)?;
+    crate::error::check_range("h_step", cfg.h_step, 1e-3, hi, true, true)?;
     let steps = ((cfg.h_max - cfg.h_min) / cfg.h_step + 1e-9).floor() as usize;
     if steps + 1 > MAX_H_VALUES {
         return Err(Error::OutOfRange {
-            name: "--h-step",
+            field: "h_step",
             value: cfg.h_step,
-            range: format!(
-                "gives {} h values; at most {MAX_H_VALUES} (raise --h-step or narrow --h-min/--h-max)",
+            range: Text::from(format!(
+                "gives {} h values; at most {MAX_H_VALUES} (raise ",
                 steps + 1
-            ),
+            )) + field("h_step")
+                + " or narrow "
+                + fields(&["h_min", "h_max"])
+                + ")",
         });
     }
     let h = (0..=steps)
@@ -209,22 +210,15 @@ pub fn plan(cfg: &PairingConfig) -> Result<Plan> {
         .collect();
     if cfg.stresses.is_empty() || cfg.stresses.len() > MAX_STRESSES {
         return Err(Error::OutOfRange {
-            name: "--stresses",
+            field: "stresses",
             value: cfg.stresses.len() as f64,
-            range: format!("give 1 to {MAX_STRESSES} values"),
+            range: format!("give 1 to {MAX_STRESSES} values").into(),
         });
     }
     for &s in &cfg.stresses {
-        crate::error::check_range(
-            "--stresses",
-            s,
-            STRESS_LIMITS.0,
-            STRESS_LIMITS.1,
-            true,
-            false,
-        )?;
+        crate::error::check_range("stresses", s, STRESS_LIMITS.0, STRESS_LIMITS.1, true, false)?;
     }
-    crate::analysis::check_count("--grid", cfg.grid, 2, max_grid(3))?;
+    check_count("grid", cfg.grid, 2, max_grid(3))?;
     let plan = Plan {
         kernels,
         lattices,
@@ -232,9 +226,9 @@ pub fn plan(cfg: &PairingConfig) -> Result<Plan> {
         stresses: cfg.stresses.clone(),
         grid: cfg.grid,
     };
-    let budget = crate::budget::current();
+    let budget = &cfg.budget;
     budget.work(
-        "--grid/--kernels/--lattices/--h-step/--stresses",
+        fields(&["grid", "kernels", "lattices", "h_step", "stresses"]),
         "the pairing study",
         plan.rows() as f64 * (cfg.grid.pow(3) - 1) as f64,
         "wave-vector evaluations",

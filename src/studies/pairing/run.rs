@@ -7,10 +7,12 @@ use super::wstar;
 use super::wstar::WStarSign;
 use super::zone::{Scan, scan_k};
 use crate::analysis::{MaterialSpec, Query};
+use crate::budget::Budget;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel::Kernel;
 use crate::lattice::Lattice3D;
+use crate::progress::{Counter, Progress};
 use crate::shape::ShapeFamily;
 use crate::vonneumann::classify::GROWTH_TOL;
 use rayon::prelude::*;
@@ -37,8 +39,9 @@ pub fn row_query(
     q
 }
 
-/// Computes one row: linearises once, scans the grid³ − 1 wave vectors of the zone (rayon).
-/// Over the memory budget or with no neighbour in the support: a skipped row, not an error.
+/// Computes one row: linearises once (within `budget`), scans the grid³ − 1 wave vectors of
+/// the zone (rayon). Over the memory budget or with no neighbour in the support: a skipped row,
+/// not an error.
 pub fn evaluate_row(
     kernel: &'static dyn Kernel,
     lattice: (&str, Lattice3D),
@@ -46,6 +49,7 @@ pub fn evaluate_row(
     stress: f64,
     grid: usize,
     wstar_first_negative_k: Option<f64>,
+    budget: &Budget,
 ) -> Result<PairingRow> {
     let r = kernel.zeta() * h;
     let n_h = neighbour_count(&lattice.1, r);
@@ -75,7 +79,10 @@ pub fn evaluate_row(
         ));
         return Ok(row);
     }
-    let q = row_query(kernel, lattice.1, h, stress, grid);
+    let q = Query {
+        budget: *budget,
+        ..row_query(kernel, lattice.1, h, stress, grid)
+    };
     let lin = match q.linearise_at(stress) {
         Ok(l) => l,
         Err(e @ Error::Budget { .. }) => {
@@ -155,9 +162,9 @@ pub fn onsets(rows: &[PairingRow]) -> Vec<Onset> {
 }
 
 /// Runs the study. Rows one after the other (each linearisation and wave-vector scan uses the
-/// rayon pool, so memory stays within one row's budget check); `progress(done, total)` after
-/// each row.
-pub fn run(cfg: &PairingConfig, progress: impl Fn(usize, usize)) -> Result<PairingReport> {
+/// rayon pool, so memory stays within one row's budget check); `progress` is told the fraction
+/// of rows done after each row.
+pub fn run(cfg: &PairingConfig, progress: impl Progress) -> Result<PairingReport> {
     let t0 = std::time::Instant::now();
     let plan = plan(cfg)?;
     let signs: Vec<WStarSign> = plan
@@ -166,6 +173,7 @@ pub fn run(cfg: &PairingConfig, progress: impl Fn(usize, usize)) -> Result<Pairi
         .map(|&k| wstar::sign_criterion(k))
         .collect();
     let total = plan.rows();
+    let done = Counter::new(&progress, total, 1);
     let mut rows = Vec::with_capacity(total);
     for (ki, &k) in plan.kernels.iter().enumerate() {
         for &lat in &plan.lattices {
@@ -178,8 +186,9 @@ pub fn run(cfg: &PairingConfig, progress: impl Fn(usize, usize)) -> Result<Pairi
                         s,
                         plan.grid,
                         signs[ki].first_negative_k,
+                        &cfg.budget,
                     )?);
-                    progress(rows.len(), total);
+                    done.add(1)?;
                 }
             }
         }

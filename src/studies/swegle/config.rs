@@ -1,9 +1,11 @@
 //! The Swegle test's configuration: the published box and its variants, checked field by field
 //! (with the memory and step budget), and built into a run at rest with the kick applied.
 
-use crate::error::{Error, Result, check_range};
+use crate::budget::{Budget, fmt_count};
+use crate::error::{Error, Result, Text, check_range, field, fields};
 use crate::forms::{FormKind, Material2D, Model, ModelParams2D};
 use crate::kernel::Kernel;
+use crate::params::check_common;
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::solver::run2d::{BoundaryDensity, Run};
 use crate::studies::box_operator::MAX_DENSE_DOFS;
@@ -11,7 +13,7 @@ use std::f64::consts::PI;
 
 /// Largest number of free mechanical degrees of freedom (D × free particles) for which the box
 /// prediction is the dense exact operator ([`box_growth`]); larger boxes use the standing modes
-/// the box admits ([`box_prediction`]). 1,000 in both dimensions: up to `--size` 28 in 2D
+/// the box admits ([`box_prediction`]). 1,000 in both dimensions: up to `size` 28 in 2D
 /// (22² free particles) and 12 in 3D (6³ free particles) with 3 fixed layers.
 pub const MAX_DENSE_BOX_DOFS: usize = 1000;
 
@@ -34,7 +36,7 @@ pub const fn infinite_grid(dim: usize) -> usize {
     if dim == 3 { 48 } else { 96 }
 }
 
-/// Largest `--size` whose box prediction is the dense operator, with `layers` fixed layers.
+/// Largest `size` whose box prediction is the dense operator, with `layers` fixed layers.
 pub fn dense_size_limit(dim: usize, layers: usize) -> usize {
     let mut nf = 0;
     while dim * (nf + 1usize).pow(dim as u32) <= MAX_DENSE_BOX_DOFS.min(MAX_DENSE_DOFS) {
@@ -89,6 +91,8 @@ pub struct SwegleConfig {
     pub integrator: crate::integrator::Integrator,
     /// δ-SPH density diffusion (δ, form); None: off, as in the published test.
     pub diffusion: Option<(f64, crate::forms::DiffusionForm)>,
+    /// The budget the run (and its predictions) must stay within.
+    pub budget: Budget,
 }
 
 impl SwegleConfig {
@@ -122,6 +126,7 @@ impl SwegleConfig {
             art_stress: None,
             integrator: crate::integrator::Integrator::Kdk,
             diffusion: None,
+            budget: Budget::default(),
         }
     }
 
@@ -134,18 +139,18 @@ impl SwegleConfig {
         }
     }
 
-    /// Validates the inputs (flag names as on the CLI).
+    /// Validates the inputs (errors name the fields; the stress σ̄ = 1 − f as `stress`).
     pub fn validate(&self) -> Result<()> {
         if !(2..=3).contains(&self.dim) {
             return Err(Error::OutOfRange {
-                name: "--dim",
+                field: "dim",
                 value: self.dim as f64,
                 range: "2 or 3".into(),
             });
         }
         // the density ratio first: the stress σ̄ = 1 − f checked below derives from it
-        check_range("--density-ratio", self.density_ratio, 0.5, 1.5, true, true)?;
-        crate::analysis::check_common(
+        check_range("density_ratio", self.density_ratio, 0.5, 1.5, true, true)?;
+        check_common(
             self.kernel,
             self.h_over_dx,
             1.0 - self.density_ratio,
@@ -153,34 +158,35 @@ impl SwegleConfig {
             None,
             None,
         )?;
-        check_range("--t-end", self.t_end, 0.0, 1e6, false, true)?;
-        check_range("--cfl", self.cfl, 0.0, 2.0, false, true)?;
+        check_range("t_end", self.t_end, 0.0, 1e6, false, true)?;
+        check_range("cfl", self.cfl, 0.0, 2.0, false, true)?;
         let top = max_size(self.dim);
         if self.size < 2 * self.layers + 3 || self.size > top {
             return Err(Error::OutOfRange {
-                name: "--size",
+                field: "size",
                 value: self.size as f64,
-                range: format!(
-                    "must be an integer in [{}, {top}] with --dim {}",
-                    2 * self.layers + 3,
-                    self.dim
-                ),
+                range: Text::from(format!(
+                    "must be an integer in [{}, {top}] with ",
+                    2 * self.layers + 3
+                )) + field("dim")
+                    + format!(" {}", self.dim),
             });
         }
         if !self.form.in_2d() {
-            return Err(Error::Incompatible(format!(
-                "--form {} is not available in {}D",
-                self.form.name(),
-                self.dim
-            )));
+            return Err(Error::Incompatible(
+                field("form") + format!(" {} is not available in {}D", self.form.name(), self.dim),
+            ));
         }
         if self.dim == 3 && self.art_stress.is_some() {
             return Err(Error::Incompatible(
-                "--art-eps (artificial stress) is available with --dim 2 only".into(),
+                field("art_eps")
+                    + " (artificial stress) is available with "
+                    + field("dim")
+                    + " 2 only",
             ));
         }
         self.form.check_shape(self.shape)?;
-        // resources, before anything is allocated (crate::budget)
+        // resources, before anything is allocated (the budget)
         let particles = self.particles() as f64;
         let r = self.kernel.zeta() * self.h_over_dx;
         let neighbours = if self.dim == 3 {
@@ -198,8 +204,8 @@ impl SwegleConfig {
         let entry = 8.0 + 16.0 * self.dim as f64;
         let state = if self.dim == 3 { 1000.0 } else { 400.0 };
         let bytes = particles * (neighbours * entry * stencils * 1.25 + state);
-        crate::budget::check_memory(
-            "--size/--h",
+        self.budget.memory(
+            fields(&["size", "h_over_dx"]),
             &format!(
                 "the Swegle box ({} particles, ~{neighbours:.0} neighbours each)",
                 self.shape_label()
@@ -207,12 +213,9 @@ impl SwegleConfig {
             bytes,
         )?;
         let steps = (self.t_end / (self.cfl * self.dx / self.sound_speed())).ceil();
-        crate::budget::check_steps(
-            "--t-end/--cfl/--size",
-            &format!(
-                "the Swegle run ({} time steps)",
-                crate::budget::fmt_count(steps)
-            ),
+        self.budget.steps(
+            fields(&["t_end", "cfl", "size"]),
+            &format!("the Swegle run ({} time steps)", fmt_count(steps)),
             particles * steps,
         )
     }
@@ -281,10 +284,11 @@ impl SwegleConfig {
     pub fn build<const D: usize>(&self) -> Result<Run<D>> {
         self.validate()?;
         if D != self.dim {
-            return Err(Error::Incompatible(format!(
-                "a {D}D Swegle run from a --dim {} configuration",
-                self.dim
-            )));
+            return Err(Error::Incompatible(
+                Text::from(format!("a {D}D Swegle run from a "))
+                    + field("dim")
+                    + format!(" {} configuration", self.dim),
+            ));
         }
         let (n, l) = (self.size, self.layers);
         let half = (n - 1) as f64 / 2.0;

@@ -75,7 +75,7 @@ pub(super) fn predict_d<const D: usize>(
 ) -> Result<SweglePrediction> {
     let unit = cfg.sound_speed() / cfg.dx; // c/Δx: normalisation of rates
     let nfree = cfg.size - 2 * cfg.layers;
-    let lin_unit = Bloch::<D>::new(
+    let lin_unit = Bloch::<D>::with_budget(
         ModelParams2D {
             kp: KernelParams {
                 kernel: cfg.kernel,
@@ -107,6 +107,7 @@ pub(super) fn predict_d<const D: usize>(
         })?,
         1.0,
         1.0 - cfg.density_ratio,
+        &cfg.budget,
     )?;
     let (standing_rate, standing_k) = box_prediction(&lin_unit, nfree)?;
     // the dense operator is the mechanical reduction ω² = eig(−(J_vx + J_vq J_qv)), exact only

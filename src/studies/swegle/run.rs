@@ -4,14 +4,17 @@
 use super::config::SwegleConfig;
 use super::predict::predict_d;
 use super::report::{Diverged, FinalState, SwegleReport};
-use crate::error::Result;
+use crate::budget::fmt_count;
+use crate::error::{Error, Result, fields};
 use crate::forms::State;
+use crate::progress::Progress;
 use crate::solver::diagnostics::growth_fit;
 use crate::solver::run2d::Run;
 use std::f64::consts::PI;
 
-/// Runs the test in the configuration's dimension.
-pub fn run_swegle(cfg: &SwegleConfig, progress: impl FnMut(f64)) -> Result<SwegleReport> {
+/// Runs the test in the configuration's dimension, telling `progress` the fraction of the
+/// simulated time done.
+pub fn run_swegle(cfg: &SwegleConfig, progress: impl Progress) -> Result<SwegleReport> {
     cfg.validate()?;
     match cfg.dim {
         3 => run_d::<3>(cfg, progress),
@@ -28,7 +31,7 @@ fn speed<const D: usize>(v: &[f64; D]) -> f64 {
     }
 }
 
-fn run_d<const D: usize>(cfg: &SwegleConfig, mut progress: impl FnMut(f64)) -> Result<SwegleReport>
+fn run_d<const D: usize>(cfg: &SwegleConfig, progress: impl Progress) -> Result<SwegleReport>
 where
     FinalState: From<State<f64, D>>,
 {
@@ -48,11 +51,11 @@ where
     };
     if t_end > cfg.t_end {
         let steps = (t_end / dt).ceil();
-        crate::budget::check_steps(
-            "--until-window/--density-ratio",
+        cfg.budget.steps(
+            fields(&["until_window", "density_ratio"]),
             &format!(
                 "running until the predicted mode (growth {box_rate:.3e} c/Δx) reaches the fit window ({} time steps)",
-                crate::budget::fmt_count(steps)
+                fmt_count(steps)
             ),
             cfg.particles() as f64 * steps,
         )?;
@@ -129,7 +132,10 @@ where
             snapshot = Some(free_fields(&run));
         }
         if s % 64 == 0 {
-            progress(run.t / t_end);
+            progress.advance(run.t / t_end);
+            if progress.cancelled() {
+                return Err(Error::Cancelled);
+            }
         }
         // beyond the window the perturbation is nonlinear; 1e3 × the window top is far enough
         if v > cfg.window.1 * 1e3 * unit * cfg.dx {

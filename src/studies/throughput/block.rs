@@ -3,9 +3,10 @@
 
 use super::config::{Domain, ThroughputConfig, check_size};
 use super::report::BlockTiming;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Text, field};
 use crate::forms::Model;
 use crate::neighbours::CellList;
+use crate::progress::Progress;
 use crate::solver::run2d::{BoundaryDensity, Run, Run2D};
 use std::time::Instant;
 
@@ -18,13 +19,14 @@ pub fn build_block(cfg: &ThroughputConfig, size: usize) -> Result<Run2D> {
 pub fn build_block_nd<const D: usize>(cfg: &ThroughputConfig, size: usize) -> Result<Run<D>> {
     cfg.validate()?;
     if D != cfg.dim {
-        return Err(Error::Incompatible(format!(
-            "a {D}D block from a --dim {} configuration",
-            cfg.dim
-        )));
+        return Err(Error::Incompatible(
+            Text::from(format!("a {D}D block from a "))
+                + field("dim")
+                + format!(" {} configuration", cfg.dim),
+        ));
     }
     let support = cfg.kernel.zeta() * cfg.h_over_dx;
-    check_size("--size", size, D, cfg.domain, support)?;
+    check_size("size", size, D, cfg.domain, support)?;
     let count = size.pow(D as u32);
     let mut x = Vec::with_capacity(count);
     for k in 0..count {
@@ -99,12 +101,12 @@ fn mean_neighbours<const D: usize>(run: &Run<D>) -> f64 {
 }
 
 /// Builds and runs one block: 1 warm-up step, then `repeats` × `steps` timed steps.
-/// `progress(f)` gets the fraction of this block's steps done.
+/// `progress` is told the fraction of this block's steps done.
 pub fn time_block(
     cfg: &ThroughputConfig,
     size: usize,
     mem: Option<&dyn MemoryProbe>,
-    progress: impl FnMut(f64),
+    progress: impl Progress,
 ) -> Result<BlockTiming> {
     match cfg.dim {
         3 => time_block_nd::<3>(cfg, size, mem, progress),
@@ -116,7 +118,7 @@ fn time_block_nd<const D: usize>(
     cfg: &ThroughputConfig,
     size: usize,
     mem: Option<&dyn MemoryProbe>,
-    mut progress: impl FnMut(f64),
+    progress: impl Progress,
 ) -> Result<BlockTiming> {
     let before = mem.map(|m| {
         m.reset_peak();
@@ -138,8 +140,11 @@ fn time_block_nd<const D: usize>(
             run.step(cfg.dt)?;
             if s % 16 == 15 {
                 let a = mem.map_or(0, |m| m.allocations());
-                progress(((r * cfg.steps + s + 1) as f64) / total);
+                progress.advance(((r * cfg.steps + s + 1) as f64) / total);
                 by_progress += mem.map_or(0, |m| m.allocations()) - a;
+                if progress.cancelled() {
+                    return Err(Error::Cancelled);
+                }
             }
         }
         per_step.push(t0.elapsed().as_secs_f64() / cfg.steps as f64);
@@ -154,7 +159,7 @@ fn time_block_nd<const D: usize>(
     sorted.sort_by(f64::total_cmp);
     let median = sorted[sorted.len() / 2];
     let builds1 = run.stencil_builds();
-    progress(1.0);
+    progress.advance(1.0);
     Ok(BlockTiming {
         size,
         particles: n,

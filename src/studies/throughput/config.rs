@@ -1,11 +1,13 @@
 //! The throughput study's config (the flags of `sphstab throughput`): the block, its material
 //! and form, and the timing, checked field by field.
 
-use crate::error::{Error, Result, check_range};
+use crate::budget::Budget;
+use crate::error::{Error, Result, check_range, field};
 use crate::forms::{
     ArtificialStress, ArtificialViscosity, FormKind, Material2D, ModelParams2D, ObjectiveRate,
 };
 use crate::kernel::Kernel;
+use crate::params::{ParamNames, check_common_named};
 use crate::shape::{KernelParams, ShapeFamily};
 use serde::Serialize;
 
@@ -74,6 +76,8 @@ pub struct ThroughputConfig {
     pub amplitude: f64,
     /// Whether stencil builds reuse provably unchanged pairs ([`Run::set_pair_reuse`]).
     pub pair_reuse: bool,
+    /// The budget the timing runs must stay within.
+    pub budget: Budget,
 }
 
 impl ThroughputConfig {
@@ -99,6 +103,7 @@ impl ThroughputConfig {
             repeats: 3,
             amplitude: 1e-3,
             pair_reuse: true,
+            budget: Budget::default(),
         }
     }
 
@@ -117,35 +122,41 @@ impl ThroughputConfig {
         }
     }
 
-    /// Checks every parameter; errors name the CLI flag.
+    /// Checks every parameter; errors name the field (`av` for both viscosity coefficients).
     pub fn validate(&self) -> Result<()> {
         if !(2..=3).contains(&self.dim) {
             return Err(Error::OutOfRange {
-                name: "--dim",
+                field: "dim",
                 value: self.dim as f64,
                 range: "2 or 3".into(),
             });
         }
         if !self.form.in_2d() {
-            return Err(Error::Incompatible(format!(
-                "--form {} is not available in {}D (classical, nonlocal, local, lnl, cll, total-lagrangian)",
-                self.form.name(),
-                self.dim
-            )));
+            return Err(Error::Incompatible(
+                field("form")
+                    + format!(
+                        " {} is not available in {}D (classical, nonlocal, local, lnl, cll, total-lagrangian)",
+                        self.form.name(),
+                        self.dim
+                    ),
+            ));
         }
         if self.dim == 3 && self.art_stress.is_some() {
             return Err(Error::Incompatible(
-                "--art-eps (artificial stress) is available with --dim 2 only".into(),
+                field("art_eps")
+                    + " (artificial stress) is available with "
+                    + field("dim")
+                    + " 2 only",
             ));
         }
         self.form.check_shape(self.shape)?;
-        check_range("--h", self.h_over_dx, 0.0, 10.0, false, true)?;
+        check_range("h_over_dx", self.h_over_dx, 0.0, 10.0, false, true)?;
         // the same checks as every other command (support must reach the neighbours, …)
-        crate::analysis::check_common_named(
-            &crate::analysis::ParamNames {
-                av_alpha: "--av",
-                av_beta: "--av",
-                ..crate::analysis::ParamNames::CLI
+        check_common_named(
+            &ParamNames {
+                av_alpha: "av",
+                av_beta: "av",
+                ..ParamNames::QUERY
             },
             self.kernel,
             self.h_over_dx,
@@ -155,26 +166,29 @@ impl ThroughputConfig {
             None,
         )?;
         if let BlockMaterial::Elastic { poisson, .. } = self.material {
-            check_range("--poisson", poisson, -0.99, 0.5, true, false)?;
+            check_range("poisson", poisson, -0.99, 0.5, true, false)?;
         }
         if let Some((a, b)) = self.av {
-            check_range("--av", a, 0.0, 100.0, true, true)?;
-            check_range("--av", b, 0.0, 100.0, true, true)?;
+            check_range("av", a, 0.0, 100.0, true, true)?;
+            check_range("av", b, 0.0, 100.0, true, true)?;
         }
         if let Some((eps, n)) = self.art_stress {
-            check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
-            check_range("--art-n", n as f64, 1.0, 12.0, true, true)?;
+            check_range("art_eps", eps, 0.0, 10.0, true, true)?;
+            check_range("art_n", n as f64, 1.0, 12.0, true, true)?;
             if !matches!(self.form, FormKind::Classical | FormKind::Cll) {
-                return Err(Error::Incompatible(format!(
-                    "--art-eps: artificial stress is defined for the classical and cll forms, not {}",
-                    self.form.name()
-                )));
+                return Err(Error::Incompatible(
+                    field("art_eps")
+                        + format!(
+                            ": artificial stress is defined for the classical and cll forms, not {}",
+                            self.form.name()
+                        ),
+                ));
             }
         }
-        check_range("--dt", self.dt, 0.0, 2.0, false, true)?;
-        check_range("--steps", self.steps as f64, 1.0, 1e6, true, true)?;
-        check_range("--repeats", self.repeats as f64, 1.0, 1000.0, true, true)?;
-        check_range("--amplitude", self.amplitude, 0.0, 0.1, true, true)?;
+        check_range("dt", self.dt, 0.0, 2.0, false, true)?;
+        check_range("steps", self.steps as f64, 1.0, 1e6, true, true)?;
+        check_range("repeats", self.repeats as f64, 1.0, 1000.0, true, true)?;
+        check_range("amplitude", self.amplitude, 0.0, 0.1, true, true)?;
         Ok(())
     }
 
@@ -215,11 +229,11 @@ pub const SIZE_RANGE: (usize, usize) = (4, 3000);
 /// Largest block side in 3D (8 × 10⁶ particles).
 pub const MAX_SIZE_3D: usize = 200;
 
-/// Checks a block side in dimension `dim` for `domain` (the flag is named in the error): in
+/// Checks a block side in dimension `dim` for `domain` (the error names `field`): in
 /// [4, 3000] (2D) or [4, 200] (3D), and a periodic box more than two support radii `support`
 /// wide, so that every neighbour has one image within the support.
 pub fn check_size(
-    name: &'static str,
+    field: &'static str,
     size: usize,
     dim: usize,
     domain: Domain,
@@ -233,13 +247,14 @@ pub fn check_size(
     let hi = if dim == 3 { MAX_SIZE_3D } else { SIZE_RANGE.1 };
     if size < lo || size > hi {
         return Err(Error::OutOfRange {
-            name,
+            field,
             value: size as f64,
             range: format!(
                 "particles per side must be an integer in [{lo}, {hi}] ({}D, {} domain)",
                 dim,
                 domain.name()
-            ),
+            )
+            .into(),
         });
     }
     Ok(())

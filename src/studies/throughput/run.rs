@@ -4,8 +4,10 @@
 use super::block::{MemoryProbe, time_block};
 use super::config::{BlockMaterial, ThroughputConfig, check_size};
 use super::report::{BlockTiming, ThroughputReport};
-use crate::error::{Error, Result, check_range};
+use crate::budget::fmt_count;
+use crate::error::{Error, Result, check_range, field, fields};
 use crate::forms::{FormKind, ObjectiveRate};
+use crate::progress::Progress;
 use crate::shape::ShapeFamily;
 
 /// Least-squares slope p of ln(time per step) against ln N: time per step ∝ N^p. `None` with
@@ -24,21 +26,22 @@ pub fn scaling_exponent(blocks: &[BlockTiming]) -> Option<f64> {
 }
 
 /// Times the block at each size in `sizes` on a rayon pool of `threads` threads (`None`: one
-/// per core). `progress(f)` gets the fraction of the whole run done (weighted by N).
+/// per core), within [`ThroughputConfig::budget`]. `progress` is told the fraction of the
+/// whole run done (weighted by N).
 pub fn run_throughput(
     cfg: &ThroughputConfig,
     sizes: &[usize],
     threads: Option<usize>,
     mem: Option<&dyn MemoryProbe>,
-    mut progress: impl FnMut(f64) + Send,
+    progress: impl Progress,
 ) -> Result<ThroughputReport> {
     cfg.validate()?;
     if sizes.is_empty() {
         return Err(Error::Incompatible(
-            "--sizes: give at least one size".into(),
+            field("sizes") + ": give at least one size",
         ));
     }
-    // resources of the largest block and of all runs together (crate::budget): compact
+    // resources of the largest block and of all runs together (the budget): compact
     // stencils of a 4-byte entry per neighbour plus half a pair (4 + 8 + 8 B) with 1/32 spare,
     // 8D bytes more per entry and stencil for the non-SPH shape families, and ~350 B (2D) or
     // ~800 B (3D) of state per particle (measured: 586 B at 20.8 neighbours in 2D; 1,787 B at
@@ -60,13 +63,13 @@ pub fn run_throughput(
         }
         + if mixed { per_stencil } else { 0.0 };
     let state = if cfg.dim == 3 { 800.0 } else { 350.0 };
-    let flag = if sizes.len() > 1 { "--sizes" } else { "--size" };
+    let name = if sizes.len() > 1 { "sizes" } else { "size" };
     for &n in sizes {
-        check_size(flag, n, cfg.dim, cfg.domain, r)?;
+        check_size(name, n, cfg.dim, cfg.domain, r)?;
     }
     let largest = sizes.iter().copied().max().unwrap_or(0) as f64;
-    crate::budget::check_memory(
-        "--size/--sizes",
+    cfg.budget.memory(
+        fields(&["size", "sizes"]),
         &format!(
             "the {} block (~{neighbours:.0} neighbours per particle)",
             vec![largest.to_string(); cfg.dim].join(" × ")
@@ -75,21 +78,20 @@ pub fn run_throughput(
     )?;
     let steps = (1 + cfg.steps * cfg.repeats) as f64;
     let particle_steps: f64 = sizes.iter().map(|&n| (n as f64).powi(dim) * steps).sum();
-    crate::budget::check_steps(
-        "--steps/--repeats/--size",
-        &format!(
-            "timing the blocks ({} steps per size)",
-            crate::budget::fmt_count(steps)
-        ),
+    cfg.budget.steps(
+        fields(&["steps", "repeats", "size"]),
+        &format!("timing the blocks ({} steps per size)", fmt_count(steps)),
         particle_steps,
     )?;
     if let Some(t) = threads {
-        check_range("--threads", t as f64, 1.0, 1024.0, true, true)?;
+        check_range("threads", t as f64, 1.0, 1024.0, true, true)?;
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
         .build()
-        .map_err(|e| Error::Incompatible(format!("--threads: cannot start the pool: {e}")))?;
+        .map_err(|e| {
+            Error::Incompatible(field("threads") + format!(": cannot start the pool: {e}"))
+        })?;
     // every worker runs once before anything is timed or counted: a thread that starts late
     // (a loaded machine) would otherwise allocate its thread-locals inside the timed steps
     pool.broadcast(|_| ());
@@ -98,7 +100,11 @@ pub fn run_throughput(
     let mut done = 0.0;
     let mut blocks = Vec::with_capacity(sizes.len());
     for (&s, &w) in sizes.iter().zip(&weights) {
-        let b = pool.install(|| time_block(cfg, s, mem, |f| progress((done + f * w) / total)))?;
+        let part = |f: f64| progress.advance((done + f * w) / total);
+        let b = pool.install(|| time_block(cfg, s, mem, part))?;
+        if progress.cancelled() {
+            return Err(Error::Cancelled);
+        }
         done += w;
         blocks.push(b);
     }

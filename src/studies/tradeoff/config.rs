@@ -2,7 +2,8 @@
 //! grid of forms × kernels × h/Δx and the integrators it covers, checked field by field.
 
 use super::integrators;
-use crate::error::{Error, Result};
+use crate::budget::Budget;
+use crate::error::{Error, Result, field};
 use crate::forms::FormKind;
 use crate::integrator::{DEFAULT_EULER_EVERY, Integrator};
 use crate::kernel::{self, Kernel};
@@ -40,6 +41,9 @@ pub struct TradeoffConfig {
     /// Δt used = `safety` × critical Δt for the integrator rows, in (0, 1].
     #[serde(default = "default_safety")]
     pub safety: f64,
+    /// The budget the study's linearisations must stay within (not read from the file).
+    #[serde(skip)]
+    pub budget: Budget,
 }
 
 fn default_safety() -> f64 {
@@ -65,6 +69,7 @@ impl Default for TradeoffConfig {
             note: String::new(),
             integrators: Vec::new(),
             safety: integrators::DEFAULT_SAFETY,
+            budget: Budget::default(),
         }
     }
 }
@@ -73,14 +78,14 @@ impl Default for TradeoffConfig {
 pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, f64)>> {
     if cfg.dim != 1 && cfg.dim != 2 {
         return Err(Error::OutOfRange {
-            name: "--dim",
+            field: "dim",
             value: cfg.dim as f64,
             range: "must be 1 or 2".into(),
         });
     }
     if cfg.h_points == 0 || cfg.h_points > 64 {
         return Err(Error::OutOfRange {
-            name: "--h-points",
+            field: "h_points",
             value: cfg.h_points as f64,
             range: "must be an integer in [1, 64]".into(),
         });
@@ -88,13 +93,13 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
     crate::studies::config::check_output("tradeoff config", cfg.output.as_deref())?;
     if cfg.repeats == 0 || cfg.repeats > 100 {
         return Err(Error::OutOfRange {
-            name: "--repeats",
+            field: "repeats",
             value: cfg.repeats as f64,
             range: "must be an integer in [1, 100]".into(),
         });
     }
     integrator_list(cfg)?;
-    crate::error::check_range("--safety", cfg.safety, 0.0, 1.0, false, true)?;
+    crate::error::check_range("safety", cfg.safety, 0.0, 1.0, false, true)?;
     let forms: Vec<FormKind> = if cfg.forms.is_empty() {
         FormKind::ALL
             .iter()
@@ -106,9 +111,12 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
         for name in &cfg.forms {
             let f = FormKind::by_name(name)?;
             if cfg.dim == 2 && !f.in_2d() {
-                return Err(Error::Incompatible(format!(
-                    "--forms: {name} is not available with --dim 2 (classical, nonlocal, local, lnl, cll, total-lagrangian)"
-                )));
+                return Err(Error::Incompatible(
+                    field("forms")
+                        + format!(": {name} is not available with ")
+                        + field("dim")
+                        + " 2 (classical, nonlocal, local, lnl, cll, total-lagrangian)",
+                ));
             }
             v.push(f);
         }
@@ -151,7 +159,10 @@ pub fn integrator_list(cfg: &TradeoffConfig) -> Result<Vec<Integrator>> {
     }
     if !out.is_empty() && cfg.dim != 1 {
         return Err(Error::Incompatible(
-            "--integrators: the integrator dimension is 1D only (use --dim 1)".into(),
+            field("integrators")
+                + ": the integrator dimension is 1D only (use "
+                + field("dim")
+                + " 1)",
         ));
     }
     Ok(out)

@@ -9,10 +9,12 @@ use super::scenes::{
     SCENE_1D_N, SCENE_DT, median, scene_1d, scene_1d_with, scene_2d, scene_description,
 };
 use crate::analysis::{MaterialSpec, Query1D, Query2D};
+use crate::budget::Budget;
 use crate::error::Result;
 use crate::forms::{FormKind, Model1D};
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
+use crate::progress::{Counter, Progress};
 use crate::studies::throughput::MemoryProbe;
 use crate::vonneumann::amplification::{critical_dt, critical_dt_bisection};
 use crate::vonneumann::classify::GROWTH_TOL;
@@ -92,8 +94,16 @@ pub(crate) fn tension_limit(
     Ok((last_stable, None))
 }
 
-/// The engine's part of a row (no timing): phase errors, stability, critical Δt.
-fn analyse(dim: u8, form: FormKind, k: &'static dyn Kernel, h: f64, row: &mut Row) -> Result<()> {
+/// The engine's part of a row (no timing): phase errors, stability, critical Δt; the 2D
+/// linearisations within `budget`.
+fn analyse(
+    dim: u8,
+    form: FormKind,
+    k: &'static dyn Kernel,
+    h: f64,
+    budget: &Budget,
+    row: &mut Row,
+) -> Result<()> {
     let phase = |w2: f64, kap: f64, c: f64| (w2.max(0.0).sqrt() / kap / c - 1.0).abs();
     let (k10, k20) = (2.0 * PI / 10.0, 2.0 * PI / 20.0);
     if dim == 1 {
@@ -125,6 +135,7 @@ fn analyse(dim: u8, form: FormKind, k: &'static dyn Kernel, h: f64, row: &mut Ro
         let mut q = Query2D::new(form, k, h, 0.0);
         q.material = MaterialSpec::Hydro;
         q.grid = GRID_2D;
+        q.budget = *budget;
         q.validate()?;
         let ks = q.kgrid();
         let lin0 = q.linearise_at(0.0)?;
@@ -157,21 +168,20 @@ fn analyse(dim: u8, form: FormKind, k: &'static dyn Kernel, h: f64, row: &mut Ro
     Ok(())
 }
 
-/// Runs the study. `progress(done, total)` is called as configurations finish. The engine part
+/// Runs the study, telling `progress` the fraction of configurations finished. The engine part
 /// runs in parallel (rayon); the timed scene runs one at a time so they do not compete.
 pub fn run(
     cfg: &TradeoffConfig,
     probe: Option<&dyn MemoryProbe>,
-    progress: impl Fn(usize, usize) + Sync,
+    progress: impl Progress,
 ) -> Result<TradeoffReport> {
     let configs = grid(cfg)?;
     let integs = integrator_list(cfg)?;
     let start = std::time::Instant::now();
-    let total = 2 * configs.len() * (1 + integs.len());
-    let done = std::sync::atomic::AtomicUsize::new(0);
+    let done = Counter::new(&progress, 2 * configs.len() * (1 + integs.len()), 1);
     let mut rows: Vec<Row> = configs
         .par_iter()
-        .map(|&(form, k, h)| {
+        .map(|&(form, k, h)| -> Result<Row> {
             let shape = if cfg.dim == 1 {
                 form.default_shape()
             } else {
@@ -195,14 +205,13 @@ pub fn run(
                 ns_per_particle_time: None,
                 error: None,
             };
-            if let Err(e) = analyse(cfg.dim, form, k, h, &mut row) {
+            if let Err(e) = analyse(cfg.dim, form, k, h, &cfg.budget, &mut row) {
                 row.error = Some(e.to_string());
             }
-            let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            progress(d, total);
-            row
+            done.add(1)?;
+            Ok(row)
         })
-        .collect();
+        .collect::<Result<_>>()?;
     for (row, &(form, k, h)) in rows.iter_mut().zip(&configs) {
         if row.error.is_none() {
             let mut times = Vec::with_capacity(cfg.repeats);
@@ -232,10 +241,9 @@ pub fn run(
                 row.ns_per_particle_time = row.critical_dt.map(|dt| ns / dt);
             }
         }
-        let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        progress(d, total);
+        done.add(1)?;
     }
-    let integrator_rows = integrator_rows(cfg, &configs, &integs, &done, total, &progress);
+    let integrator_rows = integrator_rows(cfg, &configs, &integs, &done)?;
     Ok(TradeoffReport {
         dim: cfg.dim,
         threads: rayon::current_num_threads(),
@@ -252,21 +260,15 @@ fn integrator_rows(
     cfg: &TradeoffConfig,
     configs: &[(FormKind, &'static dyn Kernel, f64)],
     integs: &[Integrator],
-    done: &std::sync::atomic::AtomicUsize,
-    total: usize,
-    progress: &(impl Fn(usize, usize) + Sync),
-) -> Vec<IntegratorRow> {
-    let tick = || {
-        let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        progress(d, total);
-    };
+    done: &Counter,
+) -> Result<Vec<IntegratorRow>> {
     let jobs: Vec<(FormKind, &'static dyn Kernel, f64, Integrator)> = configs
         .iter()
         .flat_map(|&(f, k, h)| integs.iter().map(move |&i| (f, k, h, i)))
         .collect();
     let mut rows: Vec<IntegratorRow> = jobs
         .par_iter()
-        .map(|&(form, k, h, integ)| {
+        .map(|&(form, k, h, integ)| -> Result<IntegratorRow> {
             let mut row = IntegratorRow {
                 form: form.name().into(),
                 kernel: k.name().into(),
@@ -310,10 +312,10 @@ fn integrator_rows(
             if let Err(e) = res {
                 row.error = Some(e.to_string());
             }
-            tick();
-            row
+            done.add(1)?;
+            Ok(row)
         })
-        .collect();
+        .collect::<Result<_>>()?;
     for (row, &(form, k, h, integ)) in rows.iter_mut().zip(&jobs) {
         if row.error.is_none() {
             let dt = row.dt_used.map_or(SCENE_DT, |d| d.min(SCENE_DT));
@@ -340,7 +342,7 @@ fn integrator_rows(
                 row.ns_per_particle_time = row.dt_used.map(|dt| ns / dt);
             }
         }
-        tick();
+        done.add(1)?;
     }
-    rows
+    Ok(rows)
 }
