@@ -55,8 +55,19 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     let q = a.cfg.query(a.points)?;
     let r = sphstab::analysis::dispersion(&q)?;
     if let Some(path) = &a.plot {
-        write_svg(path, sphstab::plot::dispersion_svg(&r)?)?;
-        if let Some(svg) = sphstab::plot::damping_svg(&r)? {
+        let (title, form) = (r.header.to_string(), r.header.setup.form);
+        write_svg(
+            path,
+            sphstab::plot::dispersion_svg(
+                &title,
+                form,
+                &r.kappa_dx,
+                &r.omega2,
+                &r.omega2_continuum,
+            )?,
+        )?;
+        if let Some(rate) = &r.damping_rate {
+            let svg = sphstab::plot::damping_svg(&title, form, &r.kappa_dx, rate)?;
             write_svg(&damping_path(path), svg)?;
         }
     }
