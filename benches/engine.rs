@@ -7,14 +7,14 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphstab::analysis::{MaterialSpec, Query, growth_map, query_nd, query2d};
 use sphstab::analysis::{Query1D, dispersion};
-use sphstab::atlas::AtlasConfig;
 use sphstab::forms::{FormKind, Material, Model, ModelParams};
 use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::solver::throughput::{ThroughputConfig, build_block};
 use sphstab::solver::{BoundaryDensity, Run};
+use sphstab::studies::atlas::AtlasConfig;
+use sphstab::studies::throughput::{ThroughputConfig, build_block};
 use sphstab::vonneumann::linearise::PhaseTable;
 
 fn benches(c: &mut Criterion) {
@@ -71,7 +71,7 @@ fn benches(c: &mut Criterion) {
     let mut g0 = c.benchmark_group("atlas");
     g0.sample_size(10);
     g0.bench_function("atlas 1D, 256 cells x 512 kappa (classical m4)", |b| {
-        b.iter(|| sphstab::atlas::run(&acfg, None, |_, _| {}).unwrap())
+        b.iter(|| sphstab::studies::atlas::run(&acfg, None, ()).unwrap())
     });
     g0.finish();
 

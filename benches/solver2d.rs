@@ -6,7 +6,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphstab::kernel;
-use sphstab::solver::throughput::{ThroughputConfig, build_block, build_block_nd};
+use sphstab::studies::throughput::{ThroughputConfig, build_block, build_block_nd};
 
 fn benches(c: &mut Criterion) {
     let m4 = kernel::by_name("m4").unwrap();

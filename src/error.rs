@@ -1,37 +1,132 @@
-//! Library error type. Every variant names where the problem is and the allowed range,
-//! so the binary can print it as a one-line message and exit with status 2.
+//! Library error type. Every variant names where the problem is and the allowed range, so the
+//! binary can print it as a one-line message and exit with status 2.
+//!
+//! The library names what the user gave by its *field* — the field of the question or config
+//! struct (`h_over_dx`, `stress`, `density_ratio`), or the key of a JSON config or scene — never
+//! by a command-line flag. A message that names fields is a [`Text`]: plain text with field
+//! references ([`field`]). [`Error`]'s `Display` writes the field names; the binary renders the
+//! same error with [`Error::render`] and its one table of field → flag, so that its messages
+//! name the flag the user typed (`h_over_dx` → `--h`).
 
-/// Errors raised by the library.
+use std::fmt;
+use std::ops::Add;
+
+/// How a message names a field: the library by the field itself, the binary by its flag.
+pub type Names<'a> = &'a dyn Fn(&'static str) -> &'static str;
+
+/// Names every field by itself (what `Display` does).
+fn as_field(f: &'static str) -> &'static str {
+    f
+}
+
+/// One piece of a [`Text`].
+#[derive(Clone, Debug, PartialEq)]
+enum Part {
+    /// Plain text.
+    Str(String),
+    /// A field, named when the text is rendered.
+    Field(&'static str),
+}
+
+/// Message text with field references: built with `+` from strings and [`field`]s,
+/// e.g. `field("form") + " nonlocal is not available with " + field("dim") + " 2"`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Text(Vec<Part>);
+
+/// A reference to the field `name` in a message (a struct field or a JSON key).
+pub fn field(name: &'static str) -> Text {
+    Text(vec![Part::Field(name)])
+}
+
+/// Field references joined by `/` (the fields that drive a budget estimate, e.g.
+/// `size/h_over_dx`).
+pub fn fields(names: &[&'static str]) -> Text {
+    let mut t = Text::default();
+    for (i, n) in names.iter().enumerate() {
+        if i > 0 {
+            t = t + "/";
+        }
+        t = t + field(n);
+    }
+    t
+}
+
+impl Text {
+    /// The text with every field named by `names`.
+    pub fn render(&self, names: Names) -> String {
+        let mut s = String::new();
+        for p in &self.0 {
+            match p {
+                Part::Str(t) => s.push_str(t),
+                Part::Field(f) => s.push_str(names(f)),
+            }
+        }
+        s
+    }
+
+    /// The fields the text names, in order.
+    pub fn fields(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.0.iter().filter_map(|p| match p {
+            Part::Field(f) => Some(*f),
+            Part::Str(_) => None,
+        })
+    }
+}
+
+impl From<&str> for Text {
+    fn from(s: &str) -> Self {
+        Text(vec![Part::Str(s.to_string())])
+    }
+}
+
+impl From<String> for Text {
+    fn from(s: String) -> Self {
+        Text(vec![Part::Str(s)])
+    }
+}
+
+impl<T: Into<Text>> Add<T> for Text {
+    type Output = Text;
+    fn add(mut self, rhs: T) -> Text {
+        self.0.extend(rhs.into().0);
+        self
+    }
+}
+
+impl fmt::Display for Text {
+    /// Fields by their names.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.render(&as_field))
+    }
+}
+
+/// Errors raised by the library. `Display` names fields by themselves ([`Error::render`]).
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[error("{}", self.render(&as_field))]
 #[non_exhaustive]
 pub enum Error {
-    /// A name (kernel, form, shape family, ...) that is not known.
-    #[error("unknown {what} `{given}`; valid: {valid}")]
+    /// A name (kernel, form, shape family, ...) that is not known:
+    /// "unknown {what} `{given}`; valid: {valid}".
     UnknownName {
         /// What kind of name (e.g. "kernel").
-        what: &'static str,
+        what: Text,
         /// The name given.
         given: String,
         /// Comma-separated list of valid names.
-        valid: String,
+        valid: Text,
     },
-    /// A number outside its allowed range (or NaN).
-    #[error("{name} = {} is out of range: {range}", fmt_num(*.value))]
+    /// A number outside its allowed range (or NaN): "{field} = {value} is out of range: {range}".
     OutOfRange {
-        /// Parameter (flag or field) name.
-        name: &'static str,
+        /// The field that holds it.
+        field: &'static str,
         /// The value given.
         value: f64,
         /// The allowed range, in words.
-        range: String,
+        range: Text,
     },
     /// A combination of options that has no meaning (e.g. a shape family a form cannot use).
-    #[error("{0}")]
-    Incompatible(String),
+    Incompatible(Text),
     /// A moment matrix (MLS / corrected derivative) that cannot be inverted.
-    #[error(
-        "singular {what} at x = {x} (determinant {det:e}): the support covers too few neighbours"
-    )]
     SingularMoment {
         /// Which matrix.
         what: &'static str,
@@ -40,8 +135,8 @@ pub enum Error {
         /// Determinant found.
         det: f64,
     },
-    /// A malformed configuration file (unknown field, bad value), with where it happened.
-    #[error("{file}: {msg}")]
+    /// A malformed configuration file (unknown field, bad value), with where it happened:
+    /// "{file}: {msg}".
     Config {
         /// File name.
         file: String,
@@ -49,25 +144,21 @@ pub enum Error {
         msg: String,
     },
     /// A numerical result that is not finite.
-    #[error("non-finite result in {0}")]
     NonFinite(&'static str),
     /// A run whose estimated memory or time steps exceed the resource budget
-    /// ([`crate::budget`]); names the flags that drive the estimate.
-    #[error("{flags}: {what} needs about {estimate}, more than the limit {limit}")]
+    /// ([`crate::budget`]): "{fields}: {what} needs about {estimate}, more than the limit
+    /// {limit}".
     Budget {
-        /// The flag(s) or field(s) that drive the estimate.
-        flags: &'static str,
+        /// The fields that drive the estimate.
+        fields: Text,
         /// What would be allocated or run.
         what: String,
         /// The estimate, with its unit.
         estimate: String,
-        /// The limit and the flag that raises it.
-        limit: String,
+        /// The limit, its unit and the budget field that raises it.
+        limit: Text,
     },
     /// A time integration that blew up: the first non-finite value or a runaway.
-    #[error(
-        "DIVERGED at step {step} (t = {t:.6e}): {what} (max |v| = {max_amplitude:.3e}); the run was stopped"
-    )]
     Diverged {
         /// Time step index.
         step: usize,
@@ -78,14 +169,66 @@ pub enum Error {
         /// Largest velocity magnitude at that point (may be non-finite).
         max_amplitude: f64,
     },
+    /// Long work stopped because its [`crate::progress::Progress`] asked it to.
+    Cancelled,
+}
+
+impl Error {
+    /// The one-line message with every field named by `names` (the binary passes its
+    /// field → flag table; `Display` names the fields themselves).
+    pub fn render(&self, names: Names) -> String {
+        match self {
+            Error::UnknownName { what, given, valid } => format!(
+                "unknown {} `{given}`; valid: {}",
+                what.render(names),
+                valid.render(names)
+            ),
+            Error::OutOfRange {
+                field,
+                value,
+                range,
+            } => format!(
+                "{} = {} is out of range: {}",
+                names(field),
+                fmt_num(*value),
+                range.render(names)
+            ),
+            Error::Incompatible(t) => t.render(names),
+            Error::SingularMoment { what, x, det } => format!(
+                "singular {what} at x = {x} (determinant {det:e}): the support covers too few neighbours"
+            ),
+            Error::Config { file, msg } => format!("{file}: {msg}"),
+            Error::NonFinite(what) => format!("non-finite result in {what}"),
+            Error::Budget {
+                fields,
+                what,
+                estimate,
+                limit,
+            } => format!(
+                "{}: {what} needs about {estimate}, more than the limit {}",
+                fields.render(names),
+                limit.render(names)
+            ),
+            Error::Diverged {
+                step,
+                t,
+                what,
+                max_amplitude,
+            } => format!(
+                "DIVERGED at step {step} (t = {t:.6e}): {what} (max |v| = {max_amplitude:.3e}); the run was stopped"
+            ),
+            Error::Cancelled => "cancelled".into(),
+        }
+    }
 }
 
 /// Library result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
-/// Checks that `value` is finite and inside `[lo, hi]` (inclusive bounds as flagged).
+/// Checks that `value` (of the field `field`) is finite and inside `[lo, hi]` (inclusive
+/// bounds as flagged).
 pub fn check_range(
-    name: &'static str,
+    field: &'static str,
     value: f64,
     lo: f64,
     hi: f64,
@@ -109,27 +252,32 @@ pub fn check_range(
         let r = if hi_inclusive { "]" } else { ")" };
         let fmt = fmt_num;
         Err(Error::OutOfRange {
-            name,
+            field,
             value,
-            range: format!("must be a finite number in {l}{}, {}{r}", fmt(lo), fmt(hi)),
+            range: format!("must be a finite number in {l}{}, {}{r}", fmt(lo), fmt(hi)).into(),
         })
     }
 }
 
-/// Looks `given` up in a table of (value, CLI name); the error lists every valid name.
+/// Looks `given` up in a table of (value, name); the error lists every valid name.
 pub fn lookup<T: Copy>(what: &'static str, table: &[(T, &'static str)], given: &str) -> Result<T> {
     table
         .iter()
         .find(|(_, n)| *n == given)
         .map(|(v, _)| *v)
         .ok_or_else(|| Error::UnknownName {
-            what,
+            what: what.into(),
             given: given.to_string(),
-            valid: table.iter().map(|(_, n)| *n).collect::<Vec<_>>().join(", "),
+            valid: table
+                .iter()
+                .map(|(_, n)| *n)
+                .collect::<Vec<_>>()
+                .join(", ")
+                .into(),
         })
 }
 
-/// The CLI name of `v` in a table of (value, name).
+/// The name of `v` in a table of (value, name).
 pub fn name_in<T: Copy + PartialEq>(table: &[(T, &'static str)], v: T) -> &'static str {
     table
         .iter()

@@ -109,15 +109,16 @@ pub const INTEGRATOR_NAMES: [&str; 12] = [
 ];
 
 impl Integrator {
-    /// The integrator of a CLI name; `euler_every` is N_s of `verlet-euler` (checked for every
-    /// name, so that a bad `--euler-every` is reported whatever the integrator).
+    /// The integrator of a name ([`INTEGRATOR_NAMES`]); `euler_every` is N_s of `verlet-euler`
+    /// (checked for every name, so that a bad `euler_every` is reported whatever the
+    /// integrator).
     pub fn from_name(name: &str, euler_every: usize) -> Result<Self> {
         let (lo, hi) = EULER_EVERY_RANGE;
         if !(lo..=hi).contains(&euler_every) {
             return Err(Error::OutOfRange {
-                name: "--euler-every",
+                field: "euler_every",
                 value: euler_every as f64,
-                range: format!("an integer in [{lo}, {hi}]"),
+                range: format!("an integer in [{lo}, {hi}]").into(),
             });
         }
         Ok(match name {
@@ -135,9 +136,9 @@ impl Integrator {
             "euler" => Self::Euler,
             _ => {
                 return Err(Error::UnknownName {
-                    what: "integrator",
+                    what: "integrator".into(),
                     given: name.to_string(),
-                    valid: INTEGRATOR_NAMES.join(", "),
+                    valid: INTEGRATOR_NAMES.join(", ").into(),
                 });
             }
         })
@@ -575,6 +576,6 @@ mod tests {
         let e = Integrator::from_name("verlet-euler", 0)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("--euler-every"), "{e}");
+        assert!(e.contains("euler_every"), "{e}");
     }
 }

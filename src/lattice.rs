@@ -18,15 +18,15 @@
 // Small-tensor algebra (2×2, 3×3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Text, field};
 use std::f64::consts::PI;
 
 /// Lattice geometry.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LatticeKind {
-    /// The uniform 1D chain of unit spacing (used by the closed forms; the 1D CLI has no
-    /// `--lattice`).
+    /// The uniform 1D chain of unit spacing (used by the closed forms; no 1D question names a
+    /// lattice).
     Chain,
     /// Rectangular: a1 = (1, 0), a2 = (0, γ).
     Square {
@@ -70,7 +70,7 @@ impl Lattice<1> {
 impl Lattice<2> {
     /// Square (rectangular) lattice with aspect ratio γ.
     pub fn square(gamma: f64) -> Result<Self> {
-        crate::error::check_range("--gamma", gamma, 0.1, 10.0, true, true)?;
+        crate::error::check_range("gamma", gamma, 0.1, 10.0, true, true)?;
         Ok(Self {
             kind: LatticeKind::Square { gamma },
             a: [[1.0, 0.0], [0.0, gamma]],
@@ -91,9 +91,9 @@ impl Lattice<2> {
             "square" => Self::square(gamma),
             "hex" => Ok(Self::hexagonal()),
             _ => Err(Error::UnknownName {
-                what: "lattice",
+                what: "lattice".into(),
                 given: name.into(),
-                valid: "square, hex (--dim 2)".into(),
+                valid: Text::from("square, hex (") + field("dim") + " 2)",
             }),
         }
     }
@@ -154,9 +154,9 @@ impl Lattice<3> {
             "bcc" => Ok(Self::bcc()),
             "fcc" => Ok(Self::fcc()),
             _ => Err(Error::UnknownName {
-                what: "lattice",
+                what: "lattice".into(),
                 given: name.into(),
-                valid: "sc, bcc, fcc (--dim 3)".into(),
+                valid: Text::from("sc, bcc, fcc (") + field("dim") + " 3)",
             }),
         }
     }
@@ -187,7 +187,7 @@ impl<const D: usize> Lattice<D> {
         let (dim, a3): (usize, [[f64; 3]; 3]) = match kind {
             LatticeKind::Chain => (1, [[1.0, 0.0, 0.0], [0.0; 3], [0.0; 3]]),
             LatticeKind::Square { gamma } => {
-                crate::error::check_range("--gamma", gamma, 0.1, 10.0, true, true)?;
+                crate::error::check_range("gamma", gamma, 0.1, 10.0, true, true)?;
                 (2, [[1.0, 0.0, 0.0], [0.0, gamma, 0.0], [0.0; 3]])
             }
             LatticeKind::Hexagonal => (
@@ -199,9 +199,14 @@ impl<const D: usize> Lattice<D> {
             LatticeKind::Fcc => (3, Lattice3D::fcc().a),
         };
         if dim != D {
-            return Err(Error::Incompatible(format!(
-                "--lattice: the {kind} is {dim}-dimensional, not {D}-dimensional (--dim 2: square, hex; --dim 3: sc, bcc, fcc)"
-            )));
+            return Err(Error::Incompatible(
+                field("lattice")
+                    + format!(": the {kind} is {dim}-dimensional, not {D}-dimensional (")
+                    + field("dim")
+                    + " 2: square, hex; "
+                    + field("dim")
+                    + " 3: sc, bcc, fcc)",
+            ));
         }
         let mut a = [[0.0; D]; D];
         for i in 0..D {
@@ -210,7 +215,7 @@ impl<const D: usize> Lattice<D> {
         Ok(Self { kind, a })
     }
 
-    /// By CLI name: `square` (aspect ratio `gamma`) or `hex` in 2D, `sc`, `bcc` or `fcc` in 3D.
+    /// By name: `square` (aspect ratio `gamma`) or `hex` in 2D, `sc`, `bcc` or `fcc` in 3D.
     pub fn named(name: &str, gamma: f64) -> Result<Self> {
         let kind = match name {
             "square" => LatticeKind::Square { gamma },
@@ -220,7 +225,7 @@ impl<const D: usize> Lattice<D> {
             "fcc" => LatticeKind::Fcc,
             _ => {
                 return Err(Error::UnknownName {
-                    what: "lattice",
+                    what: "lattice".into(),
                     given: name.into(),
                     valid: if D == 3 {
                         "sc, bcc, fcc".into()

@@ -49,22 +49,19 @@
 //! \[B98] Belytschko, Krongauz, Dolbow, Gerlach 1998; [T\] thesis on total-Lagrangian SPH.
 
 pub mod analysis;
-pub mod art_stress;
-pub mod atlas;
 pub mod budget;
 pub mod error;
 pub mod figures;
 pub mod forms;
 pub mod integrator;
 pub mod kernel;
-pub mod kernel_guide;
 pub mod lattice;
 pub mod neighbours;
-pub mod pairing;
+pub mod params;
 pub mod plot;
+pub mod progress;
 pub mod scalar;
 pub mod shape;
 pub mod solver;
-pub mod study;
-pub mod tradeoff;
+pub mod studies;
 pub mod vonneumann;

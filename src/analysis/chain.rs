@@ -2,13 +2,12 @@
 //! (`dispersion`), and its critical time step (`timestep`), over κΔx ∈ (0, π] of the chain
 //! engine ([`Linearisation`]; every 1D form).
 
-use super::common::{
-    IntegratorReport, Setup, check_common, check_count, density_diffusion, linearised_av,
-};
+use super::common::{IntegratorReport, Setup, density_diffusion, linearised_av};
 use crate::error::{Error, Result, check_range};
 use crate::forms::{DiffusionForm, FormKind, Material, ModelParams};
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
+use crate::params::{check_common, check_count};
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::vonneumann::amplification::{
     AMPLIFICATION_TOL, critical_dt_given, leapfrog_limit, spectral_radius_with, step_stability,
@@ -82,8 +81,8 @@ impl Query1D {
             self.av,
             self.dt,
         )?;
-        check_range("--alpha-s", self.alpha_s, 0.0, 100.0, true, true)?;
-        check_count("--points", self.points, 2, 10_000_000)?;
+        check_range("alpha_s", self.alpha_s, 0.0, 100.0, true, true)?;
+        check_count("points", self.points, 2, 10_000_000)?;
         density_diffusion(self.diffusion, 1.0, self.form)?;
         check_range(
             "lattice dx",
@@ -445,7 +444,7 @@ pub fn timestep_with(q: &Query1D, integ: Integrator, dt: Option<f64>) -> Result<
         Some(leapfrog_limit(w2max))
     };
     if let Some(d) = dt {
-        check_range("--dt", d, 0.0, 1e6, false, true)?;
+        check_range("dt", d, 0.0, 1e6, false, true)?;
     }
     let eq120 = if lin.is_dissipative() && !grows {
         Some(critical_dt_eq120(&lin, &kappas)?).filter(|d| d.is_finite())

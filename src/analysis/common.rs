@@ -1,114 +1,12 @@
-//! What every question shares, in every dimension: validation of the common parameters (one
-//! path for CLI flags, scene files, configs and the library API), integer counts, the
-//! configuration line every report starts with, and the linearised artificial viscosity.
+//! What every question shares, in every dimension: the configuration line every report starts
+//! with, the linearised artificial viscosity and δ-SPH density diffusion, and the integrator's
+//! part of a `timestep` report. (The common parameters are validated by [`crate::params`].)
 
-use crate::error::{Error, Result, check_range};
+use crate::error::{Error, Result, field};
 use crate::forms::{ArtificialViscosity, DensityDiffusion, DiffusionForm, FormKind};
 use crate::kernel::Kernel;
 use crate::shape::ShapeFamily;
 use serde::Serialize;
-
-/// Allowed range of h/Δx.
-pub const H_RANGE: (f64, f64) = (0.05, 50.0);
-/// Allowed range of σ̄.
-pub const STRESS_RANGE: (f64, f64) = (-10.0, 10.0);
-
-/// The names under which the common parameters reach the user: CLI flags or scene fields.
-#[derive(Clone, Copy, Debug)]
-pub struct ParamNames {
-    /// h/Δx.
-    pub h: &'static str,
-    /// σ̄.
-    pub stress: &'static str,
-    /// Partition coefficient.
-    pub c: &'static str,
-    /// Viscosity α.
-    pub av_alpha: &'static str,
-    /// Viscosity β.
-    pub av_beta: &'static str,
-    /// Δt.
-    pub dt: &'static str,
-}
-
-impl ParamNames {
-    /// The CLI flags.
-    pub const CLI: ParamNames = ParamNames {
-        h: "--h",
-        stress: "--stress",
-        c: "--c",
-        av_alpha: "--av-alpha",
-        av_beta: "--av-beta",
-        dt: "--dt",
-    };
-}
-
-/// Validates the parameters shared by every question and run (one path for CLI flags, scene
-/// files, configs and the library API), naming them as the CLI does.
-pub fn check_common(
-    kernel: &'static dyn Kernel,
-    h: f64,
-    stress: f64,
-    c: f64,
-    av: Option<(f64, f64)>,
-    dt: Option<f64>,
-) -> Result<()> {
-    check_common_named(&ParamNames::CLI, kernel, h, stress, c, av, dt)
-}
-
-/// [`check_common`] with the names of the caller (e.g. scene fields).
-pub fn check_common_named(
-    names: &ParamNames,
-    kernel: &'static dyn Kernel,
-    h: f64,
-    stress: f64,
-    c: f64,
-    av: Option<(f64, f64)>,
-    dt: Option<f64>,
-) -> Result<()> {
-    check_range(names.h, h, H_RANGE.0, H_RANGE.1, true, true)?;
-    check_range(
-        names.stress,
-        stress,
-        STRESS_RANGE.0,
-        STRESS_RANGE.1,
-        true,
-        true,
-    )?;
-    check_range(names.c, c, 0.0, 1.0, true, true)?;
-    if let Some((a, b)) = av {
-        check_range(names.av_alpha, a, 0.0, 100.0, true, true)?;
-        check_range(names.av_beta, b, 0.0, 100.0, true, true)?;
-    }
-    if let Some(dt) = dt {
-        check_range(names.dt, dt, 0.0, 1e6, false, true)?;
-    }
-    if kernel.zeta() * h <= 1.0 {
-        return Err(Error::OutOfRange {
-            name: names.h,
-            value: h,
-            range: format!(
-                "the support ζh must exceed Δx so that particles have neighbours: h/Δx > {} for {} (ζ = {})",
-                1.0 / kernel.zeta(),
-                kernel.name(),
-                kernel.zeta()
-            ),
-        });
-    }
-    Ok(())
-}
-
-/// `Err(OutOfRange)` unless `lo ≤ n ≤ hi`.
-pub fn check_count(name: &'static str, n: usize, lo: usize, hi: usize) -> Result<()> {
-    if (lo..=hi).contains(&n) {
-        Ok(())
-    } else {
-        Err(Error::OutOfRange {
-            name,
-            value: n as f64,
-            range: format!("must be an integer in [{lo}, {hi}]"),
-        })
-    }
-}
 
 /// The configuration every report starts with: form, kernel, shape family, h and R (SPEC §1:
 /// every output prints both) and σ̄.
@@ -170,7 +68,8 @@ pub fn linearised_av(av: Option<(f64, f64)>, c: f64) -> Option<ArtificialViscosi
 }
 
 /// δ-SPH density diffusion (δ, form) with sound speed `c`, checked for `form` (δ in
-/// [`crate::forms::DELTA_RANGE`], a form with a density state; `--delta` in the messages).
+/// [`crate::forms::DELTA_RANGE`], a form with a density state; the field `delta` in the
+/// messages).
 pub fn density_diffusion(
     d: Option<(f64, DiffusionForm)>,
     c: f64,
@@ -184,12 +83,14 @@ pub fn density_diffusion(
         form: kind,
         sound_speed: c,
     };
-    dd.check("--delta", form)?;
+    dd.check("delta", form)?;
     if !form.in_2d() {
-        return Err(Error::Incompatible(format!(
-            "--delta (density diffusion) is available for classical, nonlocal, local, lnl and cll, not --form {}",
-            form.name()
-        )));
+        return Err(Error::Incompatible(
+            field("delta")
+                + " (density diffusion) is available for classical, nonlocal, local, lnl and cll, not "
+                + field("form")
+                + format!(" {}", form.name()),
+        ));
     }
     Ok(Some(dd))
 }
@@ -221,7 +122,7 @@ pub struct IntegratorReport {
     /// Growth per unit time the integrator adds at `spurious_growth_dt` (max over the
     /// non-growing modes of ln|λ|/Δt; 0 if none amplifies).
     pub spurious_growth_rate: f64,
-    /// The Δt of `spurious_growth_rate`: `--dt` if given, else 1/ω_max (half the leapfrog limit).
+    /// The Δt of `spurious_growth_rate`: `dt` if given, else 1/ω_max (half the leapfrog limit).
     pub spurious_growth_dt: f64,
 }
 

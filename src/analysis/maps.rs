@@ -4,10 +4,10 @@
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::common::check_count;
 use super::zone::Query;
 use crate::error::Result;
 use crate::lattice::grid_index;
+use crate::params::check_count;
 use crate::vonneumann::linearise::Bloch;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -83,7 +83,7 @@ impl Plane {
 /// Growth over the square [−π, π]² (n × n) of wave vectors: (κx, κy) in 2D, (u, v) on `plane`
 /// in 3D (ignored in 2D), any lattice.
 pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Result<GrowthMap> {
-    check_count("--n", n, 2, MAX_MAP_N)?;
+    check_count("n", n, 2, MAX_MAP_N)?;
     let lin = q.linearise_at(q.stress)?;
     let ax: Vec<f64> = (0..n)
         .map(|i| -PI + 2.0 * PI * (i as f64 + 0.5) / n as f64)
@@ -130,7 +130,7 @@ pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Resul
 /// standing modes sin(mπi/(n+1)) admit k = (m_1, …, m_D)π/(n+1), m_a = 1..n; the largest growth
 /// over those wave vectors, and where.
 pub fn box_prediction<const D: usize>(lin: &Bloch<D>, n_free: usize) -> Result<(f64, [f64; D])> {
-    check_count("--box", n_free, 1, max_box(D))?;
+    check_count("box", n_free, 1, max_box(D))?;
     let mut best = (0.0, [0.0; D]);
     let d = PI / (n_free as f64 + 1.0);
     for idx in 0..n_free.pow(D as u32) {

@@ -1,7 +1,7 @@
 //! High-level questions in every dimension: is a configuration stable (`query`), its dispersion,
 //! its critical time step, growth-rate maps and the finite-box prediction. Inputs are validated
-//! here so the library and the CLI give the same errors. One shared layer ([`common`]: validation,
-//! report setup; the engine's [`crate::vonneumann::amplification::critical_dt`] and
+//! here so the library and the CLI give the same errors. One shared layer ([`common`]: report
+//! setup; the engine's [`crate::vonneumann::amplification::critical_dt`] and
 //! [`crate::vonneumann::classify::growth_kind`]) and two front ends: [`chain`] (1D, κΔx ∈ (0, π],
 //! every 1D form) and [`zone`] / [`maps`] (D ∈ {2, 3}, the Brillouin zone of a lattice).
 
@@ -14,15 +14,11 @@ pub use chain::{
     DispersionReport, Header, Query1D, QueryReport, TimestepReport, dispersion, query, timestep,
     timestep_with,
 };
-pub use common::{
-    H_RANGE, IntegratorReport, ParamNames, STRESS_RANGE, Setup, check_common, check_common_named,
-    check_count, linearised_av,
-};
+pub use common::{IntegratorReport, Setup, linearised_av};
 pub use maps::{
     GrowthMap, MAX_BOX, MAX_BOX_3D, MAX_MAP_N, Plane, box_prediction, growth_map, max_box,
 };
 pub use zone::{
     Dispersion2D, Instability2D, MAX_GRID, MAX_PATH_POINTS, MaterialSpec, Polarisation, Query,
-    Query2D, Query3D, QueryReport2D, continuum_moduli, default_grid, dispersion2d, fold, max_grid,
-    query_nd, query2d,
+    QueryReport2D, continuum_moduli, default_grid, dispersion2d, fold, max_grid, query_nd, query2d,
 };

@@ -6,11 +6,13 @@
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::common::{Setup, check_common, check_count, linearised_av};
-use crate::error::{Error, Result};
-use crate::forms::{FormKind, Material, ModelParams2D, ObjectiveRate};
+use super::common::{Setup, linearised_av};
+use crate::budget::Budget;
+use crate::error::{Error, Result, field};
+use crate::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use crate::kernel::Kernel;
 use crate::lattice::{Lattice, LatticeKind, grid_index};
+use crate::params::{check_common, check_count};
 use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
 use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt_given};
@@ -71,19 +73,16 @@ pub struct Query<const D: usize> {
     pub diffusion: Option<(f64, crate::forms::DiffusionForm)>,
     /// Wave vectors per reciprocal-lattice direction (the zone is sampled n^D).
     pub grid: usize,
+    /// The budget the linearisation must stay within.
+    pub budget: Budget,
 }
 
-/// A 2D question.
-pub type Query2D = Query<2>;
-/// A 3D question.
-pub type Query3D = Query<3>;
-
-/// Default `--grid`: 64 × 64 wave vectors in 2D, 16³ in 3D.
+/// Default `grid`: 64 × 64 wave vectors in 2D, 16³ in 3D.
 pub const fn default_grid(dim: usize) -> usize {
     if dim == 3 { 16 } else { 64 }
 }
 
-/// Largest `--grid` in dimension `dim` (2D: [`MAX_GRID`]; 3D: 128³ ≈ 2.1e6 wave vectors).
+/// Largest `grid` in dimension `dim` (2D: [`MAX_GRID`]; 3D: 128³ ≈ 2.1e6 wave vectors).
 pub const fn max_grid(dim: usize) -> usize {
     if dim == 3 { 128 } else { MAX_GRID }
 }
@@ -121,6 +120,7 @@ impl<const D: usize> Query<D> {
             art_stress: None,
             diffusion: None,
             grid: default_grid(D),
+            budget: Budget::default(),
         }
     }
 
@@ -134,21 +134,26 @@ impl<const D: usize> Query<D> {
             self.av,
             self.dt,
         )?;
-        check_count("--grid", self.grid, 2, max_grid(D))?;
+        check_count("grid", self.grid, 2, max_grid(D))?;
         if !self.form.in_2d() {
-            return Err(Error::Incompatible(format!(
-                "--form {} is not available with --dim {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)",
-                self.form.name()
-            )));
+            return Err(Error::Incompatible(
+                field("form")
+                    + format!(" {} is not available with ", self.form.name())
+                    + field("dim")
+                    + format!(" {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)"),
+            ));
         }
         if D == 3 && self.art_stress.is_some() {
             return Err(Error::Incompatible(
-                "--art-eps (artificial stress) is available with --dim 2 only".into(),
+                field("art_eps")
+                    + " (artificial stress) is available with "
+                    + field("dim")
+                    + " 2 only",
             ));
         }
         if self.material == MaterialSpec::Hydro && self.stress >= 1.0 {
             return Err(Error::OutOfRange {
-                name: "--stress",
+                field: "stress",
                 value: self.stress,
                 range: "hydro: σ̄ = 1 − ρ/ρ0 must be < 1".into(),
             });
@@ -173,8 +178,8 @@ impl<const D: usize> Query<D> {
     }
 
     /// Model parameters (C = 1, ρ0 = 1, Δx = 1).
-    pub fn params(&self) -> Result<ModelParams2D> {
-        Ok(ModelParams2D {
+    pub fn params(&self) -> Result<ModelParams> {
+        Ok(ModelParams {
             form: self.form,
             shape: self.shape,
             kp: KernelParams {
@@ -201,7 +206,7 @@ impl<const D: usize> Query<D> {
     /// Linearisation at stress `s`.
     pub fn linearise_at(&self, s: f64) -> Result<Bloch<D>> {
         self.validate()?;
-        Bloch::new(self.params()?, &self.lattice, 1.0, s)
+        Bloch::with_budget(self.params()?, &self.lattice, 1.0, s, &self.budget)
     }
 
     /// Wave vectors sampling the reciprocal cell (n^D, without Γ, where the rigid modes live),
@@ -356,7 +361,7 @@ pub fn continuum_moduli<const D: usize>(q: &Query<D>) -> Result<(f64, f64)> {
 }
 
 /// Answers a 2D stability query ([`query_nd`] with D = 2).
-pub fn query2d(q: &Query2D) -> Result<QueryReport2D> {
+pub fn query2d(q: &Query<2>) -> Result<QueryReport2D> {
     query_nd(q)
 }
 
@@ -541,7 +546,7 @@ pub const MAX_PATH_POINTS: usize = 100_000;
 /// Dispersion along the high-symmetry path of the lattice ([`Lattice::symmetry_points`]), `n`
 /// points per segment.
 pub fn dispersion2d<const D: usize>(q: &Query<D>, n: usize) -> Result<Dispersion2D> {
-    check_count("--points", n, 2, MAX_PATH_POINTS)?;
+    check_count("points", n, 2, MAX_PATH_POINTS)?;
     let lin = q.linearise_at(q.stress)?;
     let (cp, cs) = continuum_moduli(q)?;
     let path = q.lattice.symmetry_path(n);

@@ -83,7 +83,7 @@ impl AntiPlaneSeries {
             .collect();
         let hex = matches!(lat.kind, LatticeKind::Hexagonal);
         let missing = |f: &str| {
-            Error::Incompatible(format!("antiplane series: the engine route needs `{f}`"))
+            Error::Incompatible(format!("antiplane series: the engine route needs `{f}`").into())
         };
         let (x, y, label) = match self.route {
             AntiPlaneRoute::Continuum => (

@@ -22,7 +22,7 @@
 //! ```
 //!
 //! or `swegle` series — the Swegle test of \[V21 §7.2\] run by
-//! [`crate::solver::swegle::run_swegle`] (the code of `sphstab swegle`), log10 of a velocity
+//! [`crate::studies::swegle::run_swegle`] (the code of `sphstab swegle`), log10 of a velocity
 //! history against time in Δx/c, with the box prediction's growth rate drawn dashed over the fit
 //! window, anchored on the least-squares fit of the plotted history ([`SwegleSeries`]):
 //!
@@ -49,6 +49,7 @@
 //! top-level curves.
 
 use crate::analysis::{Query1D, dispersion};
+use crate::budget::Budget;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel;
@@ -170,6 +171,9 @@ pub struct FigureConfig {
     /// Panels stacked top to bottom (instead of top-level curves).
     #[serde(default)]
     pub panels: Vec<Panel>,
+    /// The budget the swegle and scene runs must stay within (not read from the file).
+    #[serde(skip)]
+    pub budget: Budget,
 }
 
 /// One panel of a figure: its curves, 1D `series` or 2D `antiplane` (not both).
@@ -341,11 +345,11 @@ pub fn panel_curves(cfg: &FigureConfig) -> Result<Vec<Vec<Curve>>> {
                 let c = p
                     .swegle
                     .par_iter()
-                    .map(SwegleSeries::curves)
+                    .map(|s| s.curves(&cfg.budget))
                     .collect::<Result<Vec<_>>>()?;
                 Ok(c.into_iter().flatten().collect())
             } else if !p.scene.is_empty() {
-                p.scene.iter().map(SceneSeries::curve).collect()
+                p.scene.iter().map(|s| s.curve(&cfg.budget)).collect()
             } else {
                 p.series.iter().map(|s| s.curve(cfg.points)).collect()
             }

@@ -1,6 +1,7 @@
 //! `scene` series of the figure configs: a 1D scene's profile along the bar, run or
 //! analytic ([`SceneSeries`]).
 
+use crate::budget::Budget;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::plot::Curve;
@@ -82,10 +83,14 @@ impl SceneSeries {
         Ok(s)
     }
 
-    pub(super) fn curve(&self) -> Result<Curve> {
+    /// The profile (the run within `budget`, or the analytic solution).
+    pub(super) fn curve(&self, budget: &Budget) -> Result<Curve> {
         crate::error::check_range("x_scale", self.x_scale, 0.0, f64::MAX, false, true)?;
         crate::error::check_range("y_scale", self.y_scale, 0.0, f64::MAX, false, true)?;
-        let s = self.scene()?;
+        let s = Scene1D {
+            budget: *budget,
+            ..self.scene()?
+        };
         let x: Vec<f64> = s
             .reference_positions()
             .iter()
@@ -94,10 +99,9 @@ impl SceneSeries {
         let (q, label) = match self.route {
             SceneRoute::Analytic => {
                 let (v, sigma) = s.exact_profile(s.t_end).ok_or_else(|| {
-                    Error::Incompatible(format!(
-                        "scene series: `{}` has no analytic solution",
-                        self.scene
-                    ))
+                    Error::Incompatible(
+                        format!("scene series: `{}` has no analytic solution", self.scene).into(),
+                    )
                 })?;
                 let q = match self.quantity {
                     SceneQuantity::Stress => sigma,
@@ -106,7 +110,7 @@ impl SceneSeries {
                 (q, "analytic".to_string())
             }
             SceneRoute::Run => {
-                let mut r = s.run(|_| {})?;
+                let mut r = s.run(())?;
                 let z = r
                     .final_state
                     .take()

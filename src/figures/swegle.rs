@@ -1,15 +1,16 @@
 //! `swegle` series of the figure configs: a Swegle run's velocity history with the box
 //! prediction's slope ([`SwegleSeries`]).
 
+use crate::budget::Budget;
 use crate::error::Result;
 use crate::forms::FormKind;
 use crate::kernel;
 use crate::plot::Curve;
 use crate::solver::diagnostics::growth_fit;
-use crate::solver::swegle::{SwegleConfig, run_swegle};
+use crate::studies::swegle::{SwegleConfig, run_swegle};
 use serde::Deserialize;
 
-/// Which velocity history of a Swegle run is drawn ([`crate::solver::swegle::SwegleReport`]'s
+/// Which velocity history of a Swegle run is drawn ([`crate::studies::swegle::SwegleReport`]'s
 /// `history_full` columns).
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "kebab-case")]
@@ -97,10 +98,14 @@ impl SwegleSeries {
         Ok(cfg)
     }
 
-    /// The history (solid) and, when drawn, the predicted growth line (dashed).
-    pub(super) fn curves(&self) -> Result<Vec<Curve>> {
-        let cfg = self.config()?;
-        let r = run_swegle(&cfg, |_| {})?;
+    /// The history (solid) and, when drawn, the predicted growth line (dashed); the run
+    /// within `budget`.
+    pub(super) fn curves(&self, budget: &Budget) -> Result<Vec<Curve>> {
+        let cfg = SwegleConfig {
+            budget: *budget,
+            ..self.config()?
+        };
+        let r = run_swegle(&cfg, ())?;
         let unit = cfg.sound_speed() / cfg.dx;
         let col = self.history.column();
         let t: Vec<f64> = r.history_full.iter().map(|h| h[0]).collect();

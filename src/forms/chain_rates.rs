@@ -45,11 +45,14 @@ fn fit<S: Scalar>(v: &mut Vec<S>, n: usize) {
 
 fn copy_into<S: Scalar>(dst: &mut [S], src: &[S]) -> Result<()> {
     if dst.len() != src.len() {
-        return Err(Error::Incompatible(format!(
-            "rate output: {} entries for a field of {}",
-            dst.len(),
-            src.len()
-        )));
+        return Err(Error::Incompatible(
+            format!(
+                "rate output: {} entries for a field of {}",
+                dst.len(),
+                src.len()
+            )
+            .into(),
+        ));
     }
     dst.copy_from_slice(src);
     Ok(())
@@ -97,10 +100,9 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
         }
         FormKind::LeastSquares => least_squares::rate(&cm, zc, &mut ws.chain.rate),
         f => {
-            return Err(Error::Incompatible(format!(
-                "form {}: not a 1D-only form of [B00]",
-                f.name()
-            )));
+            return Err(Error::Incompatible(
+                format!("form {}: not a 1D-only form of [B00]", f.name()).into(),
+            ));
         }
     }
     let r: &ChainRates<S> = &ws.chain.rate;

@@ -1,7 +1,7 @@
 //! The SPH forms by name ([`FormKind`]) and what each needs: kernel kind (Eulerian or
 //! Lagrangian), default shape family, stress points.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, field};
 use crate::shape::ShapeFamily;
 
 /// The nine SPH forms.
@@ -84,11 +84,13 @@ impl FormKind {
     /// Checks that `shape` is meaningful for this form.
     pub fn check_shape(self, shape: ShapeFamily) -> Result<()> {
         if self == FormKind::Local && !shape.linear_consistent_gradient() {
-            return Err(Error::Incompatible(format!(
-                "--shape {} is not allowed with --form local: the local form needs a first-order \
-                 corrected gradient (allowed: corrected, mls)",
-                shape.name()
-            )));
+            return Err(Error::Incompatible(
+                field("shape")
+                    + format!(" {} is not allowed with ", shape.name())
+                    + field("form")
+                    + " local: the local form needs a first-order corrected gradient (allowed: \
+                       corrected, mls)",
+            ));
         }
         Ok(())
     }

@@ -65,17 +65,3 @@ pub use params::{
 };
 pub use state::{AuxRates, Comp, FieldKind, RateOut, State, StateView, Tensor, n_sym, voigt};
 pub use workspace::RateWorkspace;
-
-// Transitional names, removed once every module uses the generic ones.
-#[doc(hidden)]
-pub type ModelParams2D = ModelParams;
-#[doc(hidden)]
-pub type Material2D = Material;
-#[doc(hidden)]
-pub type Model2D = Model<2>;
-#[doc(hidden)]
-pub type Model3D = Model<3>;
-#[doc(hidden)]
-pub type State2D<S> = State<S, 2>;
-#[doc(hidden)]
-pub type State3D<S> = State<S, 3>;

@@ -20,7 +20,7 @@ use super::chain_data::{ChainData, MassOperator};
 use super::kind::FormKind;
 use super::params::{Material, ModelParams};
 use super::state::{Comp, State};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, field};
 use crate::lattice::Lattice;
 use crate::scalar::Scalar;
 
@@ -69,59 +69,74 @@ impl<const D: usize> Model<D> {
         period: Option<[[f64; D]; D]>,
     ) -> Result<Self> {
         if !p.form.in_2d() && D > 1 {
-            return Err(Error::Incompatible(format!(
-                "--form {} is not available with --dim {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)",
-                p.form.name()
-            )));
+            return Err(Error::Incompatible(
+                field("form")
+                    + format!(" {} is not available with ", p.form.name())
+                    + field("dim")
+                    + format!(" {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)"),
+            ));
         }
         p.form.check_shape(p.shape)?;
         if let Material::NeoHookean { .. } = p.material {
             if p.form != FormKind::TotalLagrangian {
                 return Err(Error::Incompatible(
-                    "--material neo-hookean needs --form total-lagrangian".into(),
+                    field("material") + " neo-hookean needs " + field("form") + " total-lagrangian",
                 ));
             }
             if sigma0 != 0.0 {
                 return Err(Error::OutOfRange {
-                    name: "--stress",
+                    field: "stress",
                     value: sigma0,
                     range: "neo-hookean: the reference state is unstressed, σ̄ must be 0".into(),
                 });
             }
         }
         if let Some(d) = p.diffusion {
-            d.check("--delta", p.form)?;
+            d.check("delta", p.form)?;
         }
         if D == 3 && p.art_stress.is_some() {
             return Err(Error::Incompatible(
-                "--art-eps (artificial stress) is available with --dim 2 only".into(),
+                field("art_eps")
+                    + " (artificial stress) is available with "
+                    + field("dim")
+                    + " 2 only",
             ));
         }
         let chain_form = !p.form.in_2d();
         if chain_form {
             if !matches!(p.material, Material::Elastic { .. }) {
-                return Err(Error::Incompatible(format!(
-                    "--form {} needs --material elastic (the 1D law σ̇ = (C + σ) ∂v/∂x)",
-                    p.form.name()
-                )));
+                return Err(Error::Incompatible(
+                    field("form")
+                        + format!(" {} needs ", p.form.name())
+                        + field("material")
+                        + " elastic (the 1D law σ̇ = (C + σ) ∂v/∂x)",
+                ));
             }
             if p.av.is_some() {
-                return Err(Error::Incompatible(format!(
-                    "--av-alpha (artificial viscosity) is available for classical, nonlocal, local, lnl and cll, not --form {}",
-                    p.form.name()
-                )));
+                return Err(Error::Incompatible(
+                    field("av_alpha")
+                        + " (artificial viscosity) is available for classical, nonlocal, local, \
+                           lnl and cll, not "
+                        + field("form")
+                        + format!(" {}", p.form.name()),
+                ));
             }
             if p.diffusion.is_some() {
-                return Err(Error::Incompatible(format!(
-                    "--delta (density diffusion) is available for classical, nonlocal, local, lnl and cll, not --form {}",
-                    p.form.name()
-                )));
+                return Err(Error::Incompatible(
+                    field("delta")
+                        + " (density diffusion) is available for classical, nonlocal, local, lnl \
+                           and cll, not "
+                        + field("form")
+                        + format!(" {}", p.form.name()),
+                ));
             }
             if p.art_stress.is_some() {
-                return Err(Error::Incompatible(format!(
-                    "--art-eps (artificial stress) is available for classical and cll, not --form {}",
-                    p.form.name()
-                )));
+                return Err(Error::Incompatible(
+                    field("art_eps")
+                        + " (artificial stress) is available for classical and cll, not "
+                        + field("form")
+                        + format!(" {}", p.form.name()),
+                ));
             }
         }
         let period_inv = match period {

@@ -3,7 +3,7 @@
 //! shape family and kernel.
 
 use super::kind::FormKind;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, field};
 use crate::shape::{KernelParams, ShapeFamily};
 
 /// Objective stress rate of the hypo-elastic law.
@@ -48,7 +48,7 @@ impl Material {
     /// strain in 2D):
     /// G = c(1 − 2ν)/(2(1 − ν)), λ = cν/(1 − ν).
     pub fn elastic(c: f64, nu: f64, rate: ObjectiveRate) -> Result<Self> {
-        crate::error::check_range("--poisson", nu, -0.99, 0.5, true, false)?;
+        crate::error::check_range("poisson", nu, -0.99, 0.5, true, false)?;
         Ok(Material::Elastic {
             lambda: c * nu / (1.0 - nu),
             shear: c * (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu)),
@@ -136,9 +136,9 @@ impl DiffusionForm {
             "molteni-colagrossi" => Ok(Self::MolteniColagrossi),
             "antuono" => Ok(Self::Antuono),
             _ => Err(Error::UnknownName {
-                what: "density-diffusion form",
+                what: "density-diffusion form".into(),
                 given: name.to_string(),
-                valid: DIFFUSION_FORM_NAMES.join(", "),
+                valid: DIFFUSION_FORM_NAMES.join(", ").into(),
             }),
         }
     }
@@ -152,13 +152,16 @@ impl DiffusionForm {
 }
 
 impl DensityDiffusion {
-    /// Checks δ (named `name`, e.g. `--delta`) and the form's compatibility.
+    /// Checks δ (the field `name`, e.g. `delta`) and the form's compatibility.
     pub fn check(&self, name: &'static str, form: FormKind) -> Result<()> {
         crate::error::check_range(name, self.delta, DELTA_RANGE.0, DELTA_RANGE.1, true, true)?;
         if form == FormKind::TotalLagrangian {
-            return Err(Error::Incompatible(format!(
-                "{name} (density diffusion) does not apply to --form total-lagrangian: it has no density state"
-            )));
+            return Err(Error::Incompatible(
+                field(name)
+                    + " (density diffusion) does not apply to "
+                    + field("form")
+                    + " total-lagrangian: it has no density state",
+            ));
         }
         Ok(())
     }

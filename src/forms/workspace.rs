@@ -530,9 +530,9 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     ) -> Result<()> {
         let n = z.x.len();
         if n >= u32::MAX as usize / 2 {
-            return Err(Error::Incompatible(format!(
-                "{n} particles: the stencils index particles with 32 bits"
-            )));
+            return Err(Error::Incompatible(
+                format!("{n} particles: the stencils index particles with 32 bits").into(),
+            ));
         }
         let r = m.p.kp.support();
         // |d| < r tested as |d|² < r² (no hypot: a quarter of the time of the whole rate went
@@ -761,9 +761,10 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                     .iter()
                     .position(|&x| (x ^ j as u32) as usize == i)
                     .ok_or_else(|| {
-                        Error::Incompatible(format!(
-                            "neighbour search: particle {i} sees {j} but not the reverse"
-                        ))
+                        Error::Incompatible(
+                            format!("neighbour search: particle {i} sees {j} but not the reverse")
+                                .into(),
+                        )
                     })?;
                 // SAFETY: as above
                 unsafe { entry.write(e, (p0 + k) as u32) };

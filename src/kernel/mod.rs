@@ -192,13 +192,14 @@ pub fn by_name(name: &str) -> Result<&'static dyn Kernel> {
         .copied()
         .find(|k| k.name() == name)
         .ok_or_else(|| Error::UnknownName {
-            what: "kernel",
+            what: "kernel".into(),
             given: name.to_string(),
             valid: all()
                 .iter()
                 .map(|k| k.name())
                 .collect::<Vec<_>>()
-                .join(", "),
+                .join(", ")
+                .into(),
         })
 }
 

@@ -7,7 +7,6 @@ use super::style::{
     Dash, GREY, Style, draw_line, draw_marker, draw_sample, plot_err, series_style, text,
     text_width, wrap,
 };
-use crate::analysis::DispersionReport;
 use crate::error::{Error, Result};
 use plotters::prelude::*;
 
@@ -448,31 +447,34 @@ pub const KAPPA_DESC: &str = "wave number κΔx/π (dimensionless; 1 is the cut-
 /// Ordinate description of every dispersion plot.
 pub const OMEGA2_DESC: &str = "ω²Δx²/c² (squared frequency in units of c²/Δx²; < 0: growth)";
 
-/// ω²Δx²/c² against κΔx/π with the continuum curve overlaid (every curve whole: the range
-/// comes from the data).
-pub fn dispersion_svg(r: &DispersionReport) -> Result<String> {
-    let xs: Vec<f64> = r
-        .kappa_dx
-        .iter()
-        .map(|k| k / std::f64::consts::PI)
-        .collect();
+/// ω²Δx²/c² of a form (`form`: its name in the legend) against κΔx/π, with the continuum
+/// `omega2_continuum` overlaid (every curve whole: the range comes from the data); the abscissa
+/// is the κΔx grid `kappa_dx`.
+pub fn dispersion_svg(
+    title: &str,
+    form: &str,
+    kappa_dx: &[f64],
+    omega2: &[f64],
+    omega2_continuum: &[f64],
+) -> Result<String> {
+    let xs: Vec<f64> = kappa_dx.iter().map(|k| k / std::f64::consts::PI).collect();
     let curves = vec![
         Curve {
-            label: format!("{} (numeric engine)", r.header.setup.form),
+            label: format!("{form} (numeric engine)"),
             x: xs.clone(),
-            y: r.omega2.clone(),
+            y: omega2.to_vec(),
             dashed: false,
         },
         Curve {
             label: "continuum (1 + σ̄)(κΔx)²  [B00 eq 32]".into(),
             x: xs,
-            y: r.omega2_continuum.clone(),
+            y: omega2_continuum.to_vec(),
             dashed: true,
         },
     ];
     LinePlot {
         zero_line: true,
-        ..LinePlot::new(&r.header.to_string(), KAPPA_DESC, OMEGA2_DESC, curves)
+        ..LinePlot::new(title, KAPPA_DESC, OMEGA2_DESC, curves)
     }
     .svg()
 }
@@ -510,27 +512,22 @@ pub fn damping_curves_svg(
     .svg()
 }
 
-/// Damping rate Re s(κ) of a dissipative 1D dispersion report (`None` when it has none).
-pub fn damping_svg(r: &DispersionReport) -> Result<Option<String>> {
-    let Some(rate) = &r.damping_rate else {
-        return Ok(None);
-    };
-    let xs: Vec<f64> = r
-        .kappa_dx
-        .iter()
-        .map(|k| k / std::f64::consts::PI)
-        .collect();
+/// Damping rate Re s(κ) of a form's mechanical branch (`form`: its name in the legend)
+/// against κΔx/π; a null `rate` leaves a gap. The title is `title` — damping.
+pub fn damping_svg(
+    title: &str,
+    form: &str,
+    kappa_dx: &[f64],
+    rate: &[Option<f64>],
+) -> Result<String> {
+    let xs: Vec<f64> = kappa_dx.iter().map(|k| k / std::f64::consts::PI).collect();
     damping_curves_svg(
-        &format!("{} — damping", r.header),
+        &format!("{title} — damping"),
         KAPPA_DESC,
         &xs,
-        &[(
-            format!("{} (eigenvalues of J(κ))", r.header.setup.form),
-            rate.clone(),
-        )],
+        &[(format!("{form} (eigenvalues of J(κ))"), rate.to_vec())],
         None,
     )
-    .map(Some)
 }
 
 #[cfg(test)]

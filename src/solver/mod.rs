@@ -2,14 +2,11 @@
 //! ([`crate::forms::Model::rate`], in 1D, 2D and 3D, every form) with the shared integrators
 //! ([`crate::integrator`]) — the same definitions the von Neumann engine linearises (SPEC §4).
 
-pub mod box_operator;
 pub mod diagnostics;
 pub mod output;
 pub mod rod;
 pub mod run;
 pub mod scene;
-pub mod swegle;
 pub mod thesis_wave;
-pub mod throughput;
 
 pub use run::{BoundaryDensity, Run, System, SystemBuffers};

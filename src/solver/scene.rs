@@ -7,9 +7,12 @@
 //! free particles at `t_end`: ‖v − v_exact‖₂ / ‖v_exact‖₂ (or / (v_scale √N) where v_exact ≡ 0).
 
 use super::run::Run;
-use crate::error::{Error, Result};
+use crate::budget::{Budget, fmt_count};
+use crate::error::{Error, Result, field, fields};
 use crate::forms::{ArtificialViscosity, FormKind, Material, Model, ModelParams, State};
 use crate::kernel;
+use crate::params::{ParamNames, check_common_named};
+use crate::progress::Progress;
 use crate::shape::{KernelParams, ShapeFamily};
 use serde::{Deserialize, Serialize};
 
@@ -117,6 +120,10 @@ pub struct Scene1D {
     /// Analytic solution for the error norm.
     #[serde(default)]
     pub analytic: Option<Analytic>,
+    /// The budget the run must stay within (not read from the file: [`Budget::default`]
+    /// unless the caller sets it).
+    #[serde(skip)]
+    pub budget: Budget,
 }
 
 fn half() -> f64 {
@@ -135,7 +142,7 @@ pub fn builtin(name: &str) -> Result<Scene1D> {
         "rod" => ROD,
         _ => {
             return Err(Error::UnknownName {
-                what: "scene",
+                what: "scene".into(),
                 given: name.into(),
                 valid: "uniform-bar, compressive-wave, tensile-wave, rod, thesis-wave, swegle (or a JSON file)".into(),
             });
@@ -227,7 +234,7 @@ pub struct SceneReport {
 pub const RUNAWAY_FACTOR: f64 = 1e3;
 
 /// Field names of a scene for the shared validation ([`crate::analysis::check_common_named`]).
-const SCENE_NAMES: crate::analysis::ParamNames = crate::analysis::ParamNames {
+const SCENE_NAMES: ParamNames = ParamNames {
     h: "h_over_dx",
     stress: "initial_stress / modulus",
     c: "c_partition",
@@ -237,8 +244,9 @@ const SCENE_NAMES: crate::analysis::ParamNames = crate::analysis::ParamNames {
 };
 
 impl Scene1D {
-    /// Validates every field through the same checks as the CLI flags, then the resources
-    /// (memory, particle-steps) against [`crate::budget`]. Returns (form, kernel, shape).
+    /// Validates every field through the same checks as the questions' fields, then the
+    /// resources (memory, particle-steps) against [`Scene1D::budget`]. Returns (form, kernel,
+    /// shape).
     pub fn validate(&self) -> Result<(FormKind, &'static dyn kernel::Kernel, ShapeFamily)> {
         let form = FormKind::by_name(&self.form)?;
         let k = kernel::by_name(&self.kernel)?;
@@ -261,7 +269,7 @@ impl Scene1D {
             true,
             true,
         )?;
-        crate::analysis::check_common_named(
+        check_common_named(
             &SCENE_NAMES,
             k,
             self.h_over_dx,
@@ -276,7 +284,7 @@ impl Scene1D {
         let c = (self.modulus / self.rho0).sqrt();
         if !(c.is_finite() && c > 0.0) {
             return Err(Error::OutOfRange {
-                name: "modulus / rho0",
+                field: "modulus / rho0",
                 value: self.modulus / self.rho0,
                 range: "the sound speed sqrt(modulus/rho0) must be a positive finite number".into(),
             });
@@ -297,28 +305,36 @@ impl Scene1D {
         }
         if l + r + 2 > self.particles {
             return Err(Error::OutOfRange {
-                name: "left.layers + right.layers",
+                field: "left.layers + right.layers",
                 value: (l + r) as f64,
                 range: format!(
                     "must leave at least 2 free particles: at most {} for {} particles",
                     self.particles - 2,
                     self.particles
-                ),
+                )
+                .into(),
             });
         }
-        // resources (crate::budget): stencils of ~2R/Δx + 1 neighbours (index, φ, φ', φ'':
+        // resources (the budget): stencils of ~2R/Δx + 1 neighbours (index, φ, φ', φ'':
         // 32 B) per particle and evaluation point, ~60 f64 of state, integrator copies and
         // scratch per particle, the history (3 f64 per step)
         let n = self.particles as f64;
         let neighbours = 2.0 * k.zeta() * self.h_over_dx + 1.0;
         let steps = (self.t_end / (self.cfl * dx / c)).ceil();
-        crate::budget::check_steps(
-            "t_end, cfl, length/particles, modulus/rho0 (steps = t_end c/(cfl Δx))",
-            &format!("the scene ({} time steps)", crate::budget::fmt_count(steps)),
+        self.budget.steps(
+            field("t_end")
+                + ", "
+                + field("cfl")
+                + ", "
+                + fields(&["length", "particles"])
+                + ", "
+                + fields(&["modulus", "rho0"])
+                + " (steps = t_end c/(cfl Δx))",
+            &format!("the scene ({} time steps)", fmt_count(steps)),
             n * steps,
         )?;
-        crate::budget::check_memory(
-            "particles/h_over_dx",
+        self.budget.memory(
+            fields(&["particles", "h_over_dx"]),
             &format!(
                 "the scene ({} particles, ~{neighbours:.0} neighbours each)",
                 self.particles
@@ -357,8 +373,8 @@ impl Scene1D {
         })
     }
 
-    /// Builds and runs the scene, calling `progress` with the fraction done.
-    pub fn run(&self, mut progress: impl FnMut(f64)) -> Result<SceneReport> {
+    /// Builds and runs the scene, telling `progress` the fraction done.
+    pub fn run(&self, progress: impl Progress) -> Result<SceneReport> {
         let (form, k, shape) = self.validate()?;
         let n = self.particles;
         let dx = self.length / (n - 1) as f64;
@@ -394,9 +410,9 @@ impl Scene1D {
             && index >= n
         {
             return Err(Error::OutOfRange {
-                name: "initial_velocity.index",
+                field: "initial_velocity.index",
                 value: index as f64,
-                range: format!("must be < particles = {n}"),
+                range: format!("must be < particles = {n}").into(),
             });
         }
         let v_init = self.initial_velocities(&x);
@@ -442,7 +458,10 @@ impl Scene1D {
             let ke = 0.5 * mass * run.z.v.iter().map(|[v]| v * v).sum::<f64>();
             history.push((run.t, vm, ke));
             if s % 256 == 0 {
-                progress(run.t / self.t_end);
+                progress.advance(run.t / self.t_end);
+                if progress.cancelled() {
+                    return Err(Error::Cancelled);
+                }
             }
         }
         let runtime_s = start.elapsed().as_secs_f64();

@@ -75,7 +75,7 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
         return Err(Error::Incompatible(format!(
             "thesis-wave seeds a stress pulse: use a form that carries stress (classical, nonlocal, local, eulerian-nodal), not {}",
             cfg.form.name()
-        )));
+        ).into()));
     }
     let (e, rho_a, len) = (200e9, 8000.0, 0.15);
     let rho_b = rho_a * cfg.density_ratio;

@@ -7,7 +7,7 @@
 //! and integration points with weights. Stress-point weights are Voronoi areas of the combined
 //! point set (nodes + stress points, \[B00\] eq 60); background-cell rules use the cell area.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, field};
 use crate::lattice::{Lattice2D, LatticeKind};
 use crate::shape::ShapeFamily;
 use crate::shape::{KernelParams, eval_d};
@@ -204,11 +204,14 @@ impl Pattern {
                 vec![[0.0, 0.0]],
                 vec![at(1.0 / 3.0, 1.0 / 3.0), at(2.0 / 3.0, 2.0 / 3.0)],
             )),
-            (q, _) => Err(Error::Incompatible(format!(
-                "--quadrature {} is not defined on a {} lattice (square: nodal, cell-1, cell-2x2, stress-quad, stress-tri, stress-star; hex: nodal, stress-hex)",
-                q.name(),
-                if square { "square" } else { "hex" }
-            ))),
+            (q, _) => Err(Error::Incompatible(
+                field("quadrature")
+                    + format!(
+                        " {} is not defined on a {} lattice (square: nodal, cell-1, cell-2x2, stress-quad, stress-tri, stress-star; hex: nodal, stress-hex)",
+                        q.name(),
+                        if square { "square" } else { "hex" }
+                    ),
+            )),
         }
     }
 }

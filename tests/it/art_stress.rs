@@ -6,11 +6,11 @@
 use crate::common;
 
 use common::*;
-use sphstab::art_stress::{
+use sphstab::kernel::Kernel;
+use sphstab::studies::art_stress::{
     ArtStressConfig, ArtStressReport, comparison_from_pysph, figure_svg, parse_config,
 };
-use sphstab::kernel::Kernel;
-use sphstab::solver::swegle::{predict_swegle, run_swegle};
+use sphstab::studies::swegle::{predict_swegle, run_swegle};
 use std::f64::consts::PI;
 use std::path::Path;
 

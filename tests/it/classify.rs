@@ -161,7 +161,10 @@ fn no_neighbours_is_an_input_error() {
     let e = query(&q(FormKind::Classical, "lucy", 1.0, 0.01)).unwrap_err();
     assert!(matches!(
         e,
-        sphstab::error::Error::OutOfRange { name: "--h", .. }
+        sphstab::error::Error::OutOfRange {
+            field: "h_over_dx",
+            ..
+        }
     ));
 }
 

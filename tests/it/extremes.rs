@@ -56,7 +56,10 @@ fn smoothing_length_extremes() {
     let q = sphstab::analysis::Query1D::new(FormKind::Classical, k("lucy"), 0.8, 0.1);
     assert!(matches!(
         sphstab::analysis::query(&q),
-        Err(sphstab::error::Error::OutOfRange { name: "--h", .. })
+        Err(sphstab::error::Error::OutOfRange {
+            field: "h_over_dx",
+            ..
+        })
     ));
 }
 

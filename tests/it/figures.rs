@@ -283,7 +283,7 @@ fn new_config_fields_are_checked_by_name() {
 /// through that fit (its rate, in the legend, is the command's measured growth rate).
 #[test]
 fn swegle_kind_draws_the_box_slope_over_the_fit() {
-    use sphstab::solver::swegle::{predict_swegle, run_swegle};
+    use sphstab::studies::swegle::{predict_swegle, run_swegle};
     let cfg = parse(
         "s.json",
         r#"{"output":"s.svg","title":"t","note":"n","swegle":[{"form":"classical","kernel":"m4","h":1.2,"density_ratio":0.95,"t_end":20,"history":"max"}]}"#,

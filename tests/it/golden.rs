@@ -148,7 +148,7 @@ fn table1() -> Value {
 }
 
 fn swegle() -> Value {
-    use sphstab::solver::swegle::{SwegleConfig, run_swegle};
+    use sphstab::studies::swegle::{SwegleConfig, run_swegle};
     let mut out = Vec::new();
     for (form, kern, h, f) in [
         (FormKind::Classical, "m4", 1.2, 0.99),
@@ -171,7 +171,7 @@ fn swegle() -> Value {
 }
 
 fn tradeoff_rows() -> Value {
-    use sphstab::tradeoff::{TradeoffConfig, run};
+    use sphstab::studies::tradeoff::{TradeoffConfig, run};
     let cfg = TradeoffConfig {
         forms: vec![
             "classical".into(),
@@ -184,7 +184,7 @@ fn tradeoff_rows() -> Value {
         repeats: 1,
         ..TradeoffConfig::default()
     };
-    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    let rep = run(&cfg, None, ()).unwrap();
     let rows: Vec<Value> = rep
         .rows
         .iter()

@@ -29,10 +29,10 @@ use sphstab::forms::{
 };
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
-use sphstab::solver::throughput::{
+use sphstab::solver::{BoundaryDensity, Run};
+use sphstab::studies::throughput::{
     BlockMaterial, Domain, ThroughputConfig, build_block, build_block_nd,
 };
-use sphstab::solver::{BoundaryDensity, Run};
 use std::path::PathBuf;
 
 const TOL: f64 = 1e-12;

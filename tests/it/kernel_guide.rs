@@ -9,12 +9,12 @@ use common::{assert_bad_inputs, json, sphstab};
 use sphstab::forms::FormKind;
 use sphstab::integrator::Integrator;
 use sphstab::kernel::{self, Kernel};
-use sphstab::kernel_guide::{
+use sphstab::studies::kernel_guide::{
     GUIDE_FORMS, GUIDE_H, Interval, REFERENCE_TENSION, SAFETY, WSTAR_K_STEP, compression_scan,
     intervals, tensile_onset, time_step_cell,
 };
-use sphstab::pairing::wstar::{NEGATIVE_TOL, Transform, sign_criterion_with};
-use sphstab::tradeoff::cfl::cfl_cell;
+use sphstab::studies::pairing::wstar::{NEGATIVE_TOL, Transform, sign_criterion_with};
+use sphstab::studies::tradeoff::cfl::cfl_cell;
 use sphstab::vonneumann::transform::{gauss_legendre, lucy_ft};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -238,12 +238,12 @@ fn compression_follows_the_transform_sign() {
         let w_neg = sign_criterion_with(kern, 1, WSTAR_K_STEP)
             .first_negative_k
             .is_some();
-        let c = compression_scan(kern, 1, &h).unwrap();
+        let c = compression_scan(kern, 1, &h, &Default::default()).unwrap();
         let whole = c.scanned.unwrap();
         let all_stable = c.stable == vec![whole];
         assert_eq!(all_stable, !w_neg, "{}: {:?}", kern.name(), c.stable);
     }
-    let c = compression_scan(k("wendland-c2"), 2, &h).unwrap();
+    let c = compression_scan(k("wendland-c2"), 2, &h, &Default::default()).unwrap();
     assert_eq!(c.no_pairing, vec![c.scanned.unwrap()]);
 }
 

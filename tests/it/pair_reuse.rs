@@ -13,8 +13,8 @@
 use sphstab::forms::FormKind;
 use sphstab::kernel;
 use sphstab::solver::Run;
-use sphstab::solver::swegle::SwegleConfig;
-use sphstab::solver::throughput::{BlockMaterial, Domain, ThroughputConfig, build_block_nd};
+use sphstab::studies::swegle::SwegleConfig;
+use sphstab::studies::throughput::{BlockMaterial, Domain, ThroughputConfig, build_block_nd};
 
 /// Bits of the whole state.
 fn bits<const D: usize>(run: &Run<D>) -> Vec<u64> {

@@ -7,8 +7,8 @@ use crate::common;
 use common::{assert_bad_inputs, json, sphstab};
 use sphstab::kernel::{self, Kernel};
 use sphstab::lattice::Lattice3D;
-use sphstab::pairing::wstar::{NEGATIVE_TOL, Transform3D, sign_criterion};
-use sphstab::pairing::{
+use sphstab::studies::pairing::wstar::{NEGATIVE_TOL, Transform3D, sign_criterion};
+use sphstab::studies::pairing::{
     PairingReport, evaluate_row, figure_svg, neighbour_count, parse_config, plan,
 };
 use std::f64::consts::PI;
@@ -174,7 +174,7 @@ fn closed_form_scan(
     s: f64,
     grid: usize,
 ) -> (f64, f64) {
-    let q = sphstab::pairing::row_query(k, *lat, h, s, grid);
+    let q = sphstab::studies::pairing::row_query(k, *lat, h, s, grid);
     let (mut all, mut long) = (0.0f64, 0.0f64);
     for kv in q.kgrid() {
         let e = nalgebra::SymmetricEigen::try_new(closed_form_d(k, lat, h, s, kv), 1e-15, 1000)
@@ -209,7 +209,7 @@ fn study_rows_agree_with_the_closed_form_dynamical_matrix() {
     for name in ["m4", "wendland-c2"] {
         let k = kernel::by_name(name).unwrap();
         for h in [1.0, 1.2] {
-            let row = evaluate_row(k, ("sc", sc), h, s, 8, None).unwrap();
+            let row = evaluate_row(k, ("sc", sc), h, s, 8, None, &Default::default()).unwrap();
             assert!(row.skipped.is_none());
             let (all, long) = closed_form_scan(k, &sc, h, s, 8);
             let (got, got_long) = (

@@ -304,7 +304,7 @@ fn b00_fig11() -> Row {
 }
 
 fn v21_fig12() -> Row {
-    use sphstab::solver::swegle::{SwegleConfig, run_swegle};
+    use sphstab::studies::swegle::{SwegleConfig, run_swegle};
     let run = |form, f| {
         let cfg = SwegleConfig::new(form, k("m4"), 1.2, f);
         run_swegle(&cfg, |_| {}).unwrap()
@@ -444,7 +444,7 @@ fn v21_fig7() -> Row {
 
 use sphstab::forms::State;
 use sphstab::solver::scene::{self, InitialVelocity, Scene1D, SceneReport};
-use sphstab::solver::swegle::{FinalState, SwegleConfig, run_swegle};
+use sphstab::studies::swegle::{FinalState, SwegleConfig, run_swegle};
 
 /// A built-in scene changed by `edit`, then sent through the JSON route of `simulate FILE`
 /// (serialised and parsed back, so every field is validated as a scene file is).

@@ -6,8 +6,8 @@ use sphstab::kernel;
 use sphstab::lattice::Lattice2D;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
-use sphstab::solver::swegle::{SwegleConfig, run_swegle};
 use sphstab::solver::{BoundaryDensity, Run};
+use sphstab::studies::swegle::{SwegleConfig, run_swegle};
 use sphstab::vonneumann::linearise::{Linearisation2D, base_state};
 use std::f64::consts::PI;
 

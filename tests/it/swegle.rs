@@ -4,7 +4,7 @@
 
 use sphstab::forms::FormKind;
 use sphstab::kernel;
-use sphstab::solver::swegle::{SwegleConfig, SwegleReport, run_swegle};
+use sphstab::studies::swegle::{SwegleConfig, SwegleReport, run_swegle};
 
 fn run(form: FormKind, kern: &str, h: f64, f: f64) -> SwegleReport {
     let mut cfg = SwegleConfig::new(form, kernel::by_name(kern).unwrap(), h, f);

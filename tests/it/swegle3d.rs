@@ -12,10 +12,10 @@ use sphstab::forms::{FormKind, Material, Model, ModelParams, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::lattice::Lattice3D;
 use sphstab::shape::KernelParams;
-use sphstab::solver::swegle::{
+use sphstab::solver::{BoundaryDensity, Run};
+use sphstab::studies::swegle::{
     SwegleConfig, SwegleReport, default_size, dense_size_limit, run_swegle,
 };
-use sphstab::solver::{BoundaryDensity, Run};
 use sphstab::vonneumann::classify::GROWTH_TOL;
 use sphstab::vonneumann::linearise::base_state;
 

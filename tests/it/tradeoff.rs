@@ -3,7 +3,9 @@
 
 use crate::common;
 
-use sphstab::tradeoff::{TradeoffConfig, TradeoffReport, figure_svg, grid, parse_config, run};
+use sphstab::studies::tradeoff::{
+    TradeoffConfig, TradeoffReport, figure_svg, grid, parse_config, run,
+};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -23,7 +25,7 @@ fn tradeoff_numbers_match_closed_forms_for_m4_at_h_equal_dx() {
         repeats: 1,
         ..Default::default()
     };
-    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    let rep = run(&cfg, None, ()).unwrap();
     let rows: Vec<_> = rep.rows.iter().filter(|r| r.h_over_dx == 1.0).collect();
     assert_eq!(rows.len(), 2);
     for r in rows {
@@ -84,7 +86,7 @@ fn least_squares_runs_with_its_consistent_mass() {
         repeats: 1,
         ..Default::default()
     };
-    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    let rep = run(&cfg, None, ()).unwrap();
     let r = &rep.rows[0];
     assert!(r.error.is_none(), "{r:?}");
     assert!(r.wave_l2_error.unwrap().is_finite());
@@ -110,7 +112,7 @@ fn committed_tradeoff_figures_are_drawn_from_their_stored_data() {
         let g = grid(&cfg).unwrap();
         assert_eq!(rep.dim, cfg.dim);
         assert_eq!(rep.rows.len(), g.len(), "{name}");
-        let integs = sphstab::tradeoff::integrator_list(&cfg).unwrap();
+        let integs = sphstab::studies::tradeoff::integrator_list(&cfg).unwrap();
         assert_eq!(rep.integrator_rows.len(), g.len() * integs.len(), "{name}");
         for (r, (f, k, h)) in rep.rows.iter().zip(&g) {
             assert_eq!((r.form.as_str(), r.kernel.as_str()), (f.name(), k.name()));
@@ -255,7 +257,7 @@ fn integrator_rows_match_closed_forms_on_the_oscillator() {
         safety: 0.8,
         ..Default::default()
     };
-    let rep = run(&cfg, None, |_, _| {}).unwrap();
+    let rep = run(&cfg, None, ()).unwrap();
     assert_eq!(rep.integrator_rows.len(), 3 * 12);
     let q = Query1D::new(
         FormKind::by_name("total-lagrangian").unwrap(),
@@ -359,7 +361,8 @@ fn integrator_rows_match_closed_forms_on_the_oscillator() {
             // the 10-ppw mode is within the tolerance of the worst mode over T_REF = its period
             // (κΔx = 2π/10 lies between two grid points: 1% slack)
             assert!(
-                r.amplitude_error_10ppw.unwrap() <= 1.01 * sphstab::tradeoff::integrators::WEAK_TOL,
+                r.amplitude_error_10ppw.unwrap()
+                    <= 1.01 * sphstab::studies::tradeoff::integrators::WEAK_TOL,
                 "{r:?}"
             );
         }
@@ -398,7 +401,7 @@ fn cfl_table_matches_the_leapfrog_and_rk4_limits() {
     use sphstab::forms::FormKind;
     use sphstab::integrator::Integrator;
     use sphstab::kernel;
-    use sphstab::tradeoff::cfl::{CFL_POINTS, cfl_cell};
+    use sphstab::studies::tradeoff::cfl::{CFL_POINTS, cfl_cell};
     for form in ["classical", "total-lagrangian"] {
         for kern in ["m4", "wendland-c2", "gaussian", "efg-quartic"] {
             for h in [1.2, 2.0] {

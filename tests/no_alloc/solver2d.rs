@@ -24,8 +24,8 @@ use sphstab::forms::{
 };
 use sphstab::kernel;
 use sphstab::shape::KernelParams;
-use sphstab::solver::throughput::{ThroughputConfig, build_block};
 use sphstab::solver::{BoundaryDensity, Run};
+use sphstab::studies::throughput::{ThroughputConfig, build_block};
 use std::sync::atomic::Ordering;
 
 /// An open n × n block (Δx = 1, ρ0 = 1, P-wave modulus 1) with a smooth velocity field.

@@ -16,7 +16,7 @@ use crate::allocations;
 use sphstab::forms::{FormKind, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::solver::Run;
-use sphstab::solver::throughput::{BlockMaterial, Domain, ThroughputConfig, build_block_nd};
+use sphstab::studies::throughput::{BlockMaterial, Domain, ThroughputConfig, build_block_nd};
 
 /// The periodic n³ box of `throughput --dim 3` (m4, h = 1.3Δx, smooth velocity field).
 fn block(n: usize, form: FormKind, material: BlockMaterial, av: bool) -> Run<3> {

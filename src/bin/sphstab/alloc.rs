@@ -2,7 +2,7 @@
 //! allocated, their peak and the number of allocations, so that `sphstab throughput` reports
 //! *measured* memory. The cost is a few relaxed atomic operations per allocation.
 
-use sphstab::solver::throughput::MemoryProbe;
+use sphstab::studies::throughput::MemoryProbe;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
 

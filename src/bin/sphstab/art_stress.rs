@@ -6,8 +6,9 @@
 
 use crate::{progress, study};
 use anyhow::Result;
-use sphstab::art_stress::{ArtStressConfig, ArtStressReport};
+use sphstab::budget::Budget;
 use sphstab::solver::BoundaryDensity;
+use sphstab::studies::art_stress::{ArtStressConfig, ArtStressReport};
 use std::path::{Path, PathBuf};
 
 /// Flags of `art-stress`.
@@ -85,7 +86,7 @@ impl Args {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
@@ -96,7 +97,7 @@ pub fn run(a: Args) -> Result<()> {
             from,
             a.plot.as_ref(),
             others,
-            sphstab::art_stress::figure_svg,
+            sphstab::studies::art_stress::figure_svg,
         );
     }
     let cfg = match &a.config {
@@ -107,7 +108,7 @@ pub fn run(a: Args) -> Result<()> {
                     flags.join(", ")
                 );
             }
-            study::read_config(p, sphstab::art_stress::parse_config)?
+            study::read_config(p, sphstab::studies::art_stress::parse_config)?
         }
         None => {
             let d = ArtStressConfig::quick();
@@ -115,7 +116,7 @@ pub fn run(a: Args) -> Result<()> {
                 Some(n) if n.fract() == 0.0 && (1.0..=12.0).contains(&n) => n as i32,
                 Some(n) => {
                     return Err(sphstab::error::Error::OutOfRange {
-                        name: "--art-n",
+                        field: "art_n",
                         value: n,
                         range: "an integer in [1, 12]".into(),
                     }
@@ -148,7 +149,11 @@ pub fn run(a: Args) -> Result<()> {
             }
         }
     };
-    cfg.validate_named(a.config.is_none())?;
+    let cfg = ArtStressConfig {
+        budget: *budget,
+        ..cfg
+    };
+    cfg.validate()?;
     if let Some(name) = &cfg.output {
         crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
     }
@@ -161,25 +166,25 @@ pub fn run(a: Args) -> Result<()> {
             };
             let text = std::fs::read_to_string(p)
                 .map_err(|e| anyhow::anyhow!("{flag}: cannot read {p}: {e}"))?;
-            Some(sphstab::art_stress::comparison_from_pysph(p, &text)?)
+            Some(sphstab::studies::art_stress::comparison_from_pysph(
+                p, &text,
+            )?)
         }
         None => None,
     };
-    let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::art_stress::run(&cfg, compare.as_ref(), |d, t| {
-        progress::set(&pb, d as f64 / t.max(1) as f64)
-    })?;
-    pb.finish_and_clear();
+    let pb = progress::Bar::new(progress::wanted(a.json));
+    let rep = sphstab::studies::art_stress::run(&cfg, compare.as_ref(), pb.clone())?;
+    pb.finish();
     if let Some(path) = &a.plot {
-        study::write_plot(sphstab::art_stress::figure_svg(&rep), path)?;
+        study::write_plot(sphstab::studies::art_stress::figure_svg(&rep), path)?;
     }
     if let Some(name) = &cfg.output {
-        study::write_figure_and_data(&rep, name, sphstab::art_stress::figure_svg)?;
+        study::write_figure_and_data(&rep, name, sphstab::studies::art_stress::figure_svg)?;
     }
     if a.json {
         println!("{}", serde_json::to_string(&rep)?);
     } else {
-        print!("{}", sphstab::art_stress::table(&rep));
+        print!("{}", sphstab::studies::art_stress::table(&rep));
     }
     Ok(())
 }

@@ -3,7 +3,8 @@
 
 use crate::progress;
 use anyhow::{Context, Result};
-use sphstab::atlas::{AtlasConfig, AtlasReport, Shard};
+use sphstab::budget::Budget;
+use sphstab::studies::atlas::{AtlasConfig, AtlasReport, Shard};
 use std::path::PathBuf;
 
 /// Flags of `atlas`.
@@ -42,7 +43,7 @@ pub struct Args {
     json: bool,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.out {
         crate::common::check_writable("--out", p)?;
     }
@@ -58,13 +59,12 @@ pub fn run(a: Args) -> Result<()> {
         stress_points: a.stress_points,
         stress_range: (a.stress_min, a.stress_max),
         kappas: a.kappas,
+        budget: *budget,
     };
     let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
-    let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::atlas::run(&cfg, shard, |d, t| {
-        progress::set(&pb, d as f64 / t.max(1) as f64)
-    })?;
-    pb.finish_and_clear();
+    let pb = progress::Bar::new(progress::wanted(a.json));
+    let rep = sphstab::studies::atlas::run(&cfg, shard, pb.clone())?;
+    pb.finish();
     output(&rep, a.out.as_ref(), a.json)
 }
 
@@ -79,7 +79,7 @@ pub fn output(rep: &AtlasReport, out: Option<&PathBuf>, json: bool) -> Result<()
     if json {
         println!("{}", serde_json::to_string(rep)?);
     } else {
-        print!("{}", sphstab::atlas::summary(rep));
+        print!("{}", sphstab::studies::atlas::summary(rep));
         let what = match rep.shard {
             Some(s) => format!("shard {}/{}: ", s.index, s.count),
             None => String::new(),
@@ -92,7 +92,7 @@ pub fn output(rep: &AtlasReport, out: Option<&PathBuf>, json: bool) -> Result<()
             rep.runtime_s,
             rep.threads
         );
-        let terms = sphstab::atlas::lattice_sum_terms(rep);
+        let terms = sphstab::studies::atlas::lattice_sum_terms(rep);
         println!(
             "lattice-sum limit: {terms:.3e} Fourier terms (κ points × neighbours within the support, over the cells) at 1 ns each = {:.2} s of CPU",
             terms * 1e-9

@@ -88,7 +88,7 @@ impl Config {
         match self.dim.unwrap_or(1) {
             d @ 1..=3 => Ok(d),
             d => Err(sphstab::error::Error::OutOfRange {
-                name: "--dim",
+                field: "dim",
                 value: d as f64,
                 range: "must be 1, 2 or 3".into(),
             }
@@ -96,8 +96,11 @@ impl Config {
         }
     }
 
-    /// Builds and validates the query in D ∈ {2, 3} dimensions.
-    pub fn query_nd<const D: usize>(&self) -> Result<sphstab::analysis::Query<D>> {
+    /// Builds and validates the query in D ∈ {2, 3} dimensions, within `budget`.
+    pub fn query_nd<const D: usize>(
+        &self,
+        budget: &sphstab::budget::Budget,
+    ) -> Result<sphstab::analysis::Query<D>> {
         use sphstab::analysis::{MaterialSpec, Query};
         use sphstab::forms::ObjectiveRate;
         let q1 = self.query(2)?;
@@ -111,6 +114,7 @@ impl Config {
         q.dt = q1.dt;
         q.grid = self.grid.unwrap_or(sphstab::analysis::default_grid(D));
         q.art_stress = art_stress(self.art_eps, self.art_n)?;
+        q.budget = *budget;
         let lattice = self
             .lattice
             .as_deref()
@@ -141,7 +145,7 @@ impl Config {
             "truesdell" => ObjectiveRate::Truesdell,
             r => {
                 return Err(sphstab::error::Error::UnknownName {
-                    what: "rate",
+                    what: "rate".into(),
                     given: r.into(),
                     valid: "jaumann, truesdell".into(),
                 }
@@ -160,7 +164,7 @@ impl Config {
             }
             m => {
                 return Err(sphstab::error::Error::UnknownName {
-                    what: "material",
+                    what: "material".into(),
                     given: m.into(),
                     valid: "hydro, elastic, neo-hookean".into(),
                 }
@@ -204,7 +208,7 @@ impl Config {
         let h = match (self.h, self.support) {
             (Some(h), _) => h,
             (None, Some(r)) => {
-                let (lo, hi) = sphstab::analysis::H_RANGE;
+                let (lo, hi) = sphstab::params::H_RANGE;
                 sphstab::error::check_range(
                     "--support",
                     r,
@@ -215,7 +219,7 @@ impl Config {
                 )?;
                 if r <= 1.0 {
                     return Err(sphstab::error::Error::OutOfRange {
-                        name: "--support",
+                        field: "support",
                         value: r,
                         range: "the support R/Δx must exceed 1 so that particles have neighbours"
                             .into(),

@@ -2,6 +2,7 @@
 
 use crate::common::Config;
 use anyhow::{Context, Result};
+use sphstab::budget::Budget;
 
 /// Flags of `dispersion`.
 #[derive(clap::Args, Debug)]
@@ -41,21 +42,32 @@ fn cell(v: Option<f64>, width: usize, prec: usize) -> String {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
     match a.cfg.dim()? {
-        2 => return run_nd::<2>(a),
-        3 => return run_nd::<3>(a),
+        2 => return run_nd::<2>(a, budget),
+        3 => return run_nd::<3>(a, budget),
         _ => {}
     }
     a.cfg.reject_2d_flags()?;
     let q = a.cfg.query(a.points)?;
     let r = sphstab::analysis::dispersion(&q)?;
     if let Some(path) = &a.plot {
-        write_svg(path, sphstab::plot::dispersion_svg(&r)?)?;
-        if let Some(svg) = sphstab::plot::damping_svg(&r)? {
+        let (title, form) = (r.header.to_string(), r.header.setup.form);
+        write_svg(
+            path,
+            sphstab::plot::dispersion_svg(
+                &title,
+                form,
+                &r.kappa_dx,
+                &r.omega2,
+                &r.omega2_continuum,
+            )?,
+        )?;
+        if let Some(rate) = &r.damping_rate {
+            let svg = sphstab::plot::damping_svg(&title, form, &r.kappa_dx, rate)?;
             write_svg(&damping_path(path), svg)?;
         }
     }
@@ -105,9 +117,9 @@ fn branch_names(d: usize) -> Vec<&'static str> {
     }
 }
 
-fn run_nd<const D: usize>(a: Args) -> Result<()> {
+fn run_nd<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
     use sphstab::plot::{Curve, LinePlot};
-    let q = a.cfg.query_nd::<D>()?;
+    let q = a.cfg.query_nd::<D>(budget)?;
     let r = sphstab::analysis::dispersion2d(&q, a.points)?;
     if let Some(path) = &a.plot {
         let col = |i: usize, v: &Vec<Vec<f64>>| v.iter().map(|b| b[i]).collect::<Vec<_>>();

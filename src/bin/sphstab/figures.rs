@@ -1,6 +1,7 @@
 //! `sphstab figures`: regenerate every figure from its config.
 
 use anyhow::{Context, Result};
+use sphstab::budget::Budget;
 use std::path::PathBuf;
 
 /// Flags of `figures`.
@@ -14,7 +15,7 @@ pub struct Args {
     out: PathBuf,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(&a.configs)
         .with_context(|| format!("--configs: cannot read {}", a.configs.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -26,7 +27,10 @@ pub fn run(a: Args) -> Result<()> {
     for f in files {
         let name = f.display().to_string();
         let text = std::fs::read_to_string(&f).with_context(|| format!("cannot read {name}"))?;
-        let cfg = sphstab::figures::parse(&name, &text)?;
+        let cfg = sphstab::figures::FigureConfig {
+            budget: *budget,
+            ..sphstab::figures::parse(&name, &text)?
+        };
         let svg = sphstab::figures::render(&cfg).with_context(|| name.clone())?;
         let out = a.out.join(&cfg.output);
         std::fs::write(&out, svg).with_context(|| format!("cannot write {}", out.display()))?;

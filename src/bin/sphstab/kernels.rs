@@ -1,9 +1,10 @@
 //! `sphstab kernels`: the kernel table, and with `--table` the kernel guide
-//! ([`sphstab::kernel_guide`]).
+//! ([`sphstab::studies::kernel_guide`]).
 
 use anyhow::{Result, bail};
 use serde::Serialize;
-use sphstab::kernel_guide::{DEFAULT_H_STEP, GuideConfig, kernel_guide, markdown};
+use sphstab::budget::Budget;
+use sphstab::studies::kernel_guide::{DEFAULT_H_STEP, GuideConfig, kernel_guide, markdown};
 
 /// Flags of `kernels`.
 #[derive(clap::Args, Debug)]
@@ -37,9 +38,10 @@ struct Row {
     reference: &'static str,
 }
 
-fn guide(a: &Args) -> Result<()> {
+fn guide(a: &Args, budget: &Budget) -> Result<()> {
     let mut cfg = GuideConfig {
         h_step: a.h_step.unwrap_or(DEFAULT_H_STEP),
+        budget: *budget,
         ..GuideConfig::default()
     };
     if !a.kernels.is_empty() {
@@ -58,9 +60,9 @@ fn guide(a: &Args) -> Result<()> {
     Ok(())
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if a.table {
-        return guide(&a);
+        return guide(&a, budget);
     }
     if !a.kernels.is_empty() {
         bail!("--kernels applies to the kernel guide only: add --table");

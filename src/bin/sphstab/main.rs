@@ -6,6 +6,7 @@ mod atlas;
 mod common;
 mod dispersion;
 mod figures;
+mod flags;
 mod kernels;
 mod map;
 mod merge;
@@ -21,6 +22,7 @@ mod timestep;
 mod tradeoff;
 
 use clap::{Parser, Subcommand};
+use sphstab::budget::Budget;
 
 /// Stability of SPH forms, kernels, smoothing lengths, stress states and time steps.
 ///
@@ -30,18 +32,44 @@ use clap::{Parser, Subcommand};
 /// before it starts; a time integration that diverges stops with status 3.
 #[derive(Parser)]
 #[command(name = "sphstab", version, about)]
-struct Cli {
+pub(crate) struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
     /// Memory budget (bytes, or with K/M/G/T suffix): a run whose estimated memory exceeds it
     /// is refused before it starts. Default: 2G, or a quarter of the machine's RAM if less.
-    #[arg(long = "max-memory", global = true, value_parser = sphstab::budget::parse_bytes)]
+    #[arg(long = "max-memory", global = true, value_parser = parse_bytes)]
     max_memory: Option<f64>,
     /// Cap on particle-steps (particles × time steps) of one time integration (simulate,
     /// swegle, throughput, tradeoff): longer runs are refused before they start. Default 5e7
     /// (about a minute here).
     #[arg(long = "max-steps", global = true, value_parser = parse_steps)]
     max_steps: Option<f64>,
+}
+
+/// Parses a byte count with an optional binary suffix: `512M`, `2G`, `1.5GiB`, `3000000`.
+fn parse_bytes(s: &str) -> std::result::Result<f64, String> {
+    let t = s.trim();
+    let split = t
+        .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == 'E' || c == '+'))
+        .unwrap_or(t.len());
+    let (num, unit) = t.split_at(split);
+    let v: f64 = num
+        .parse()
+        .map_err(|_| format!("`{s}` is not a byte count (e.g. 512M, 2G, 3000000)"))?;
+    let mult = match unit.trim().to_ascii_lowercase().as_str() {
+        "" | "b" => 1.0,
+        "k" | "kb" | "kib" => 1024.0,
+        "m" | "mb" | "mib" => 1024.0 * 1024.0,
+        "g" | "gb" | "gib" => 1024.0 * 1024.0 * 1024.0,
+        "t" | "tb" | "tib" => 1024.0f64.powi(4),
+        u => return Err(format!("unknown unit `{u}` in `{s}` (use K, M, G or T)")),
+    };
+    let b = v * mult;
+    if b.is_finite() && b > 0.0 {
+        Ok(b)
+    } else {
+        Err(format!("`{s}` must be a positive byte count"))
+    }
 }
 
 fn parse_steps(s: &str) -> Result<f64, String> {
@@ -52,7 +80,7 @@ fn parse_steps(s: &str) -> Result<f64, String> {
 }
 
 #[derive(Subcommand)]
-enum Cmd {
+pub(crate) enum Cmd {
     /// Is this configuration stable? Names and classifies every instability (growth rates in c/Δx).
     Query(query::Args),
     /// Dispersion curve ω²(κ) of the mechanical branch, with the continuum overlaid.
@@ -140,39 +168,48 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let mut budget = sphstab::budget::Budget::for_machine();
+    let mut budget = Budget::for_machine();
     if let Some(m) = cli.max_memory {
         budget.max_memory = m;
     }
     if let Some(n) = cli.max_steps {
         budget.max_steps = n;
     }
-    sphstab::budget::set(budget);
+    let b = &budget;
     let res = match cli.cmd {
-        Cmd::Query(a) => query::run(a),
-        Cmd::Dispersion(a) => dispersion::run(a),
-        Cmd::Timestep(a) => timestep::run(a),
-        Cmd::Kernels(a) => kernels::run(a),
-        Cmd::Figures(a) => figures::run(a),
-        Cmd::Map(a) => map::run(a),
+        Cmd::Query(a) => query::run(a, b),
+        Cmd::Dispersion(a) => dispersion::run(a, b),
+        Cmd::Timestep(a) => timestep::run(a, b),
+        Cmd::Kernels(a) => kernels::run(a, b),
+        Cmd::Figures(a) => figures::run(a, b),
+        Cmd::Map(a) => map::run(a, b),
         Cmd::Stiffness(a) => stiffness::run(a),
-        Cmd::Swegle(a) => swegle::run(a),
-        Cmd::Simulate(a) => simulate::run(a),
-        Cmd::Tradeoff(a) => tradeoff::run(a),
-        Cmd::Atlas(a) => atlas::run(a),
-        Cmd::Merge(a) => merge::run(a),
-        Cmd::Throughput(a) => throughput::run(a),
-        Cmd::Pairing(a) => pairing::run(a),
-        Cmd::ArtStress(a) => art_stress::run(a),
+        Cmd::Swegle(a) => swegle::run(a, b),
+        Cmd::Simulate(a) => simulate::run(a, b),
+        Cmd::Tradeoff(a) => tradeoff::run(a, b),
+        Cmd::Atlas(a) => atlas::run(a, b),
+        Cmd::Merge(a) => merge::run(a, b),
+        Cmd::Throughput(a) => throughput::run(a, b),
+        Cmd::Pairing(a) => pairing::run(a, b),
+        Cmd::ArtStress(a) => art_stress::run(a, b),
     };
     if let Err(e) = res {
-        let msg = format!("{e:#}").replace('\n', " ");
-        eprintln!("error: {msg}");
+        eprintln!("error: {}", flags::message(&e));
         // 3: the run itself blew up (a result, not bad input); 2: bad input or over budget
-        let diverged = matches!(
-            e.downcast_ref::<sphstab::error::Error>(),
-            Some(sphstab::error::Error::Diverged { .. })
-        );
-        std::process::exit(if diverged { 3 } else { 2 });
+        std::process::exit(if flags::diverged(&e) { 3 } else { 2 });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_bytes;
+
+    #[test]
+    fn byte_counts_parse() {
+        assert_eq!(parse_bytes("2G").unwrap(), 2.0 * 1024.0 * 1024.0 * 1024.0);
+        assert_eq!(parse_bytes("512M").unwrap(), 512.0 * 1024.0 * 1024.0);
+        assert_eq!(parse_bytes("3000").unwrap(), 3000.0);
+        assert!(parse_bytes("-1").is_err());
+        assert!(parse_bytes("1X").is_err());
     }
 }

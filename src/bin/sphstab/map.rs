@@ -3,6 +3,7 @@
 
 use crate::common::Config;
 use anyhow::{Context, Result};
+use sphstab::budget::Budget;
 
 /// Flags of `map`.
 #[derive(clap::Args, Debug)]
@@ -24,7 +25,7 @@ pub struct Args {
     plane: Option<String>,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if a.cfg.dim.is_some_and(|d| d == 1) {
         return Err(crate::query::not_in(
             "--dim 1",
@@ -34,16 +35,16 @@ pub fn run(a: Args) -> Result<()> {
     let mut cfg = a.cfg.clone();
     cfg.dim = Some(cfg.dim.unwrap_or(2));
     if cfg.dim()? == 3 {
-        run_nd::<3>(a, cfg)
+        run_nd::<3>(a, cfg, budget)
     } else {
         if a.plane.is_some() {
             return Err(crate::query::not_in("--plane", "--dim 2 (it is a 3D flag)"));
         }
-        run_nd::<2>(a, cfg)
+        run_nd::<2>(a, cfg, budget)
     }
 }
 
-fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config) -> Result<()> {
+fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) -> Result<()> {
     use sphstab::analysis::Plane;
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
@@ -52,7 +53,7 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config) -> Result<()> {
         Some(p) => Plane::by_name(p)?,
         None => Plane::Xy,
     };
-    let q = cfg.query_nd::<D>()?;
+    let q = cfg.query_nd::<D>(budget)?;
     let t = std::time::Instant::now();
     let m = sphstab::analysis::growth_map(&q, a.n, plane)?;
     let (xl, yl) = if D == 3 {

@@ -1,7 +1,8 @@
 //! `sphstab merge`: join the shards of an atlas computed with `atlas --shard i/n --out f`.
 
 use anyhow::{Context, Result};
-use sphstab::atlas::AtlasReport;
+use sphstab::budget::Budget;
+use sphstab::studies::atlas::AtlasReport;
 use std::path::PathBuf;
 
 /// Flags of `merge`.
@@ -18,7 +19,7 @@ pub struct Args {
     json: bool,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.out {
         crate::common::check_writable("--out", p)?;
     }
@@ -28,7 +29,7 @@ pub fn run(a: Args) -> Result<()> {
         .iter()
         .map(|f| std::fs::metadata(f).map(|m| m.len()).unwrap_or(0))
         .sum();
-    sphstab::budget::check_memory(
+    budget.memory(
         "<FILES>",
         &format!("merging {} shard files", a.files.len()),
         4.0 * total as f64,
@@ -37,7 +38,7 @@ pub fn run(a: Args) -> Result<()> {
     for f in &a.files {
         let name = f.display().to_string();
         // bounded read: a device or a growing file cannot exhaust the memory budget
-        let cap = (sphstab::budget::current().max_memory / 4.0) as u64;
+        let cap = (budget.max_memory / 4.0) as u64;
         let mut buf = Vec::new();
         std::io::Read::read_to_end(
             &mut std::io::Read::take(
@@ -58,6 +59,6 @@ pub fn run(a: Args) -> Result<()> {
             })?;
         parts.push((name, r));
     }
-    let rep = sphstab::atlas::merge(&parts)?;
+    let rep = sphstab::studies::atlas::merge(&parts)?;
     crate::atlas::output(&rep, a.out.as_ref(), a.json)
 }

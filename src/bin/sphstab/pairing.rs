@@ -5,7 +5,8 @@
 
 use crate::{progress, study};
 use anyhow::Result;
-use sphstab::pairing::{PairingConfig, PairingReport};
+use sphstab::budget::Budget;
+use sphstab::studies::pairing::{PairingConfig, PairingReport};
 use std::path::{Path, PathBuf};
 
 /// Flags of `pairing`.
@@ -81,7 +82,7 @@ fn all_or(v: &[String]) -> Vec<String> {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
@@ -92,7 +93,7 @@ pub fn run(a: Args) -> Result<()> {
             from,
             a.plot.as_ref(),
             others,
-            sphstab::pairing::figure_svg,
+            sphstab::studies::pairing::figure_svg,
         );
     }
     let (cfg, config_out) = match &a.config {
@@ -103,7 +104,7 @@ pub fn run(a: Args) -> Result<()> {
                     flags.join(", ")
                 );
             }
-            let cfg = study::read_config(p, sphstab::pairing::parse_config)?;
+            let cfg = study::read_config(p, sphstab::studies::pairing::parse_config)?;
             let out = cfg.output.clone();
             (cfg, out)
         }
@@ -136,24 +137,28 @@ pub fn run(a: Args) -> Result<()> {
             )
         }
     };
+    let cfg = PairingConfig {
+        budget: *budget,
+        ..cfg
+    };
     // validate everything before the first row is computed
-    sphstab::pairing::plan(&cfg)?;
+    sphstab::studies::pairing::plan(&cfg)?;
     if let Some(name) = &config_out {
         crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
     }
-    let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::pairing::run(&cfg, |d, t| progress::set(&pb, d as f64 / t.max(1) as f64))?;
-    pb.finish_and_clear();
+    let pb = progress::Bar::new(progress::wanted(a.json));
+    let rep = sphstab::studies::pairing::run(&cfg, pb.clone())?;
+    pb.finish();
     if let Some(path) = &a.plot {
-        study::write_plot(sphstab::pairing::figure_svg(&rep), path)?;
+        study::write_plot(sphstab::studies::pairing::figure_svg(&rep), path)?;
     }
     if let Some(name) = config_out {
-        study::write_figure_and_data(&rep, &name, sphstab::pairing::figure_svg)?;
+        study::write_figure_and_data(&rep, &name, sphstab::studies::pairing::figure_svg)?;
     }
     if a.json {
         println!("{}", serde_json::to_string(&rep)?);
     } else {
-        print!("{}", sphstab::pairing::table(&rep));
+        print!("{}", sphstab::studies::pairing::table(&rep));
         println!(
             "{} rows in {:.1} s ({} threads)",
             rep.rows.len(),
@@ -164,11 +169,11 @@ pub fn run(a: Args) -> Result<()> {
             println!(
                 "{}\nthe full study (every kernel × sc, bcc, fcc × h/Δx = 0.8…3 step 0.1 × σ̄ = −0.01, −0.1 at 16³ wave vectors; ~47 min): cargo run --release -- pairing --config {}",
                 if flags.is_empty() {
-                    sphstab::pairing::QUICK_DESCRIPTION
+                    sphstab::studies::pairing::QUICK_DESCRIPTION
                 } else {
                     "a subset of the pairing study"
                 },
-                sphstab::pairing::FULL_STUDY_CONFIG
+                sphstab::studies::pairing::FULL_STUDY_CONFIG
             );
         }
     }

@@ -2,6 +2,7 @@
 
 use crate::common::Config;
 use anyhow::Result;
+use sphstab::budget::Budget;
 
 /// Flags of `query`.
 #[derive(clap::Args, Debug)]
@@ -22,7 +23,7 @@ pub struct Args {
     box_free: Option<usize>,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     let dim = a.cfg.dim()?;
     if dim > 1 {
         if a.points.is_some() {
@@ -32,9 +33,9 @@ pub fn run(a: Args) -> Result<()> {
             ));
         }
         return if dim == 3 {
-            run_nd::<3>(a)
+            run_nd::<3>(a, budget)
         } else {
-            run_nd::<2>(a)
+            run_nd::<2>(a, budget)
         };
     }
     a.cfg.reject_2d_flags()?;
@@ -121,11 +122,11 @@ pub fn fmt_k(k: &[f64]) -> String {
     format!("({})", parts.join(", "))
 }
 
-fn run_nd<const D: usize>(a: Args) -> Result<()> {
-    let mut q = a.cfg.query_nd::<D>()?;
+fn run_nd<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
+    let mut q = a.cfg.query_nd::<D>(budget)?;
     q.integrator = a.integ.integrator()?;
     if let Some(n) = a.box_free {
-        sphstab::analysis::check_count("--box", n, 1, sphstab::analysis::max_box(D))?;
+        sphstab::params::check_count("box", n, 1, sphstab::analysis::max_box(D))?;
     }
     let r = sphstab::analysis::query_nd(&q)?;
     let boxp = match a.box_free {
@@ -203,7 +204,8 @@ fn run_nd<const D: usize>(a: Args) -> Result<()> {
 
 /// The error for a flag that does not apply here.
 pub fn not_in(flag: &str, context: &str) -> anyhow::Error {
-    sphstab::error::Error::Incompatible(format!("{flag} does not apply with {context}")).into()
+    sphstab::error::Error::Incompatible(format!("{flag} does not apply with {context}").into())
+        .into()
 }
 
 /// The kebab-case name of an instability kind (as in the JSON).

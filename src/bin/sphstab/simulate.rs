@@ -1,6 +1,8 @@
 //! `sphstab simulate`: run a 1D scene (JSON file or built-in name).
 
+use crate::flags::InFile;
 use anyhow::{Context, Result};
+use sphstab::budget::Budget;
 use sphstab::solver::output::{csv, vtk_state};
 use sphstab::solver::scene::{builtin, parse};
 
@@ -33,7 +35,7 @@ pub struct Args {
     out: Option<std::path::PathBuf>,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if a.scene == "swegle" {
         let mut args = vec!["swegle".to_string()];
         if let Some(f) = &a.form {
@@ -58,7 +60,7 @@ pub fn run(a: Args) -> Result<()> {
             &<crate::swegle::Args as clap::Args>::augment_args(clap::Command::new("swegle"))
                 .try_get_matches_from(args)?,
         )?;
-        return crate::swegle::run(parsed);
+        return crate::swegle::run(parsed, budget);
     }
     if a.scene == "thesis-wave" {
         if a.t_end.is_some() || a.out.is_some() || a.integrator.is_some() || a.euler_every.is_some()
@@ -124,9 +126,11 @@ pub fn run(a: Args) -> Result<()> {
         scene.integrator = name;
         scene.euler_every = every;
     }
-    let pb = crate::progress::bar(crate::progress::wanted(a.json));
-    let r = scene.run(|f| crate::progress::set(&pb, f))?;
-    pb.finish_and_clear();
+    scene.budget = *budget;
+    let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
+    // the scene's fields are what the user wrote (a file) or chose (a built-in): named as such
+    let r = scene.run(pb.clone()).map_err(InFile)?;
+    pb.finish();
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--out: cannot create {}", dir.display()))?;

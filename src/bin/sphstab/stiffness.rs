@@ -60,7 +60,7 @@ pub fn run(a: Args) -> Result<()> {
         }
         (p, _) => p.unwrap_or(32),
     };
-    sphstab::analysis::check_count("--points", points, 2, 1_000_000)?;
+    sphstab::params::check_count("points", points, 2, 1_000_000)?;
     let lat = Lattice2D::by_name(&a.lattice, a.gamma.unwrap_or(1.0))?;
     let q = Quadrature::by_name(&a.quadrature)?;
     let fam = ShapeFamily::by_name(&a.shape)?;
@@ -76,12 +76,13 @@ pub fn run(a: Args) -> Result<()> {
     .map_err(|e| match e {
         sphstab::error::Error::SingularMoment { what, .. } => {
             sphstab::error::Error::OutOfRange {
-                name: "--support",
+                field: "support",
                 value: a.support,
                 range: format!(
                     "the {what} is singular: the support covers too few neighbours for --shape {}; use a larger --support (Table I uses 2)",
                     a.shape
-                ),
+                )
+                .into(),
             }
         }
         e => e,

@@ -1,6 +1,6 @@
 //! The command-line side of the `analysis/` studies (`tradeoff`, `pairing`): `--config` read and
 //! parsed, `--from` read back, the figure drawn to `--plot` and, for a config with `output`, the
-//! figure and its data written into `figures/`. The library side is [`sphstab::study`].
+//! figure and its data written into `figures/`. The library side is [`sphstab::studies::config`].
 
 use anyhow::{Context, Result};
 use serde::Serialize;
@@ -21,7 +21,7 @@ pub fn read_config<T>(
 pub fn read_report<T: DeserializeOwned>(from: &Path) -> Result<T> {
     let text = std::fs::read_to_string(from)
         .with_context(|| format!("--from: cannot read {}", from.display()))?;
-    Ok(sphstab::study::parse_json(
+    Ok(sphstab::studies::config::parse_json(
         &from.display().to_string(),
         &text,
     )?)

@@ -2,9 +2,10 @@
 //! or 3D (`--dim`).
 
 use anyhow::{Context, Result};
+use sphstab::budget::Budget;
 use sphstab::forms::FormKind;
 use sphstab::solver::BoundaryDensity;
-use sphstab::solver::swegle::{SwegleConfig, default_size, run_swegle};
+use sphstab::studies::swegle::{SwegleConfig, default_size, run_swegle};
 
 /// Flags of `swegle`.
 #[derive(clap::Args, Debug)]
@@ -75,7 +76,7 @@ pub struct Args {
     out: Option<std::path::PathBuf>,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
@@ -88,13 +89,14 @@ pub fn run(a: Args) -> Result<()> {
     let k = sphstab::kernel::by_name(&a.kernel)?;
     if !(2..=3).contains(&a.dim) {
         return Err(sphstab::error::Error::OutOfRange {
-            name: "--dim",
+            field: "dim",
             value: a.dim as f64,
             range: "2 or 3 (the 1D scenes are `simulate`)".into(),
         }
         .into());
     }
     let mut cfg = SwegleConfig::new(form, k, a.h, a.density_ratio).with_dim(a.dim);
+    cfg.budget = *budget;
     if let Some(s) = &a.shape {
         cfg.shape = sphstab::shape::ShapeFamily::by_name(s)?;
     }
@@ -125,7 +127,7 @@ pub fn run(a: Args) -> Result<()> {
         "frozen" => BoundaryDensity::Frozen,
         s => {
             return Err(sphstab::error::Error::UnknownName {
-                what: "--boundary-density",
+                what: "--boundary-density".into(),
                 given: s.into(),
                 valid: "evolve, frozen".into(),
             }
@@ -133,9 +135,9 @@ pub fn run(a: Args) -> Result<()> {
         }
     };
     cfg.validate()?;
-    let pb = crate::progress::bar(crate::progress::wanted(a.json));
-    let r = run_swegle(&cfg, |f| crate::progress::set(&pb, f))?;
-    pb.finish_and_clear();
+    let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
+    let r = run_swegle(&cfg, pb.clone())?;
+    pb.finish();
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--out: cannot create {}", dir.display()))?;
@@ -286,7 +288,7 @@ pub fn run(a: Args) -> Result<()> {
 }
 
 /// Exit status 3 (via the error) after the report when the run diverged.
-fn diverged(r: &sphstab::solver::swegle::SwegleReport) -> Result<()> {
+fn diverged(r: &sphstab::studies::swegle::SwegleReport) -> Result<()> {
     match r.diverged {
         Some(d) => Err(sphstab::error::Error::Diverged {
             step: d.step,

@@ -1,9 +1,10 @@
 //! `sphstab throughput`: speed and memory of the solver on a square (2D) or cubic (3D) block.
 
 use anyhow::Result;
+use sphstab::budget::Budget;
 use sphstab::error::Error;
 use sphstab::forms::{FormKind, ObjectiveRate};
-use sphstab::solver::throughput::{BlockMaterial, Domain, ThroughputConfig, run_throughput};
+use sphstab::studies::throughput::{BlockMaterial, Domain, ThroughputConfig, run_throughput};
 
 /// Flags of `throughput`.
 #[derive(clap::Args, Debug)]
@@ -83,9 +84,7 @@ fn parse_av(s: &str) -> Result<Option<(f64, f64)>> {
         return Ok(None);
     }
     let bad = || {
-        Error::Incompatible(format!(
-            "--av `{s}`: expected \"alpha,beta\" (e.g. 1,1) or off"
-        ))
+        Error::Incompatible(format!("--av `{s}`: expected \"alpha,beta\" (e.g. 1,1) or off").into())
     };
     let mut it = s.split(',').map(|t| t.trim().parse::<f64>());
     match (it.next(), it.next(), it.next()) {
@@ -94,25 +93,26 @@ fn parse_av(s: &str) -> Result<Option<(f64, f64)>> {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     let form = FormKind::by_name(&a.form)?;
     let kernel = sphstab::kernel::by_name(&a.kernel)?;
     if !(2..=3).contains(&a.dim) {
         return Err(Error::OutOfRange {
-            name: "--dim",
+            field: "dim",
             value: a.dim as f64,
             range: "2 or 3".into(),
         }
         .into());
     }
     let mut cfg = ThroughputConfig::new(kernel).with_dim(a.dim);
+    cfg.budget = *budget;
     if let Some(d) = &a.domain {
         cfg.domain = match d.as_str() {
             "open" => Domain::Open,
             "periodic" => Domain::Periodic,
             d => {
                 return Err(Error::UnknownName {
-                    what: "--domain",
+                    what: "--domain".into(),
                     given: d.into(),
                     valid: "open, periodic".into(),
                 }
@@ -131,7 +131,7 @@ pub fn run(a: Args) -> Result<()> {
         "truesdell" => ObjectiveRate::Truesdell,
         r => {
             return Err(Error::UnknownName {
-                what: "--rate",
+                what: "--rate".into(),
                 given: r.into(),
                 valid: "jaumann, truesdell".into(),
             }
@@ -146,7 +146,7 @@ pub fn run(a: Args) -> Result<()> {
         },
         m => {
             return Err(Error::UnknownName {
-                what: "--material",
+                what: "--material".into(),
                 given: m.into(),
                 valid: "hydro, elastic".into(),
             }
@@ -171,12 +171,10 @@ pub fn run(a: Args) -> Result<()> {
         .sizes
         .clone()
         .unwrap_or_else(|| vec![a.size.unwrap_or(default_size)]);
-    let pb = crate::progress::bar(crate::progress::wanted(a.json));
+    let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
     let probe = crate::alloc::Probe;
-    let r = run_throughput(&cfg, &sizes, a.threads, Some(&probe), |f| {
-        crate::progress::set(&pb, f)
-    })?;
-    pb.finish_and_clear();
+    let r = run_throughput(&cfg, &sizes, a.threads, Some(&probe), pb.clone())?;
+    pb.finish();
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());

@@ -3,6 +3,7 @@
 use crate::common::{Config, IntegratorArgs};
 use anyhow::Result;
 use sphstab::analysis::IntegratorReport;
+use sphstab::budget::Budget;
 use sphstab::integrator::Integrator;
 
 /// Flags of `timestep`.
@@ -56,7 +57,7 @@ fn print_eq120(v: Option<f64>) {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     let integ = a.integ.integrator()?;
     let dim = a.cfg.dim()?;
     if dim > 1 {
@@ -67,9 +68,9 @@ pub fn run(a: Args) -> Result<()> {
             ));
         }
         return if dim == 3 {
-            run_nd::<3>(a, integ)
+            run_nd::<3>(a, integ, budget)
         } else {
-            run_nd::<2>(a, integ)
+            run_nd::<2>(a, integ, budget)
         };
     }
     a.cfg.reject_2d_flags()?;
@@ -89,8 +90,8 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
-fn run_nd<const D: usize>(a: Args, integ: Integrator) -> Result<()> {
-    let q = a.cfg.query_nd::<D>()?;
+fn run_nd<const D: usize>(a: Args, integ: Integrator, budget: &Budget) -> Result<()> {
+    let q = a.cfg.query_nd::<D>(budget)?;
     let lin = q.linearise_at(q.stress)?;
     let ks = q.kgrid();
     let r = sphstab::analysis::query_nd(&q)?;

@@ -3,7 +3,8 @@
 
 use crate::{progress, study};
 use anyhow::Result;
-use sphstab::tradeoff::{TradeoffConfig, TradeoffReport};
+use sphstab::budget::Budget;
+use sphstab::studies::tradeoff::{TradeoffConfig, TradeoffReport};
 use std::path::PathBuf;
 
 /// Flags of `tradeoff`.
@@ -30,7 +31,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',')]
     integrators: Vec<String>,
     /// Δt used for the integrator rows = safety × critical Δt, in (0, 1].
-    #[arg(long, default_value_t = sphstab::tradeoff::integrators::DEFAULT_SAFETY)]
+    #[arg(long, default_value_t = sphstab::studies::tradeoff::integrators::DEFAULT_SAFETY)]
     safety: f64,
     /// Print the critical CFL table (c Δt_crit/h per integrator × kernel, classical and
     /// total-lagrangian, h/Δx = 1.2 and 2.0, σ̄ = 0) as Markdown (JSON with --json) and stop.
@@ -69,29 +70,29 @@ pub fn title(rep: &TradeoffReport) -> String {
     }
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
     if a.cfl_table {
-        let t = sphstab::tradeoff::cfl::cfl_table()?;
+        let t = sphstab::studies::tradeoff::cfl::cfl_table()?;
         if a.json {
             println!("{}", serde_json::to_string(&t)?);
         } else {
-            print!("{}", sphstab::tradeoff::cfl::cfl_markdown(&t));
+            print!("{}", sphstab::studies::tradeoff::cfl::cfl_markdown(&t));
         }
         return Ok(());
     }
     if let Some(from) = &a.from {
         let rep: TradeoffReport = study::read_report(from)?;
         return study::write_plot(
-            sphstab::tradeoff::figure_svg(&rep, &title(&rep)),
+            sphstab::studies::tradeoff::figure_svg(&rep, &title(&rep)),
             study::plot_path(a.plot.as_ref())?,
         );
     }
     let (cfg, config_out) = match &a.config {
         Some(p) => {
-            let cfg = study::read_config(p, sphstab::tradeoff::parse_config)?;
+            let cfg = study::read_config(p, sphstab::studies::tradeoff::parse_config)?;
             let out = cfg.output.clone();
             (cfg, out)
         }
@@ -109,26 +110,33 @@ pub fn run(a: Args) -> Result<()> {
             None,
         ),
     };
-    let total = sphstab::tradeoff::grid(&cfg)?.len()
-        * (1 + sphstab::tradeoff::integrator_list(&cfg)?.len());
-    let pb = progress::bar(progress::wanted(a.json));
-    let rep = sphstab::tradeoff::run(&cfg, Some(&crate::alloc::Probe), |d, t| {
-        progress::set(&pb, d as f64 / t.max(1) as f64)
-    })?;
-    pb.finish_and_clear();
+    let cfg = TradeoffConfig {
+        budget: *budget,
+        ..cfg
+    };
+    let total = sphstab::studies::tradeoff::grid(&cfg)?.len()
+        * (1 + sphstab::studies::tradeoff::integrator_list(&cfg)?.len());
+    let pb = progress::Bar::new(progress::wanted(a.json));
+    let rep = sphstab::studies::tradeoff::run(&cfg, Some(&crate::alloc::Probe), pb.clone())?;
+    pb.finish();
     if let Some(path) = &a.plot {
-        study::write_plot(sphstab::tradeoff::figure_svg(&rep, &title(&rep)), path)?;
+        study::write_plot(
+            sphstab::studies::tradeoff::figure_svg(&rep, &title(&rep)),
+            path,
+        )?;
     }
     if let Some(name) = config_out {
-        study::write_figure_and_data(&rep, &name, |r| sphstab::tradeoff::figure_svg(r, &title(r)))?;
+        study::write_figure_and_data(&rep, &name, |r| {
+            sphstab::studies::tradeoff::figure_svg(r, &title(r))
+        })?;
     }
     if a.json {
         println!("{}", serde_json::to_string(&rep)?);
     } else {
-        print!("{}", sphstab::tradeoff::table(&rep));
+        print!("{}", sphstab::studies::tradeoff::table(&rep));
         if !rep.integrator_rows.is_empty() {
             println!();
-            print!("{}", sphstab::tradeoff::integrator_table(&rep));
+            print!("{}", sphstab::studies::tradeoff::integrator_table(&rep));
         }
         println!(
             "{} configurations in {:.1} s ({} threads); scene: {}",

@@ -15,7 +15,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::columns::{Columns, LANES, Linearisable, SparseJacobian, eigen};
-use crate::error::{Error, Result};
+use crate::budget::Budget;
+use crate::error::{Error, Result, fields};
 use crate::forms::{Comp, FieldKind, FormKind, Material, Model, ModelParams, RateWorkspace, State};
 use crate::integrator::Integrator;
 use crate::lattice::{Lattice, grid_index};
@@ -55,7 +56,7 @@ pub fn base_state(material: &Material, rho0: f64, sigma_bar: f64) -> Result<(f64
         Material::Hydro { .. } => {
             if sigma_bar >= 1.0 {
                 return Err(Error::OutOfRange {
-                    name: "--stress",
+                    field: "stress",
                     value: sigma_bar,
                     range: "hydrodynamic material: σ̄ = 1 − ρ/ρ0 must be < 1".into(),
                 });
@@ -74,12 +75,13 @@ fn patch<const D: usize>(
     dx: f64,
     rho: f64,
     s0: f64,
+    budget: &Budget,
 ) -> Result<(Model<D>, Vec<[f64; D]>)> {
     let r = p.kp.support();
     if D == 2 {
         let range = (2.0 * r / (dx * lat.plane_spacing())).ceil() as usize + 2;
         let n = 2 * range + 1;
-        check_patch_budget(&p, lat, dx, n.pow(D as u32))?;
+        check_patch_budget(&p, lat, dx, n.pow(D as u32), budget)?;
         let mut nn = [0; D];
         nn.fill(n);
         let model = Model::periodic_patch(p, lat, dx, nn, rho, s0)?;
@@ -109,7 +111,7 @@ fn patch<const D: usize>(
     let side = cube_side(lat);
     let m = (2.0 * reach / (dx * side)).ceil() as usize + 2;
     let basis = cube_basis(lat);
-    check_patch_budget(&p, lat, dx, m.pow(D as u32) * basis.len())?;
+    check_patch_budget(&p, lat, dx, m.pow(D as u32) * basis.len(), budget)?;
     let mut x = Vec::with_capacity(m.pow(D as u32) * basis.len());
     for idx in 0..m.pow(D as u32) {
         let c = grid_index::<D>(idx, m);
@@ -165,8 +167,21 @@ fn cube_basis<const D: usize>(lat: &Lattice<D>) -> Vec<[f64; D]> {
 }
 
 impl<const D: usize> Bloch<D> {
-    /// Linearises the form `p` on lattice `lat` (spacing `dx`) at pre-stress σ̄.
+    /// Linearises the form `p` on lattice `lat` (spacing `dx`) at pre-stress σ̄, within the
+    /// default budget.
     pub fn new(p: ModelParams, lat: &Lattice<D>, dx: f64, sigma_bar: f64) -> Result<Self> {
+        Self::with_budget(p, lat, dx, sigma_bar, &Budget::default())
+    }
+
+    /// [`Bloch::new`] within `budget`: the periodic patch is refused before it is built when
+    /// its estimated memory exceeds the budget ([`check_patch_budget`]).
+    pub fn with_budget(
+        p: ModelParams,
+        lat: &Lattice<D>,
+        dx: f64,
+        sigma_bar: f64,
+        budget: &Budget,
+    ) -> Result<Self> {
         if D == 3
             && !matches!(
                 lat.kind,
@@ -178,13 +193,13 @@ impl<const D: usize> Bloch<D> {
             return Err(Error::Incompatible("3D lattices: sc, bcc, fcc".into()));
         }
         let (rho, s0) = base_state(&p.material, p.rho0, sigma_bar)?;
-        let (model, offs) = patch(p, lat, dx, rho, s0)?;
+        let (model, offs) = patch(p, lat, dx, rho, s0, budget)?;
         let comps = p.form.comps(D, &p.material);
         let count = offs.len();
         // LANES tangents per rate evaluation when that fits the memory budget (the stencils
         // carry every lane), one otherwise; the columns are the same to the last bit
         let (wide, _) = patch_bytes::<DualN<LANES>, D>(&p, lat, dx, count);
-        let (comps, core) = if crate::budget::check_memory("", "", wide).is_ok() {
+        let (comps, core) = if budget.allows_memory(wide) {
             let mut sys = Patch::<DualN<LANES>, D>::new(model, rho, offs, comps);
             let core = Columns::of(&mut sys)?;
             (sys.comps, core)
@@ -518,7 +533,7 @@ fn branches3<const D: usize>(d: &[[Complex64; D]; D]) -> Vec<(Complex64, [Comple
 }
 
 /// Memory estimate of linearising on a periodic patch of `count` particles, checked against the
-/// budget ([`crate::budget`]) before anything is allocated: every particle keeps a stencil of
+/// `budget` before anything is allocated: every particle keeps a stencil of
 /// dual numbers per shape family (two for the mixed forms), ~(ball of radius R)/(volume per
 /// particle) neighbours each, with a quarter of spare capacity; plus the dual state and rate of
 /// every particle.
@@ -527,10 +542,11 @@ pub fn check_patch_budget<const D: usize>(
     lat: &Lattice<D>,
     dx: f64,
     count: usize,
+    budget: &Budget,
 ) -> Result<()> {
     let (bytes, neighbours) = patch_bytes::<Dual, D>(p, lat, dx, count);
-    crate::budget::check_memory(
-        "--h/--support",
+    budget.memory(
+        fields(&["h_over_dx", "support"]),
         &format!(
             "the {D}D linearisation ({count} particles in the periodic patch, ~{neighbours:.0} neighbours per particle)"
         ),

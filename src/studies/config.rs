@@ -1,10 +1,10 @@
 //! Plumbing shared by the studies that run from an `analysis/*.json` config and write their
 //! figure and data into `figures/` (`sphstab tradeoff`, `sphstab pairing`): the config parsed
-//! with its fields checked by name, the figure name it may give, and the stored report read
-//! back to redraw the figure. The command-line side (reading the files, writing the figure and
-//! its data) is `src/bin/sphstab/study.rs`.
+//! with its fields checked by name, the figure name it may give, the stored report read back
+//! to redraw the figure, and lists that must not repeat a name. Reading and writing the files
+//! is the caller's.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, field};
 use serde::de::DeserializeOwned;
 
 /// Parses a study config or a stored report (JSON); `file` names it in errors, which name the
@@ -35,4 +35,16 @@ pub fn check_output(file: &str, output: Option<&str>) -> Result<()> {
         }
         _ => Ok(()),
     }
+}
+
+/// Refuses a name given twice in the list held by `field_name` (e.g. `kernels`).
+pub fn no_duplicates(field_name: &'static str, names: &[&str]) -> Result<()> {
+    for (i, n) in names.iter().enumerate() {
+        if names[..i].contains(n) {
+            return Err(Error::Incompatible(
+                field(field_name) + format!(": `{n}` is given twice"),
+            ));
+        }
+    }
+    Ok(())
 }

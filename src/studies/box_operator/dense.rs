@@ -4,10 +4,10 @@
 //! `D = −(J_vx + J_vq J_qv)` (D·N_free × D·N_free in D dimensions), and its eigenvalues ω²; the growth rate is
 //! max Re sqrt(−ω²). Dense: affordable up to a few thousand free degrees of freedom.
 
-use super::run::{BoundaryDensity, Run};
 use crate::error::{Error, Result};
 use crate::forms::{Comp, FieldKind, RateWorkspace, State};
 use crate::scalar::{Dual, Scalar as _};
+use crate::solver::run::{BoundaryDensity, Run};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -35,7 +35,7 @@ pub fn box_growth<const D: usize>(run: &Run<D>) -> Result<(f64, usize)> {
     if nx > MAX_DENSE_DOFS {
         return Err(Error::Incompatible(format!(
             "dense box operator of {nx} degrees of freedom exceeds {MAX_DENSE_DOFS}; use the standing-mode prediction"
-        )));
+        ).into()));
     }
     if run.model.p.av.is_some() || run.model.p.diffusion.is_some() {
         return Err(Error::Incompatible(

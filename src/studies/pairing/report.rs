@@ -1,10 +1,110 @@
-//! The study as a text table and as the figure (growth against N_H, one panel per lattice and
-//! stress, one curve per kernel).
+//! The pairing report: its rows and onsets, the text table and the figure (growth against N_H,
+//! one panel per lattice and stress, one curve per kernel).
 
-use super::{PairingReport, PairingRow};
+use super::wstar::WStarSign;
 use crate::error::Result;
 use crate::plot::{Panel, PanelCurve, panels_svg};
+use serde::{Deserialize, Serialize};
 use std::fmt::Write;
+
+/// One row: a kernel on a lattice at one h/Δx and σ̄.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct PairingRow {
+    /// Kernel name.
+    pub kernel: String,
+    /// `sc`, `bcc` or `fcc`.
+    pub lattice: String,
+    /// h/Δx.
+    pub h_over_dx: f64,
+    /// R/Δx = ζh/Δx.
+    pub support_over_dx: f64,
+    /// Particles inside the support (|r| < R), the particle itself included.
+    pub n_h: usize,
+    /// (4π/3)(R/Δx)³, Dehnen & Aly's N_H.
+    pub n_h_continuum: f64,
+    /// σ̄ (negative: pressure −σ̄K).
+    pub stress: f64,
+    /// Why the row was not computed (null when it was).
+    pub skipped: Option<String>,
+    /// Largest growth rate over the sampled zone (c/Δx; 0 if none above 1e-6; null if skipped).
+    pub max_growth_rate: Option<f64>,
+    /// Its wave vector [κxΔx, κyΔx, κzΔx] (null if no growth).
+    pub kappa_at_max: Option<[f64; 3]>,
+    /// |κ|Δx/π of that wave vector.
+    pub kappa_abs_over_pi: Option<f64>,
+    /// Longitudinal fraction |ê·k̂|² of the fastest mode (1 longitudinal, 0 transverse; for a
+    /// degenerate eigenspace the largest over it, |P k̂|²).
+    pub longitudinal_fraction: Option<f64>,
+    /// Largest growth of a longitudinal mode (|ê·k̂|² ≥ ½): pairing (c/Δx; 0 if none).
+    pub pairing_growth_rate: Option<f64>,
+    /// Its wave vector.
+    pub pairing_kappa: Option<[f64; 3]>,
+    /// Largest growth of a transverse mode (|ê·k̂|² < ½) (c/Δx; 0 if none).
+    pub transverse_growth_rate: Option<f64>,
+    /// Its wave vector.
+    pub transverse_kappa: Option<[f64; 3]>,
+    /// Largest |D − Dᴴ| / max|D_ab| over the zone (the symmetric part is diagonalised).
+    pub max_asymmetry: Option<f64>,
+    /// Where the kernel's W* first turns negative, as κΔx = k_h/(h/Δx) (null if never in the
+    /// scanned range).
+    pub wstar_first_negative_kdx: Option<f64>,
+}
+
+/// Where growth starts for one kernel × lattice × σ̄ (smallest h of the grid).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Onset {
+    /// Kernel.
+    pub kernel: String,
+    /// Lattice.
+    pub lattice: String,
+    /// σ̄.
+    pub stress: f64,
+    /// Rows computed (not skipped).
+    pub computed: usize,
+    /// Rows skipped.
+    pub skipped: usize,
+    /// Largest h/Δx computed.
+    pub h_max_computed: Option<f64>,
+    /// Smallest h/Δx with any growth, and its N_H.
+    pub first_growth: Option<(f64, usize)>,
+    /// Smallest h/Δx with longitudinal (pairing) growth, and its N_H.
+    pub first_pairing: Option<(f64, usize)>,
+    /// Computed rows with pairing growth.
+    pub pairing_rows: usize,
+    /// Largest pairing growth over h (c/Δx).
+    pub max_pairing_growth: f64,
+}
+
+/// The study.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct PairingReport {
+    /// Always `classical`.
+    pub form: String,
+    /// Always `sph`.
+    pub shape: String,
+    /// Always `hydro` (p = K(ρ/ρ0 − 1), σ̄ = 1 − ρ/ρ0).
+    pub material: String,
+    /// How Δx is defined.
+    pub dx: String,
+    /// Wave vectors per reciprocal direction.
+    pub grid: usize,
+    /// Growth threshold (c/Δx).
+    pub growth_tol: f64,
+    /// h/Δx values.
+    pub h_values: Vec<f64>,
+    /// σ̄ values.
+    pub stresses: Vec<f64>,
+    /// W* sign criterion per kernel.
+    pub kernels: Vec<WStarSign>,
+    /// Rows, kernel × lattice × h × σ̄ in that order.
+    pub rows: Vec<PairingRow>,
+    /// Onsets per kernel × lattice × σ̄.
+    pub onsets: Vec<Onset>,
+    /// Wall-clock time (s).
+    pub runtime_s: f64,
+    /// Rayon threads.
+    pub threads: usize,
+}
 
 fn opt(v: Option<f64>, prec: usize) -> String {
     v.map_or_else(|| "—".into(), |x| format!("{x:.prec$}"))

@@ -1,0 +1,13 @@
+//! The studies: questions answered by running the analysis, the solver or both over many
+//! configurations, each in its own folder (config, run, report), sharing the config plumbing of
+//! [`config`].
+
+pub mod art_stress;
+pub mod atlas;
+pub mod box_operator;
+pub mod config;
+pub mod kernel_guide;
+pub mod pairing;
+pub mod swegle;
+pub mod throughput;
+pub mod tradeoff;

@@ -1,0 +1,164 @@
+//! The zone scan of the pairing study (any dimension): the largest growth rate over the Brillouin
+//! zone, its wave vector and its polarisation, longitudinal or transverse.
+
+use crate::analysis::Query;
+use crate::error::{Error, Result};
+use crate::vonneumann::classify::GROWTH_TOL;
+use crate::vonneumann::linearise::Bloch;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// A branch with |ê·k̂|² ≥ this is longitudinal.
+pub const LONGITUDINAL: f64 = 0.5;
+
+/// One mode: its growth rate (c/Δx), wave vector (κΔx) and longitudinal fraction.
+#[derive(Clone, Copy, Default)]
+pub(super) struct Mode {
+    pub(super) growth: f64,
+    pub(super) k: [f64; 3],
+    pub(super) lf: f64,
+}
+
+impl Mode {
+    fn take(&mut self, o: Mode) {
+        if o.growth > self.growth {
+            *self = o;
+        }
+    }
+    fn merge(mut self, o: Mode) -> Mode {
+        self.take(o);
+        self
+    }
+    pub(super) fn grows(&self) -> bool {
+        self.growth > GROWTH_TOL
+    }
+    pub(super) fn rate(&self) -> f64 {
+        if self.grows() { self.growth } else { 0.0 }
+    }
+}
+
+/// The fastest mode, the fastest longitudinal and the fastest transverse mode over a set of
+/// wave vectors, and the largest relative asymmetry |D − Dᴴ|/max|D_ab| met.
+#[derive(Clone, Copy, Default)]
+pub(super) struct Scan {
+    pub(super) all: Mode,
+    pub(super) long: Mode,
+    pub(super) trans: Mode,
+    pub(super) asymmetry: f64,
+}
+
+impl Scan {
+    pub(super) fn merge(self, o: Scan) -> Scan {
+        Scan {
+            all: self.all.merge(o.all),
+            long: self.long.merge(o.long),
+            trans: self.trans.merge(o.trans),
+            asymmetry: self.asymmetry.max(o.asymmetry),
+        }
+    }
+}
+
+/// Eigenvalues closer than this (relative to the largest |ω²| at k) form one eigenspace.
+pub const DEGENERACY_TOL: f64 = 1e-9;
+
+/// The modes at one wave vector. The dynamical matrix of the classical form with `sph` shapes
+/// is real symmetric (ρD = (ρ + 2σ̄)S1S1ᵀ − 2σ̄S2 with real lattice sums; the engine's D agrees to
+/// round-off, recorded as `max_asymmetry`), so its symmetric part is diagonalised
+/// ([`nalgebra::SymmetricEigen`], orthonormal eigenvectors) and degenerate eigenvalues are
+/// grouped into eigenspaces: an eigenspace with ω² < 0 is longitudinal when it holds a mode with
+/// |ê·k̂|² ≥ [`LONGITUDINAL`] (its longitudinal fraction = |P k̂|², P the projector onto it) and
+/// transverse when it holds one with |ê·k̂|² < ½ (dimension ≥ 2, or a single mode with
+/// |ê·k̂|² < ½). A degenerate longitudinal + transverse pair (e.g. at the M point of sc by
+/// symmetry) counts for both.
+pub(super) fn scan_k<const D: usize>(lin: &Bloch<D>, k: [f64; D]) -> Result<Scan> {
+    let d = lin.dynamical(k);
+    let big = d.iter().flatten().map(|c| c.norm()).fold(0.0f64, f64::max);
+    let m = nalgebra::DMatrix::from_fn(D, D, |a, b| 0.5 * (d[a][b].re + d[b][a].re));
+    let asym = (0..D * D)
+        .map(|i| (d[i / D][i % D] - d[i % D][i / D].conj()).norm())
+        .fold(0.0f64, f64::max);
+    let eig = nalgebra::SymmetricEigen::try_new(m, 1e-15, 1000)
+        .ok_or(Error::NonFinite("pairing: symmetric eigen-decomposition"))?;
+    let kn = k.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let mut k3 = [0.0; 3];
+    k3[..D].copy_from_slice(&k);
+    let mut idx: Vec<usize> = (0..D).collect();
+    idx.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+    let scale = eig.eigenvalues.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut out = Scan {
+        asymmetry: if big > 0.0 { asym / big } else { 0.0 },
+        ..Scan::default()
+    };
+    let mut i = 0;
+    while i < D {
+        let lam = eig.eigenvalues[idx[i]];
+        let mut j = i + 1;
+        while j < D && eig.eigenvalues[idx[j]] - lam <= DEGENERACY_TOL * scale {
+            j += 1;
+        }
+        if !lam.is_finite() {
+            return Err(Error::NonFinite("pairing: dynamical matrix"));
+        }
+        let lf: f64 = if kn > 0.0 {
+            idx[i..j]
+                .iter()
+                .map(|&c| {
+                    let v = eig.eigenvectors.column(c);
+                    let dot: f64 = (0..D).map(|a| v[a] * k[a]).sum();
+                    (dot / kn).powi(2)
+                })
+                .sum::<f64>()
+                .min(1.0)
+        } else {
+            0.0
+        };
+        let mode = Mode {
+            growth: (-lam).max(0.0).sqrt(),
+            k: k3,
+            lf,
+        };
+        out.all.take(mode);
+        if lf >= LONGITUDINAL {
+            out.long.take(mode);
+        }
+        if j - i >= 2 || lf < LONGITUDINAL {
+            out.trans.take(mode);
+        }
+        i = j;
+    }
+    Ok(out)
+}
+
+/// Growth over the sampled zone of a D-dimensional question (2D or 3D): the fastest mode, the
+/// fastest longitudinal (pairing) and the fastest transverse mode (c/Δx, 0 when below
+/// [`GROWTH_TOL`]), as [`evaluate_row`] scans them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ZoneGrowth {
+    /// Largest growth rate of any mode.
+    pub max_growth_rate: f64,
+    /// Largest growth of a longitudinal mode (|ê·k̂|² ≥ ½): pairing.
+    pub pairing_growth_rate: f64,
+    /// Largest growth of a transverse mode.
+    pub transverse_growth_rate: f64,
+}
+
+/// Linearises `q` at its stress and scans its wave-vector grid ([`Query::kgrid`], rayon) for
+/// the fastest, the fastest longitudinal and the fastest transverse mode (module docs, the
+/// eigenspace rule of the row scan). The dynamical matrix must be (nearly) Hermitian: the
+/// classical form with `sph` shapes and no dissipation, as in the pairing study.
+pub fn zone_growth<const D: usize>(q: &Query<D>) -> Result<ZoneGrowth> {
+    let lin = q.linearise_at(q.stress)?;
+    let scan = q
+        .kgrid()
+        .par_iter()
+        .map(|&k| scan_k(&lin, k))
+        .try_reduce(Scan::default, |x, y| Ok(x.merge(y)))?;
+    if !scan.all.growth.is_finite() {
+        return Err(Error::NonFinite("pairing growth rate"));
+    }
+    Ok(ZoneGrowth {
+        max_growth_rate: scan.all.rate(),
+        pairing_growth_rate: scan.long.rate(),
+        transverse_growth_rate: scan.trans.rate(),
+    })
+}

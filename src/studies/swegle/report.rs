@@ -1,0 +1,116 @@
+//! The Swegle report: the measured and predicted growth rates, the history and the final state.
+
+use crate::forms::State;
+use crate::solver::diagnostics::GrowthFit;
+use crate::solver::run::BoundaryDensity;
+use serde::Serialize;
+
+/// The final particle state of a run, in its dimension.
+#[derive(Clone, Debug)]
+pub enum FinalState {
+    /// A 2D run.
+    Two(State<f64, 2>),
+    /// A 3D run.
+    Three(State<f64, 3>),
+}
+
+impl FinalState {
+    /// Legacy VTK of the particles ([`crate::solver::output::vtk_state`]; 3D points in both cases).
+    pub fn vtk(&self, title: &str) -> String {
+        match self {
+            FinalState::Two(z) => crate::solver::output::vtk_state(title, z),
+            FinalState::Three(z) => crate::solver::output::vtk_state(title, z),
+        }
+    }
+}
+
+impl From<State<f64, 2>> for FinalState {
+    fn from(z: State<f64, 2>) -> Self {
+        FinalState::Two(z)
+    }
+}
+
+impl From<State<f64, 3>> for FinalState {
+    fn from(z: State<f64, 3>) -> Self {
+        FinalState::Three(z)
+    }
+}
+
+/// Result of a Swegle run (rates in c/Δx unless named `_physical`).
+#[derive(Clone, Debug, Serialize)]
+pub struct SwegleReport {
+    /// The run stopped early because it diverged (first non-finite value or a runaway); the
+    /// measurements cover the steps before it. The binary exits with status 3 then.
+    pub diverged: Option<Diverged>,
+    /// Time integrator (CLI name).
+    pub integrator: &'static str,
+    /// δ-SPH density diffusion: δ (0: off).
+    pub delta: f64,
+    /// δ-SPH form (CLI name; null when off).
+    pub delta_form: Option<&'static str>,
+    /// Form.
+    pub form: &'static str,
+    /// Kernel.
+    pub kernel: &'static str,
+    /// h/Δx.
+    pub h_over_dx: f64,
+    /// f = ρ/ρ0.
+    pub density_ratio: f64,
+    /// Dimension.
+    pub dim: usize,
+    /// Particles per side (the box holds size^dim).
+    pub size: usize,
+    /// Boundary treatment.
+    pub boundary_density: BoundaryDensity,
+    /// Measured growth rate of max |v| (c/Δx), null if nothing grew into the window.
+    pub measured_growth_rate: Option<f64>,
+    /// Prediction for this finite particle set (c/Δx).
+    pub predicted_growth_rate_box: f64,
+    /// How the box prediction was obtained: `dense-operator` or `standing-modes`.
+    pub box_method: &'static str,
+    /// Infinite-lattice prediction (c/Δx).
+    pub predicted_growth_rate_infinite: f64,
+    /// measured / box.
+    pub ratio_box: Option<f64>,
+    /// measured / infinite.
+    pub ratio_infinite: Option<f64>,
+    /// The fit.
+    pub fit: Option<GrowthFit>,
+    /// max |v| of the free particles at the end.
+    pub max_velocity_end: f64,
+    /// max |v| ever exceeded 2× the kick.
+    pub grew: bool,
+    /// Time step (physical) and number of steps.
+    pub dt: f64,
+    /// Steps taken.
+    pub steps: usize,
+    /// Wall-clock seconds of the time loop.
+    pub runtime_s: f64,
+    /// Dominant standing mode (m_1, …, m_D) of the free particles' velocity at the end of the
+    /// fit window (or the end), as a wave vector [κ_1Δx, …, κ_DΔx] = (m_1π, …, m_Dπ)/(n_free + 1),
+    /// with its power share.
+    pub dominant_kappa: Option<(Vec<f64>, f64)>,
+    /// Wave vector (D components) of the fastest standing mode the box admits (engine), for
+    /// comparison.
+    pub predicted_kappa_box: Vec<f64>,
+    /// History (t, max |v|), at most ~400 samples.
+    pub history: Vec<(f64, f64)>,
+    /// Full history every step: t, centre |v|, max |v| and RMS |v| over the free particles,
+    /// kinetic energy of all particles.
+    #[serde(skip)]
+    pub history_full: Vec<[f64; 5]>,
+    /// Final particle state.
+    #[serde(skip)]
+    pub final_state: Option<FinalState>,
+}
+
+/// Where and why a run diverged.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Diverged {
+    /// Time step index.
+    pub step: usize,
+    /// Time reached.
+    pub t: f64,
+    /// The criterion that fired.
+    pub what: &'static str,
+}
