@@ -9,7 +9,7 @@ use sphstab::analysis::{MaterialSpec, Query, growth_map, query_nd, query2d};
 use sphstab::analysis::{Query1D, dispersion};
 use sphstab::forms::{FormKind, Material, Model, ModelParams};
 use sphstab::kernel;
-use sphstab::lattice::Lattice2D;
+use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::solver::{BoundaryDensity, Run};
@@ -99,7 +99,7 @@ fn benches(c: &mut Criterion) {
     };
     let model = Model::<2>::periodic_patch(
         p,
-        &Lattice2D::square(1.0).unwrap(),
+        &Lattice::<2>::square(1.0).unwrap(),
         1.0,
         [200, 200],
         1.0,

@@ -52,11 +52,6 @@ pub struct Lattice<const D: usize> {
     pub a: [[f64; D]; D],
 }
 
-/// A 2D lattice.
-pub type Lattice2D = Lattice<2>;
-/// A 3D lattice.
-pub type Lattice3D = Lattice<3>;
-
 impl Lattice<1> {
     /// The uniform chain of unit spacing.
     pub fn chain() -> Self {
@@ -194,9 +189,9 @@ impl<const D: usize> Lattice<D> {
                 2,
                 [[1.0, 0.0, 0.0], [0.5, 3f64.sqrt() / 2.0, 0.0], [0.0; 3]],
             ),
-            LatticeKind::Sc => (3, Lattice3D::sc().a),
-            LatticeKind::Bcc => (3, Lattice3D::bcc().a),
-            LatticeKind::Fcc => (3, Lattice3D::fcc().a),
+            LatticeKind::Sc => (3, Lattice::<3>::sc().a),
+            LatticeKind::Bcc => (3, Lattice::<3>::bcc().a),
+            LatticeKind::Fcc => (3, Lattice::<3>::fcc().a),
         };
         if dim != D {
             return Err(Error::Incompatible(
@@ -492,7 +487,10 @@ mod tests {
 
     #[test]
     fn reciprocal_vectors_are_dual() {
-        for l in [Lattice2D::square(1.3).unwrap(), Lattice2D::hexagonal()] {
+        for l in [
+            Lattice::<2>::square(1.3).unwrap(),
+            Lattice::<2>::hexagonal(),
+        ] {
             let b = l.reciprocal();
             for i in 0..2 {
                 for j in 0..2 {
@@ -518,10 +516,10 @@ mod tests {
 
     #[test]
     fn zone_boundary_distances() {
-        let s = Lattice2D::square(1.0).unwrap();
+        let s = Lattice::<2>::square(1.0).unwrap();
         assert!((s.zone_boundary(0.0) - PI).abs() < 1e-12);
         assert!((s.zone_boundary(PI / 4.0) - PI * 2f64.sqrt()).abs() < 1e-12);
-        let h = Lattice2D::hexagonal();
+        let h = Lattice::<2>::hexagonal();
         // Γ–K along x: 4π/3; Γ–M along 30°: 2π/√3
         assert!((h.zone_boundary(0.0) - 4.0 * PI / 3.0).abs() < 1e-12);
         assert!((h.zone_boundary(PI / 6.0) - 2.0 * PI / 3f64.sqrt()).abs() < 1e-12);
@@ -530,7 +528,7 @@ mod tests {
     #[test]
     fn hexagonal_k_point_is_a_zone_corner() {
         // K is equidistant from Γ and from the nearest reciprocal lattice points b1 and b1 + b2.
-        let l = Lattice2D::hexagonal();
+        let l = Lattice::<2>::hexagonal();
         let b = l.reciprocal();
         let k = [4.0 * PI / 3.0, 0.0];
         let d = |p: [f64; 2]| ((k[0] - p[0]).powi(2) + (k[1] - p[1]).powi(2)).sqrt();

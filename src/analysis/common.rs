@@ -84,7 +84,7 @@ pub fn density_diffusion(
         sound_speed: c,
     };
     dd.check("delta", form)?;
-    if !form.in_2d() {
+    if !form.in_every_dimension() {
         return Err(Error::Incompatible(
             field("delta")
                 + " (density diffusion) is available for classical, nonlocal, local, lnl and cll, not "

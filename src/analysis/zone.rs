@@ -94,7 +94,7 @@ impl<const D: usize> Query<D> {
         Self {
             form,
             kernel,
-            shape: form.default_shape_2d(),
+            shape: form.default_shape_in(2),
             h_over_dx,
             stress,
             c_partition: 0.5,
@@ -135,7 +135,7 @@ impl<const D: usize> Query<D> {
             self.dt,
         )?;
         check_count("grid", self.grid, 2, max_grid(D))?;
-        if !self.form.in_2d() {
+        if !self.form.in_every_dimension() {
             return Err(Error::Incompatible(
                 field("form")
                     + format!(" {} is not available with ", self.form.name())

@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::kernel;
-use crate::lattice::{Lattice2D, LatticeKind};
+use crate::lattice::{Lattice, LatticeKind};
 use crate::plot::Curve;
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
@@ -58,8 +58,8 @@ pub const OMEGA_DESC: &str = "ωΔx/c (frequency in units of c/Δx)";
 pub const KAPPA_THETA_DESC: &str = "wave number κΔx/π along θ (dimensionless; dotted: the cut-off, the first-zone boundary along θ)";
 
 impl AntiPlaneSeries {
-    fn lattice(&self) -> Result<Lattice2D> {
-        Lattice2D::by_name(self.lattice.as_deref().unwrap_or("square"), 1.0)
+    fn lattice(&self) -> Result<Lattice<2>> {
+        Lattice::<2>::by_name(self.lattice.as_deref().unwrap_or("square"), 1.0)
     }
 
     /// The cut-off κΔx along θ (the first-zone boundary of the node lattice).

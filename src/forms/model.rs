@@ -68,7 +68,7 @@ impl<const D: usize> Model<D> {
         sigma0: f64,
         period: Option<[[f64; D]; D]>,
     ) -> Result<Self> {
-        if !p.form.in_2d() && D > 1 {
+        if !p.form.in_every_dimension() && D > 1 {
             return Err(Error::Incompatible(
                 field("form")
                     + format!(" {} is not available with ", p.form.name())
@@ -102,7 +102,7 @@ impl<const D: usize> Model<D> {
                     + " 2 only",
             ));
         }
-        let chain_form = !p.form.in_2d();
+        let chain_form = !p.form.in_every_dimension();
         if chain_form {
             if !matches!(p.material, Material::Elastic { .. }) {
                 return Err(Error::Incompatible(

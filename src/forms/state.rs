@@ -299,7 +299,7 @@ impl<S: Scalar, const D: usize> State<S, D> {
 impl FormKind {
     /// Whether the form is available in every dimension (the B00 stress-point, least-squares
     /// and eulerian-nodal forms are 1D only: [`super::Model::new`] refuses them for D > 1).
-    pub fn in_2d(self) -> bool {
+    pub fn in_every_dimension(self) -> bool {
         matches!(
             self,
             FormKind::Classical
@@ -311,14 +311,14 @@ impl FormKind {
         )
     }
 
-    /// Default shape family in 2D and 3D: as in 1D, except total-Lagrangian, whose closest
-    /// multi-dimensional paper is the thesis \[T\] (TL SPH, `sph` shapes). (With `mls`, nodal
-    /// integration of a pre-stressed rest state is not in equilibrium within two supports of a
-    /// boundary: the residual force ∝ σ0 drifts a fixed-boundary box; see the closing notes of
-    /// issue 4.)
-    pub fn default_shape_2d(self) -> ShapeFamily {
+    /// Default shape family in dimension `dim`: [`FormKind::default_shape`] in 1D; in 2D
+    /// and 3D the same except total-Lagrangian, whose closest multi-dimensional paper is the
+    /// thesis \[T\] (TL SPH, `sph` shapes). (With `mls`, nodal integration of a pre-stressed
+    /// rest state is not in equilibrium within two supports of a boundary: the residual force
+    /// ∝ σ0 drifts a fixed-boundary box; see the closing notes of issue 4.)
+    pub fn default_shape_in(self, dim: usize) -> ShapeFamily {
         match self {
-            FormKind::TotalLagrangian => ShapeFamily::Sph,
+            FormKind::TotalLagrangian if dim > 1 => ShapeFamily::Sph,
             f => f.default_shape(),
         }
     }

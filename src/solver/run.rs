@@ -474,7 +474,7 @@ impl<const D: usize> Run<D> {
     /// per loop, which dominated short chains.
     pub fn step(&mut self, dt: f64) -> Result<()> {
         let form = self.model.p.form;
-        if D == 1 && form.in_2d() && !form.is_lagrangian() {
+        if D == 1 && form.in_every_dimension() && !form.is_lagrangian() {
             rayon::scope(|_| self.step_here(dt))
         } else {
             self.step_here(dt)

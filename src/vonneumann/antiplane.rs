@@ -8,7 +8,7 @@
 //! point set (nodes + stress points, \[B00\] eq 60); background-cell rules use the cell area.
 
 use crate::error::{Error, Result, field};
-use crate::lattice::{Lattice2D, LatticeKind};
+use crate::lattice::{Lattice, LatticeKind};
 use crate::shape::ShapeFamily;
 use crate::shape::{KernelParams, eval_d};
 use nalgebra::DMatrix;
@@ -131,7 +131,7 @@ pub fn voronoi_areas(cell: [[f64; 2]; 2], pts: &[[f64; 2]]) -> Vec<f64> {
 
 impl Pattern {
     /// The pattern of `q` on lattice `lat`.
-    pub fn new(lat: &Lattice2D, q: Quadrature) -> Result<Self> {
+    pub fn new(lat: &Lattice<2>, q: Quadrature) -> Result<Self> {
         let (a1, a2) = (lat.a[0], lat.a[1]);
         let at = |s: f64, t: f64| [s * a1[0] + t * a2[0], s * a1[1] + t * a2[1]];
         let area = lat.area();
@@ -242,7 +242,7 @@ pub enum Mass {
 impl AntiPlane {
     /// Assembles K and M for shape `family` with kernel parameters `kp` (h in units of Δx).
     pub fn new(
-        lat: &Lattice2D,
+        lat: &Lattice<2>,
         q: Quadrature,
         family: ShapeFamily,
         kp: KernelParams,

@@ -12,7 +12,7 @@
 
 use super::antiplane::{AntiPlane, Mass, Quadrature};
 use crate::error::Result;
-use crate::lattice::Lattice2D;
+use crate::lattice::Lattice;
 use crate::shape::eval_d;
 use crate::shape::{KernelParams, ShapeFamily, eval};
 use std::f64::consts::PI;
@@ -129,7 +129,7 @@ pub fn bounds_2d(
     q: Quadrature,
     n_grid: usize,
 ) -> Result<Bounds> {
-    let lat = Lattice2D::square(1.0)?;
+    let lat = Lattice::<2>::square(1.0)?;
     let ap = AntiPlane::new(&lat, q, family, kp)?;
     let mut exact: f64 = 0.0;
     let mut exact_consistent: f64 = 0.0;

@@ -1,13 +1,13 @@
 //! [B00 §4.4] anti-plane analysis: Table I (all four columns) and the cut-off statements.
 
 use sphstab::kernel;
-use sphstab::lattice::Lattice2D;
+use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
 use std::f64::consts::PI;
 
-fn model(q: Quadrature, lat: &Lattice2D) -> AntiPlane {
+fn model(q: Quadrature, lat: &Lattice<2>) -> AntiPlane {
     // [B00] Table I: mls shape, efg-cubic weight with circular support, D_mx = 2.0, γ = 1
     // (efg-cubic has ζ = 1, so h = D_mx Δx).
     let kp = KernelParams {
@@ -130,7 +130,7 @@ fn half_ulp(v: f64) -> f64 {
 
 #[test]
 fn b00_table1_all_four_columns() {
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let cols = [
         Quadrature::Nodal,
         Quadrature::Cell2x2,
@@ -186,7 +186,7 @@ fn b00_table1_all_four_columns() {
 /// the 2×2 column (ERRATA E7).
 #[test]
 fn b00_table1_pm3_pm2_entry_belongs_to_cell_2x2() {
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let k = |q| {
         let t = model(q, &lat).stiffness_table().unwrap();
         t.iter()
@@ -204,8 +204,8 @@ fn b00_table1_pm3_pm2_entry_belongs_to_cell_2x2() {
 /// patterns (square lattice) are reported too.
 #[test]
 fn b00_spurious_modes_at_the_cut_off() {
-    let sq = Lattice2D::square(1.0).unwrap();
-    let hex = Lattice2D::hexagonal();
+    let sq = Lattice::<2>::square(1.0).unwrap();
+    let hex = Lattice::<2>::hexagonal();
     let cut0 = [PI, 0.0];
     let cut45 = [PI, PI];
     let zero = |m: &AntiPlane, k: [f64; 2]| {
@@ -263,7 +263,7 @@ fn b00_spurious_modes_at_the_cut_off() {
 /// Long waves: ω²/κ² → 1 (c² = G/ρ) along any θ for a consistent quadrature (2×2 cells).
 #[test]
 fn long_wave_limit_antiplane() {
-    let m = model(Quadrature::Cell2x2, &Lattice2D::square(1.0).unwrap());
+    let m = model(Quadrature::Cell2x2, &Lattice::<2>::square(1.0).unwrap());
     for th in [0.0f64, 0.3, 0.785] {
         let k = 1e-3;
         let w2 = m

@@ -136,10 +136,10 @@ fn time_step_at_the_critical_value() {
 #[test]
 fn two_d_results_are_scale_free() {
     use sphstab::forms::{Material, ModelParams};
-    use sphstab::lattice::Lattice2D;
+    use sphstab::lattice::Lattice;
     use sphstab::shape::KernelParams;
-    use sphstab::vonneumann::linearise::Linearisation2D;
-    let lat = Lattice2D::square(1.0).unwrap();
+    use sphstab::vonneumann::linearise::Bloch;
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let mk = |dx: f64| {
         let p = ModelParams {
             form: FormKind::Classical,
@@ -157,7 +157,7 @@ fn two_d_results_are_scale_free() {
             alpha_s: 0.0,
             ls_length: 1.0,
         };
-        Linearisation2D::new(p, &lat, dx, 0.02).unwrap()
+        Bloch::<2>::new(p, &lat, dx, 0.02).unwrap()
     };
     let base = mk(1.0);
     for dx in [1e-6, 1e6] {

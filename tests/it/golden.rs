@@ -18,7 +18,7 @@ use serde_json::{Value, json};
 use sphstab::analysis::{Query, query2d};
 use sphstab::analysis::{Query1D, dispersion};
 use sphstab::forms::FormKind;
-use sphstab::lattice::Lattice2D;
+use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::antiplane::{AntiPlane, Quadrature};
@@ -92,8 +92,8 @@ fn bloch_2d() -> Value {
     for form in forms {
         for (mname, mat) in materials {
             for (lname, lat) in [
-                ("square", Lattice2D::square(1.0).unwrap()),
-                ("hex", Lattice2D::hexagonal()),
+                ("square", Lattice::<2>::square(1.0).unwrap()),
+                ("hex", Lattice::<2>::hexagonal()),
             ] {
                 for sig in [-0.02, 0.05] {
                     let mut q = Query::<2>::new(form, k("m4"), 1.2, sig);
@@ -132,7 +132,7 @@ fn table1() -> Value {
         Quadrature::StressQuad,
     ] {
         let ap = AntiPlane::new(
-            &Lattice2D::square(1.0).unwrap(),
+            &Lattice::<2>::square(1.0).unwrap(),
             q,
             ShapeFamily::Mls,
             KernelParams {

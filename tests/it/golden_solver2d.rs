@@ -73,7 +73,7 @@ fn m4() -> &'static dyn kernel::Kernel {
 fn params(form: FormKind, material: Material) -> ModelParams {
     ModelParams {
         form,
-        shape: form.default_shape_2d(),
+        shape: form.default_shape_in(2),
         kp: KernelParams {
             kernel: m4(),
             h: 1.3,

@@ -94,7 +94,7 @@ fn large_motion_rebuilds_and_matches() {
         for domain in [Domain::Open, Domain::Periodic] {
             let mut cfg = block(2, domain, 0.1);
             cfg.form = form;
-            cfg.shape = form.default_shape_2d();
+            cfg.shape = form.default_shape_in(2);
             if let Some(m) = material {
                 cfg.material = m;
             }

@@ -6,7 +6,7 @@ use crate::common;
 
 use common::{assert_bad_inputs, json, sphstab};
 use sphstab::kernel::{self, Kernel};
-use sphstab::lattice::Lattice3D;
+use sphstab::lattice::Lattice;
 use sphstab::studies::pairing::wstar::{NEGATIVE_TOL, Transform3D, sign_criterion};
 use sphstab::studies::pairing::{
     PairingReport, evaluate_row, figure_svg, neighbour_count, parse_config, plan,
@@ -139,7 +139,7 @@ fn wstar_of_the_wendland_kernels_is_never_negative() {
 /// independent of the rate function and its linearisation.
 fn closed_form_d(
     k: &'static dyn Kernel,
-    lat: &Lattice3D,
+    lat: &Lattice<3>,
     h: f64,
     s: f64,
     kv: [f64; 3],
@@ -169,7 +169,7 @@ fn closed_form_d(
 /// within 1e-9 of the largest |λ|, grouped; |P k̂|² summed over their orthonormal eigenvectors).
 fn closed_form_scan(
     k: &'static dyn Kernel,
-    lat: &Lattice3D,
+    lat: &Lattice<3>,
     h: f64,
     s: f64,
     grid: usize,
@@ -203,7 +203,7 @@ fn closed_form_scan(
 
 #[test]
 fn study_rows_agree_with_the_closed_form_dynamical_matrix() {
-    let sc = Lattice3D::sc();
+    let sc = Lattice::<3>::sc();
     let s = -0.1;
     let mut pairs = Vec::new();
     for name in ["m4", "wendland-c2"] {
@@ -237,16 +237,16 @@ fn study_rows_agree_with_the_closed_form_dynamical_matrix() {
 #[test]
 fn neighbour_numbers_count_the_shells_of_the_lattice() {
     // sc shells: 1 + 6 (r = 1) + 12 (√2) + 8 (√3) + 6 (2) + 24 (√5) = 57 inside r < 2.4
-    let sc = Lattice3D::sc();
+    let sc = Lattice::<3>::sc();
     assert_eq!(neighbour_count(&sc, 1.0), 1);
     assert_eq!(neighbour_count(&sc, 1.5), 19);
     assert_eq!(neighbour_count(&sc, 2.4), 57);
     // bcc with unit volume per particle: 8 neighbours at (√3/2)·2^⅓ = 1.0911, 6 at 2^⅓ = 1.2599
-    let bcc = Lattice3D::bcc();
+    let bcc = Lattice::<3>::bcc();
     assert_eq!(neighbour_count(&bcc, 1.2), 9);
     assert_eq!(neighbour_count(&bcc, 1.3), 15);
     // fcc: 12 neighbours at 4^⅓/√2 = 1.1225
-    assert_eq!(neighbour_count(&Lattice3D::fcc(), 1.2), 13);
+    assert_eq!(neighbour_count(&Lattice::<3>::fcc(), 1.2), 13);
 }
 
 const SMALL: [&str; 13] = [

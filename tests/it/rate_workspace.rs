@@ -12,7 +12,7 @@ use sphstab::forms::{
     RateOut, RateWorkspace, State,
 };
 use sphstab::kernel;
-use sphstab::lattice::Lattice2D;
+use sphstab::lattice::Lattice;
 use sphstab::scalar::{Dual, Scalar};
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
@@ -44,7 +44,7 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material, kern: &str) ->
 /// An open, jittered 11 × 9 block (or a periodic 8 × 7 patch of `lat`) with a disordered state:
 /// velocities, densities and anisotropic stresses (tensile and compressive) of every field the
 /// form carries.
-fn case(p: ModelParams, periodic: Option<&Lattice2D>) -> (Model<2>, State<f64, 2>) {
+fn case(p: ModelParams, periodic: Option<&Lattice<2>>) -> (Model<2>, State<f64, 2>) {
     // the neo-Hookean reference state is unstressed
     let s0 = if matches!(p.material, Material::NeoHookean { .. }) {
         0.0
@@ -134,7 +134,7 @@ fn state_err<S: Scalar>(
 const TOL: f64 = 1e-14;
 
 /// Every configuration: (label, params, periodic lattice).
-fn configs() -> Vec<(String, ModelParams, Option<Lattice2D>)> {
+fn configs() -> Vec<(String, ModelParams, Option<Lattice<2>>)> {
     let elastic_j = Material::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
     let elastic_t = Material::elastic(1.0, 0.25, ObjectiveRate::Truesdell).unwrap();
     let hydro = Material::Hydro { bulk: 1.0 };
@@ -149,8 +149,8 @@ fn configs() -> Vec<(String, ModelParams, Option<Lattice2D>)> {
         n: 4,
         spacing: 1.0,
     };
-    let square = Lattice2D::square(1.0).unwrap();
-    let hex = Lattice2D::by_name("hex", 1.0).unwrap();
+    let square = Lattice::<2>::square(1.0).unwrap();
+    let hex = Lattice::<2>::by_name("hex", 1.0).unwrap();
     let mut out = Vec::new();
     for form in [
         FormKind::Classical,
@@ -160,7 +160,7 @@ fn configs() -> Vec<(String, ModelParams, Option<Lattice2D>)> {
         FormKind::Cll,
         FormKind::TotalLagrangian,
     ] {
-        let shape = form.default_shape_2d();
+        let shape = form.default_shape_in(2);
         for (mname, mat) in [
             ("hydro", hydro),
             ("elastic-jaumann", elastic_j),

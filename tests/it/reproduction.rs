@@ -11,7 +11,7 @@ use crate::common;
 
 use common::*;
 use sphstab::forms::FormKind;
-use sphstab::lattice::Lattice2D;
+use sphstab::lattice::Lattice;
 use sphstab::shape::{KernelParams, ShapeFamily};
 use sphstab::vonneumann::antiplane::{AntiPlane, Quadrature};
 use sphstab::vonneumann::closed_form as cf;
@@ -89,7 +89,7 @@ const TABLE_I_2X2: &[(i64, i64, f64)] = &[
 ];
 
 fn b00_table1() -> Row {
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let kp = KernelParams {
         kernel: k("efg-cubic"),
         h: 2.0,
@@ -358,7 +358,7 @@ fn b00_fig5() -> Row {
 }
 
 fn b00_figs13_15() -> Row {
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let kp = KernelParams {
         kernel: k("efg-cubic"),
         h: 2.0,
@@ -1023,7 +1023,7 @@ fn b00_figs6_7() -> Row {
 /// [B00 §4.4, Fig 16]: the spurious modes of nodal integration at the two cut-offs.
 fn b00_fig16() -> Row {
     use sphstab::vonneumann::antiplane::Mass;
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let kp = KernelParams {
         kernel: k("efg-cubic"),
         h: 2.0,

@@ -3,12 +3,12 @@
 
 use sphstab::forms::{FormKind, Material, Model, ModelParams, ObjectiveRate};
 use sphstab::kernel;
-use sphstab::lattice::Lattice2D;
+use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::solver::{BoundaryDensity, Run};
 use sphstab::studies::swegle::{SwegleConfig, run_swegle};
-use sphstab::vonneumann::linearise::{Linearisation2D, base_state};
+use sphstab::vonneumann::linearise::{Bloch, base_state};
 use std::f64::consts::PI;
 
 /// Classical m4, h = 1.2, f = 0.99: measured growth over the infinite-lattice rate rises with
@@ -55,14 +55,14 @@ fn periodic_mode(
     dt: f64,
     steps: usize,
 ) -> (Vec<f64>, f64) {
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let (rho, s0) = base_state(&p.material, p.rho0, sb).unwrap();
     let model = Model::<2>::periodic_patch(p, &lat, 1.0, [n, n], rho, s0).unwrap();
     let k = [
         2.0 * PI * m[0] as f64 / n as f64,
         2.0 * PI * m[1] as f64 / n as f64,
     ];
-    let lin = Linearisation2D::new(p, &lat, 1.0, sb).unwrap();
+    let lin = Bloch::<2>::new(p, &lat, 1.0, sb).unwrap();
     let (w2, pol) = lin.branches(k)[branch];
     let e = [pol[0].re, pol[1].re];
     let ne = e[0].hypot(e[1]);

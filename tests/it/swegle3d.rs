@@ -10,7 +10,7 @@ use crate::common;
 use common::{json, sphstab};
 use sphstab::forms::{FormKind, Material, Model, ModelParams, ObjectiveRate};
 use sphstab::kernel;
-use sphstab::lattice::Lattice3D;
+use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
 use sphstab::solver::{BoundaryDensity, Run};
 use sphstab::studies::swegle::{
@@ -106,7 +106,7 @@ fn periodic_box_at_rest_stays_at_rest() {
     let m4 = kernel::by_name("m4").unwrap();
     let jaumann = Material::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap();
     let hydro = Material::Hydro { bulk: 1.0 };
-    for lattice in [Lattice3D::sc(), Lattice3D::bcc()] {
+    for lattice in [Lattice::<3>::sc(), Lattice::<3>::bcc()] {
         // whole conventional cubes: an orthogonal periodic box, 5 cubes per side (> 2 supports)
         let (side, basis) = (lattice.cube_side(), lattice.cube_basis());
         let m = 5;
@@ -129,7 +129,7 @@ fn periodic_box_at_rest_stays_at_rest() {
                 for sigma_bar in [0.05, -0.05] {
                     let p = ModelParams {
                         form,
-                        shape: form.default_shape_2d(),
+                        shape: form.default_shape_in(2),
                         kp: KernelParams { kernel: m4, h: 1.2 },
                         material,
                         rho0: 1.0,

@@ -3,11 +3,11 @@
 
 use sphstab::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use sphstab::kernel;
-use sphstab::lattice::Lattice2D;
+use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::derived::{Sums, omega2_1d, rho_d, sums};
-use sphstab::vonneumann::linearise::{Linearisation2D, base_state};
+use sphstab::vonneumann::linearise::{Bloch, base_state};
 use std::f64::consts::PI;
 
 fn params(
@@ -49,7 +49,7 @@ fn materials() -> Vec<(&'static str, Material)> {
     ]
 }
 
-fn kgrid(lat: &Lattice2D, n: usize) -> Vec<[f64; 2]> {
+fn kgrid(lat: &Lattice<2>, n: usize) -> Vec<[f64; 2]> {
     let b = lat.reciprocal();
     let mut out = Vec::new();
     for i in 0..n {
@@ -65,7 +65,10 @@ fn kgrid(lat: &Lattice2D, n: usize) -> Vec<[f64; 2]> {
 /// square and hexagonal lattices, three materials, tension and compression.
 #[test]
 fn derived_dynamical_matrices_agree_with_engine() {
-    for lat in [Lattice2D::square(1.0).unwrap(), Lattice2D::hexagonal()] {
+    for lat in [
+        Lattice::<2>::square(1.0).unwrap(),
+        Lattice::<2>::hexagonal(),
+    ] {
         for (mname, mat) in materials() {
             for (form, shape) in [
                 (FormKind::Classical, ShapeFamily::Sph),
@@ -77,7 +80,7 @@ fn derived_dynamical_matrices_agree_with_engine() {
                 for (kern, h) in [("m4", 1.2), ("wendland-c2", 1.5)] {
                     for sb in [0.05, -0.05] {
                         let p = params(form, kern, shape, h, mat);
-                        let lin = Linearisation2D::new(p, &lat, 1.0, sb).unwrap();
+                        let lin = Bloch::<2>::new(p, &lat, 1.0, sb).unwrap();
                         let (rho, s) = base_state(&mat, 1.0, sb).unwrap();
                         let sum_shape = if form == FormKind::TotalLagrangian {
                             shape
@@ -117,14 +120,14 @@ fn derived_dynamical_matrices_agree_with_engine() {
 /// total-Lagrangian are not. The fastest wave vector and its polarisation are reported.
 #[test]
 fn swegle_lattice_classical_unstable_in_tension_nonlocal_and_tl_not() {
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let hydro = Material::Hydro { bulk: 1.0 };
     let n = 24;
     for h in [1.0, 1.2, 1.3] {
         for f in [0.95, 0.99] {
             let sb = 1.0 - f;
             let mut best = (0.0, [0.0; 2], 0.0);
-            let cl = Linearisation2D::new(
+            let cl = Bloch::<2>::new(
                 params(FormKind::Classical, "m4", ShapeFamily::Sph, h, hydro),
                 &lat,
                 1.0,
@@ -150,7 +153,7 @@ fn swegle_lattice_classical_unstable_in_tension_nonlocal_and_tl_not() {
             );
             assert!(best.0 > 1e-3);
             for form in [FormKind::Nonlocal, FormKind::TotalLagrangian] {
-                let l = Linearisation2D::new(
+                let l = Bloch::<2>::new(
                     params(form, "m4", ShapeFamily::Sph, h, hydro),
                     &lat,
                     1.0,
@@ -177,12 +180,12 @@ fn swegle_lattice_classical_unstable_in_tension_nonlocal_and_tl_not() {
 /// lattice column: φ₁(x) = Σ_y φ(x, y)). Checked to 1e-8.
 #[test]
 fn along_an_axis_the_2d_classical_form_reduces_to_the_1d_relation() {
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let mat = Material::elastic(1.0, 0.2, ObjectiveRate::Truesdell).unwrap();
     for h in [1.0, 1.3] {
         for sb in [0.1, -0.3] {
             let p = params(FormKind::Classical, "m4", ShapeFamily::Sph, h, mat);
-            let lin = Linearisation2D::new(p, &lat, 1.0, sb).unwrap();
+            let lin = Bloch::<2>::new(p, &lat, 1.0, sb).unwrap();
             for i in 1..=16 {
                 let kap = PI * i as f64 / 16.0;
                 let sm = sums(&lat, ShapeFamily::Sph, p.kp, [kap, 0.0]).unwrap();
@@ -211,9 +214,9 @@ fn along_an_axis_the_2d_classical_form_reduces_to_the_1d_relation() {
 #[test]
 fn finite_box_prediction_converges_to_the_infinite_lattice() {
     use sphstab::analysis::box_prediction;
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let hydro = Material::Hydro { bulk: 1.0 };
-    let lin = Linearisation2D::new(
+    let lin = Bloch::<2>::new(
         params(FormKind::Classical, "m4", ShapeFamily::Sph, 1.2, hydro),
         &lat,
         1.0,
@@ -253,7 +256,7 @@ fn finite_box_prediction_converges_to_the_infinite_lattice() {
 /// and the same as the linear elastic TL at zero pre-stress, to 1e-8.
 #[test]
 fn neo_hookean_linearises_to_hooke() {
-    let lat = Lattice2D::square(1.0).unwrap();
+    let lat = Lattice::<2>::square(1.0).unwrap();
     let (lambda, shear) = match Material::elastic(1.0, 0.3, ObjectiveRate::Truesdell).unwrap() {
         Material::Elastic { lambda, shear, .. } => (lambda, shear),
         _ => unreachable!(),
@@ -261,7 +264,7 @@ fn neo_hookean_linearises_to_hooke() {
     let nh = Material::NeoHookean { lambda, shear };
     for shape in [ShapeFamily::Sph, ShapeFamily::Mls] {
         let p = params(FormKind::TotalLagrangian, "m4", shape, 1.3, nh);
-        let lin = Linearisation2D::new(p, &lat, 1.0, 0.0).unwrap();
+        let lin = Bloch::<2>::new(p, &lat, 1.0, 0.0).unwrap();
         for k in kgrid(&lat, 7) {
             let sm = sums(&lat, shape, p.kp, k).unwrap();
             let cf = rho_d(FormKind::TotalLagrangian, &nh, 0.0, 1.0, &sm).unwrap();

@@ -1,4 +1,4 @@
-//! 3D Bloch analysis on the sc, bcc and fcc lattices: the engine ([`Linearisation3D`], the rate
+//! 3D Bloch analysis on the sc, bcc and fcc lattices: the engine ([`Bloch<3>`], the rate
 //! function linearised exactly with dual numbers on a periodic patch) against sources that do
 //! not share its code:
 //! - the hand-derived closed-form dynamical matrices of `vonneumann::derived` (generic over
@@ -21,11 +21,11 @@ use sphstab::analysis::Query1D;
 use sphstab::analysis::{MaterialSpec, Query, continuum_moduli};
 use sphstab::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use sphstab::kernel::{self, Kernel};
-use sphstab::lattice::{Lattice2D, Lattice3D};
+use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::derived::{rho_d, sums};
-use sphstab::vonneumann::linearise::{Bloch, Linearisation3D, base_state};
+use sphstab::vonneumann::linearise::{Bloch, base_state};
 use std::f64::consts::PI;
 
 /// Engine vs closed form: worst |difference| over the wave vectors of a configuration, relative
@@ -58,7 +58,7 @@ fn params(
 fn query(
     form: FormKind,
     shape: ShapeFamily,
-    lat: Lattice3D,
+    lat: Lattice<3>,
     spec: MaterialSpec,
     sb: f64,
 ) -> Query<3> {
@@ -75,7 +75,7 @@ fn materials() -> [(&'static str, Material); 3] {
         let q = query(
             FormKind::Classical,
             ShapeFamily::Sph,
-            Lattice3D::sc(),
+            Lattice::<3>::sc(),
             spec,
             0.0,
         );
@@ -83,18 +83,18 @@ fn materials() -> [(&'static str, Material); 3] {
     })
 }
 
-fn lattices() -> [(&'static str, Lattice3D); 3] {
+fn lattices() -> [(&'static str, Lattice<3>); 3] {
     [
-        ("sc", Lattice3D::sc()),
-        ("bcc", Lattice3D::bcc()),
-        ("fcc", Lattice3D::fcc()),
+        ("sc", Lattice::<3>::sc()),
+        ("bcc", Lattice::<3>::bcc()),
+        ("fcc", Lattice::<3>::fcc()),
     ]
 }
 
 /// Every high-symmetry point of the zone but Γ (the zone-boundary points X, M, R / H, N, P /
 /// X, W, L, K), three generic wave vectors (fractions of the reciprocal vectors) and one small
 /// one.
-fn kpoints(lat: &Lattice3D) -> Vec<[f64; 3]> {
+fn kpoints(lat: &Lattice<3>) -> Vec<[f64; 3]> {
     let mut ks: Vec<[f64; 3]> = Vec::new();
     for (label, kv) in lat.symmetry_points() {
         if label != "Γ" && !ks.contains(&kv) {
@@ -127,7 +127,7 @@ fn sum_shape(form: FormKind, shape: ShapeFamily) -> ShapeFamily {
 }
 
 /// Closed-form normalised D(k) = ρD/(ρ C) of `derived` for the configuration of `p`.
-fn closed_form(p: &ModelParams, lat: &Lattice3D, sigma_bar: f64, kv: [f64; 3]) -> [[f64; 3]; 3] {
+fn closed_form(p: &ModelParams, lat: &Lattice<3>, sigma_bar: f64, kv: [f64; 3]) -> [[f64; 3]; 3] {
     let (rho, s) = base_state(&p.material, 1.0, sigma_bar).unwrap();
     let sm = sums(lat, sum_shape(p.form, p.shape), p.kp, kv).unwrap();
     let cf = rho_d(p.form, &p.material, s, rho, &sm).unwrap();
@@ -145,9 +145,9 @@ fn nan_max(a: f64, b: f64) -> f64 {
 
 /// (worst |engine − closed form| over `ks`, largest |closed-form entry|); NaN if any is NaN.
 fn compare(
-    lin: &Linearisation3D,
+    lin: &Bloch<3>,
     p: &ModelParams,
-    lat: &Lattice3D,
+    lat: &Lattice<3>,
     sigma_bar: f64,
     ks: &[[f64; 3]],
 ) -> (f64, f64) {
@@ -328,8 +328,8 @@ fn along_an_axis_3d_reduces_to_1d_and_2d_with_summed_kernels() {
     // one kernel: the engines call f(1, ·) in 1D (W1) and f(2, ·) in 2D (W2)
     let summed = Summed::leak(k3, h3);
     let mat = Material::elastic(1.0, 0.35, ObjectiveRate::Truesdell).unwrap();
-    let sc = Lattice3D::sc();
-    let square = Lattice2D::square(1.0).unwrap();
+    let sc = Lattice::<3>::sc();
+    let square = Lattice::<2>::square(1.0).unwrap();
     let (mut worst1, mut worst2): (f64, f64) = (0.0, 0.0);
     for form in [FormKind::Classical, FormKind::Nonlocal] {
         for sb in [0.01, -0.01, 0.1] {
@@ -388,7 +388,7 @@ fn along_an_axis_3d_reduces_to_1d_and_2d_with_summed_kernels() {
 
 /// Largest |ω²/|k|² − continuum| over the three branches at |k| = ε in direction `dir`, with the
 /// continuum speeds² (S, S, P) of `continuum_moduli` in ascending order.
-fn long_wave_deviation(lin: &Linearisation3D, cont: (f64, f64), dir: [f64; 3], eps: f64) -> f64 {
+fn long_wave_deviation(lin: &Bloch<3>, cont: (f64, f64), dir: [f64; 3], eps: f64) -> f64 {
     let (p, s) = cont;
     let want = [s, s, p];
     let br = lin.branches(dir.map(|c| c * eps));
@@ -419,17 +419,17 @@ fn directions() -> [[f64; 3]; 3] {
 fn long_wave_limit_is_the_continuum_for_consistent_gradients() {
     let eps = 1e-5;
     let sb = 0.3;
-    let mut cases: Vec<(FormKind, ShapeFamily, &str, Lattice3D)> = Vec::new();
+    let mut cases: Vec<(FormKind, ShapeFamily, &str, Lattice<3>)> = Vec::new();
     for (lname, lat) in lattices() {
         cases.push((FormKind::Local, ShapeFamily::Corrected, lname, lat));
         cases.push((FormKind::TotalLagrangian, ShapeFamily::Mls, lname, lat));
     }
-    cases.push((FormKind::Local, ShapeFamily::Mls, "sc", Lattice3D::sc()));
+    cases.push((FormKind::Local, ShapeFamily::Mls, "sc", Lattice::<3>::sc()));
     cases.push((
         FormKind::TotalLagrangian,
         ShapeFamily::Corrected,
         "sc",
-        Lattice3D::sc(),
+        Lattice::<3>::sc(),
     ));
     let mut worst: f64 = 0.0;
     for (form, shape, lname, lat) in cases {
@@ -484,7 +484,7 @@ fn long_wave_limit_is_the_continuum_for_consistent_gradients() {
 }
 
 /// All entries of D and all branches finite at every wave vector of `ks`.
-fn all_finite(lin: &Linearisation3D, ks: &[[f64; 3]]) -> bool {
+fn all_finite(lin: &Bloch<3>, ks: &[[f64; 3]]) -> bool {
     ks.iter().all(|&kv| {
         lin.dynamical(kv)
             .iter()
@@ -623,7 +623,7 @@ fn smoothing_length_extremes_work() {
 #[test]
 fn branches_finite_at_the_degenerate_bcc_p_point() {
     let (_, mat) = materials()[2];
-    let lat = Lattice3D::bcc();
+    let lat = Lattice::<3>::bcc();
     let p = params(FormKind::Classical, ShapeFamily::Sph, k("m4"), 3.0, mat);
     let lin = Bloch::new(p, &lat, 1.0, 0.01).unwrap();
     assert!(all_finite(&lin, &kpoints(&lat)));

@@ -32,7 +32,7 @@ use std::sync::atomic::Ordering;
 fn block(n: usize, form: FormKind, material: Material, av: bool, art: bool) -> Run<2> {
     let p = ModelParams {
         form,
-        shape: form.default_shape_2d(),
+        shape: form.default_shape_in(2),
         kp: KernelParams {
             kernel: kernel::by_name("m4").unwrap(),
             h: 1.3,

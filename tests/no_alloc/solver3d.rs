@@ -23,7 +23,7 @@ fn block(n: usize, form: FormKind, material: BlockMaterial, av: bool) -> Run<3> 
     let mut cfg = ThroughputConfig::new(kernel::by_name("m4").unwrap()).with_dim(3);
     assert_eq!(cfg.domain, Domain::Periodic);
     cfg.form = form;
-    cfg.shape = form.default_shape_2d();
+    cfg.shape = form.default_shape_in(2);
     cfg.material = material;
     cfg.av = av.then_some((1.0, 1.0));
     build_block_nd::<3>(&cfg, n).unwrap()

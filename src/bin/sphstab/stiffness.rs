@@ -2,7 +2,7 @@
 //! `--theta`, the normalised frequency ωΔx/c along that direction.
 
 use anyhow::Result;
-use sphstab::lattice::Lattice2D;
+use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
 use sphstab::shape::ShapeFamily;
 use sphstab::vonneumann::antiplane::{AntiPlane, Mass, Quadrature};
@@ -61,7 +61,7 @@ pub fn run(a: Args) -> Result<()> {
         (p, _) => p.unwrap_or(32),
     };
     sphstab::params::check_count("points", points, 2, 1_000_000)?;
-    let lat = Lattice2D::by_name(&a.lattice, a.gamma.unwrap_or(1.0))?;
+    let lat = Lattice::<2>::by_name(&a.lattice, a.gamma.unwrap_or(1.0))?;
     let q = Quadrature::by_name(&a.quadrature)?;
     let fam = ShapeFamily::by_name(&a.shape)?;
     let ap = AntiPlane::new(

@@ -123,7 +123,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     cfg.form = form;
     cfg.shape = match &a.shape {
         Some(s) => sphstab::shape::ShapeFamily::by_name(s)?,
-        None => form.default_shape_2d(),
+        None => form.default_shape_in(2),
     };
     cfg.h_over_dx = a.h;
     let rate = match a.rate.as_str() {

@@ -5,7 +5,7 @@ use crate::analysis::max_grid;
 use crate::budget::Budget;
 use crate::error::{Error, Result, Text, field, fields};
 use crate::kernel::{self, Kernel};
-use crate::lattice::Lattice3D;
+use crate::lattice::Lattice;
 use crate::params::check_count;
 use crate::studies::config::no_duplicates;
 use serde::{Deserialize, Serialize};
@@ -129,7 +129,7 @@ pub struct Plan {
     /// Kernels.
     pub kernels: Vec<&'static dyn Kernel>,
     /// Lattices with their names.
-    pub lattices: Vec<(&'static str, Lattice3D)>,
+    pub lattices: Vec<(&'static str, Lattice<3>)>,
     /// h/Δx values (rounded to 1e-10, so 0.8 + 3·0.1 is 1.1).
     pub h: Vec<f64>,
     /// σ̄ values.
@@ -177,7 +177,7 @@ pub fn plan(cfg: &PairingConfig) -> Result<Plan> {
                         valid: LATTICES.join(", ").into(),
                     }
                 })?;
-                Ok((name, Lattice3D::by_name(name)?))
+                Ok((name, Lattice::<3>::by_name(name)?))
             })
             .collect::<Result<Vec<_>>>()?;
     let (lo, hi) = H_LIMITS;

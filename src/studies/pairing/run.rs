@@ -11,7 +11,7 @@ use crate::budget::Budget;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel::Kernel;
-use crate::lattice::Lattice3D;
+use crate::lattice::Lattice;
 use crate::progress::{Counter, Progress};
 use crate::shape::ShapeFamily;
 use crate::vonneumann::classify::GROWTH_TOL;
@@ -19,14 +19,14 @@ use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// Particles within |r| < `r` (units Δx) of a lattice point, itself included.
-pub fn neighbour_count(lat: &Lattice3D, r: f64) -> usize {
+pub fn neighbour_count(lat: &Lattice<3>, r: f64) -> usize {
     lat.offsets_within(r).len()
 }
 
 /// The 3D question of one row (classical, sph, hydro).
 pub fn row_query(
     kernel: &'static dyn Kernel,
-    lattice: Lattice3D,
+    lattice: Lattice<3>,
     h: f64,
     stress: f64,
     grid: usize,
@@ -44,7 +44,7 @@ pub fn row_query(
 /// not an error.
 pub fn evaluate_row(
     kernel: &'static dyn Kernel,
-    lattice: (&str, Lattice3D),
+    lattice: (&str, Lattice<3>),
     h: f64,
     stress: f64,
     grid: usize,

@@ -108,7 +108,7 @@ impl SwegleConfig {
             dim: 2,
             form,
             kernel,
-            shape: form.default_shape_2d(),
+            shape: form.default_shape_in(2),
             h_over_dx,
             density_ratio,
             size: 21,
@@ -172,7 +172,7 @@ impl SwegleConfig {
                     + format!(" {}", self.dim),
             });
         }
-        if !self.form.in_2d() {
+        if !self.form.in_every_dimension() {
             return Err(Error::Incompatible(
                 field("form") + format!(" {} is not available in {}D", self.form.name(), self.dim),
             ));

@@ -89,7 +89,7 @@ impl ThroughputConfig {
             dim: 2,
             domain: Domain::Open,
             form: FormKind::Classical,
-            shape: FormKind::Classical.default_shape_2d(),
+            shape: FormKind::Classical.default_shape_in(2),
             kernel,
             h_over_dx: 1.3,
             material: BlockMaterial::Elastic {
@@ -131,7 +131,7 @@ impl ThroughputConfig {
                 range: "2 or 3".into(),
             });
         }
-        if !self.form.in_2d() {
+        if !self.form.in_every_dimension() {
             return Err(Error::Incompatible(
                 field("form")
                     + format!(

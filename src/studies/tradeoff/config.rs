@@ -104,13 +104,13 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
         FormKind::ALL
             .iter()
             .map(|f| f.0)
-            .filter(|f| cfg.dim == 1 || f.in_2d())
+            .filter(|f| cfg.dim == 1 || f.in_every_dimension())
             .collect()
     } else {
         let mut v = Vec::new();
         for name in &cfg.forms {
             let f = FormKind::by_name(name)?;
-            if cfg.dim == 2 && !f.in_2d() {
+            if cfg.dim == 2 && !f.in_every_dimension() {
                 return Err(Error::Incompatible(
                     field("forms")
                         + format!(": {name} is not available with ")

@@ -184,7 +184,7 @@ pub fn run(
             let shape = if cfg.dim == 1 {
                 form.default_shape()
             } else {
-                form.default_shape_2d()
+                form.default_shape_in(2)
             };
             let mut row = Row {
                 form: form.name().into(),

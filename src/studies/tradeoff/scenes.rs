@@ -7,7 +7,7 @@ use crate::error::Result;
 use crate::forms::{FormKind, Model};
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
-use crate::lattice::Lattice2D;
+use crate::lattice::Lattice;
 use crate::solver::{BoundaryDensity, Run};
 use crate::studies::throughput::MemoryProbe;
 use std::f64::consts::PI;
@@ -165,7 +165,7 @@ pub(super) fn scene_2d(
         q.material = MaterialSpec::Hydro;
         let model = Model::<2>::periodic_patch(
             q.params()?,
-            &Lattice2D::square(1.0)?,
+            &Lattice::<2>::square(1.0)?,
             1.0,
             [nx, ny],
             1.0,

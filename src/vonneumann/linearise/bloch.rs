@@ -42,11 +42,6 @@ pub struct Bloch<const D: usize> {
     mechanical: SparseJacobian<[f64; D]>,
 }
 
-/// The 2D linearisation.
-pub type Linearisation2D = Bloch<2>;
-/// The 3D linearisation.
-pub type Linearisation3D = Bloch<3>;
-
 /// Base state of a pre-stressed lattice: (density, isotropic stress) for σ̄ = σ/C.
 /// Hydro: σ = −K(ρ/ρ0 − 1) = σ̄K ⇒ ρ = (1 − σ̄)ρ0 (the Swegle density ratio f = 1 − σ̄).
 /// Elastic: ρ = ρ0, σ = σ̄ C.
