@@ -183,3 +183,27 @@ impl ChainData {
             MassOperator::Consistent(mm.into_iter().map(|r| r.into_iter().collect()).collect());
     }
 }
+
+/// A 1D-only model seen as flat 1D data.
+pub(crate) struct ChainModel<'a> {
+    pub(crate) p: &'a ModelParams,
+    pub(crate) data: &'a ChainData,
+    pub(crate) mass: &'a [f64],
+    pub(crate) x_ref: &'a [f64],
+    /// Tangent modulus C.
+    pub(crate) modulus: f64,
+    /// Pre-stress σ0.
+    pub(crate) sigma0: f64,
+}
+
+/// The state of a 1D-only form as flat 1D arrays (fields it does not carry are empty).
+#[derive(Clone, Copy)]
+pub(crate) struct ChainState<'a, S> {
+    pub(crate) x: &'a [S],
+    pub(crate) v: &'a [S],
+    pub(crate) rho: &'a [S],
+    pub(crate) sigma: &'a [S],
+    pub(crate) sp_x: &'a [S],
+    pub(crate) sp_sigma: &'a [S],
+    pub(crate) sp_vol: &'a [S],
+}

@@ -3,40 +3,15 @@
 //! [`Model`]: the model refuses these forms for D > 1, so the state's D = 1 fields are read as
 //! flat 1D arrays (`[[S; 1]]` viewed as `[S]`, no copy).
 
-use super::chain_data::ChainData;
+use super::chain_data::{ChainData, ChainModel, ChainState};
 use super::chain_search::{ChainRates, ChainWorkspace};
 use super::kind::FormKind;
 use super::model::Model;
-use super::params::ModelParams;
 use super::state::{RateOut, StateView};
 use super::workspace::RateWorkspace;
 use super::{lagrangian_stress_points, least_squares, stress_points};
 use crate::error::{Error, Result};
 use crate::scalar::Scalar;
-
-/// A 1D-only model seen as flat 1D data.
-pub(crate) struct ChainModel<'a> {
-    pub(crate) p: &'a ModelParams,
-    pub(crate) data: &'a ChainData,
-    pub(crate) mass: &'a [f64],
-    pub(crate) x_ref: &'a [f64],
-    /// Tangent modulus C.
-    pub(crate) modulus: f64,
-    /// Pre-stress σ0.
-    pub(crate) sigma0: f64,
-}
-
-/// The state of a 1D-only form as flat 1D arrays (fields it does not carry are empty).
-#[derive(Clone, Copy)]
-pub(crate) struct ChainState<'a, S> {
-    pub(crate) x: &'a [S],
-    pub(crate) v: &'a [S],
-    pub(crate) rho: &'a [S],
-    pub(crate) sigma: &'a [S],
-    pub(crate) sp_x: &'a [S],
-    pub(crate) sp_sigma: &'a [S],
-    pub(crate) sp_vol: &'a [S],
-}
 
 fn fit<S: Scalar>(v: &mut Vec<S>, n: usize) {
     v.clear();

@@ -12,8 +12,7 @@
 //! `lagrangian-stress-points`, the mid-points (w_p = V0/2). For `mls` shapes Σφ' = 0 so the
 //! ū shift changes nothing; for `sph` it makes F invariant under rigid translation.
 
-use super::chain_data::RefStencil;
-use super::chain_rates::{ChainModel, ChainState};
+use super::chain_data::{ChainModel, ChainState, RefStencil};
 use super::chain_search::ChainWorkspace;
 use crate::scalar::Scalar;
 

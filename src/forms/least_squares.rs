@@ -14,7 +14,7 @@
 // Band algebra reads best with explicit row and column indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::chain_rates::{ChainModel, ChainState};
+use super::chain_data::{ChainModel, ChainState};
 use super::chain_search::ChainRates;
 use crate::scalar::Scalar;
 

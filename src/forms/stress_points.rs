@@ -12,7 +12,7 @@
 //! m_I v̇_I = −Σ_J (m_J / 2ρ_J) φ'_I(x_J) σ_J − Σ_S V^S φ'_I(x^S) σ^S    [eq 83–84]
 //! ```
 
-use super::chain_rates::{ChainModel, ChainState};
+use super::chain_data::{ChainModel, ChainState};
 use super::chain_search::{ChainWorkspace, Nb, StencilScratch, Stencils};
 use crate::error::Result;
 use crate::scalar::Scalar;

@@ -32,6 +32,7 @@ mod integrator;
 mod integrators;
 mod kernel_guide;
 mod kernels;
+mod layers;
 mod limits;
 mod long_run;
 mod pair_reuse;

@@ -89,29 +89,13 @@ fn allowed(from: &str) -> (&'static [&'static str], &'static str) {
     }
 }
 
-/// Imports that break the rule today and are removed by the Model1D consolidation (issue 23):
-/// (file, imported top-level module). Delete an entry when its import is gone.
-const ALLOWED_EDGES: &[(&str, &str)] = &[
-    // FlatSystem implements integrator::SecondOrderSystem (removed by the Model1D consolidation)
-    ("src/forms/model.rs", "integrator"),
-];
+/// Imports that break the rule, allow-listed: (file, imported top-level module). None: the
+/// Model1D consolidation (issue 23) removed the last (forms/model.rs → integrator).
+const ALLOWED_EDGES: &[(&str, &str)] = &[];
 
-/// Import cycles among the files of src/forms/ (each a set of files, as the strongly connected
-/// component the check finds) that the Model1D consolidation removes. Delete when gone.
-const ALLOWED_FORMS_CYCLES: &[&[&str]] = &[
-    // Model1D ↔ its stencils, stress points, least squares, the workspace and FormKind's
-    // dispatch in mod.rs (removed by the Model1D consolidation)
-    &[
-        "eulerian_common",
-        "lagrangian_stress_points",
-        "least_squares",
-        "mod",
-        "model",
-        "model_nd",
-        "stress_points",
-        "workspace",
-    ],
-];
+/// Import cycles among the files of src/forms/ that are allow-listed (each a set of files, as
+/// the strongly connected component the check finds). None since the Model1D consolidation.
+const ALLOWED_FORMS_CYCLES: &[&[&str]] = &[];
 
 /// Replaces comments, string and char literals by spaces (newlines kept, so lines still count).
 fn strip(src: &str) -> String {
