@@ -12,8 +12,8 @@ use crate::studies::box_operator::MAX_DENSE_DOFS;
 use std::f64::consts::PI;
 
 /// Largest number of free mechanical degrees of freedom (D × free particles) for which the box
-/// prediction is the dense exact operator ([`box_growth`]); larger boxes use the standing modes
-/// the box admits ([`box_prediction`]). 1,000 in both dimensions: up to `size` 28 in 2D
+/// prediction is the dense exact operator ([`box_growth`](crate::studies::box_operator::box_growth)); larger boxes use the standing modes
+/// the box admits ([`box_prediction`](crate::analysis::box_prediction)). 1,000 in both dimensions: up to `size` 28 in 2D
 /// (22² free particles) and 12 in 3D (6³ free particles) with 3 fixed layers.
 pub const MAX_DENSE_BOX_DOFS: usize = 1000;
 

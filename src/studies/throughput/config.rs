@@ -74,7 +74,7 @@ pub struct ThroughputConfig {
     pub repeats: usize,
     /// Amplitude A of the initial velocity field, in units of c.
     pub amplitude: f64,
-    /// Whether stencil builds reuse provably unchanged pairs ([`Run::set_pair_reuse`]).
+    /// Whether stencil builds reuse provably unchanged pairs ([`Run::set_pair_reuse`](crate::solver::Run::set_pair_reuse)).
     pub pair_reuse: bool,
     /// The budget the timing runs must stay within.
     pub budget: Budget,
