@@ -5,7 +5,7 @@ use crate::budget::{Budget, fmt_count};
 use crate::error::{Error, Result, Text, check_range, field, fields};
 use crate::forms::{FormKind, Material2D, Model, ModelParams2D};
 use crate::kernel::Kernel;
-use crate::params::check_common;
+use crate::params::{check_art_stress_dim, check_common};
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::solver::run2d::{BoundaryDensity, Run};
 use crate::studies::box_operator::MAX_DENSE_DOFS;
@@ -177,14 +177,7 @@ impl SwegleConfig {
                 field("form") + format!(" {} is not available in {}D", self.form.name(), self.dim),
             ));
         }
-        if self.dim == 3 && self.art_stress.is_some() {
-            return Err(Error::Incompatible(
-                field("art_eps")
-                    + " (artificial stress) is available with "
-                    + field("dim")
-                    + " 2 only",
-            ));
-        }
+        check_art_stress_dim(self.dim, self.art_stress.is_some())?;
         self.form.check_shape(self.shape)?;
         // resources, before anything is allocated (the budget)
         let particles = self.particles() as f64;

@@ -7,7 +7,7 @@ use crate::forms::{
     ArtificialStress, ArtificialViscosity, FormKind, Material2D, ModelParams2D, ObjectiveRate,
 };
 use crate::kernel::Kernel;
-use crate::params::{ParamNames, check_common_named};
+use crate::params::{ParamNames, check_art_stress_dim, check_common_named};
 use crate::shape::{KernelParams, ShapeFamily};
 use serde::Serialize;
 
@@ -141,14 +141,7 @@ impl ThroughputConfig {
                     ),
             ));
         }
-        if self.dim == 3 && self.art_stress.is_some() {
-            return Err(Error::Incompatible(
-                field("art_eps")
-                    + " (artificial stress) is available with "
-                    + field("dim")
-                    + " 2 only",
-            ));
-        }
+        check_art_stress_dim(self.dim, self.art_stress.is_some())?;
         self.form.check_shape(self.shape)?;
         check_range("h_over_dx", self.h_over_dx, 0.0, 10.0, false, true)?;
         // the same checks as every other command (support must reach the neighbours, …)
