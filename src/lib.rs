@@ -1,20 +1,31 @@
 //! # sphstab — stability of SPH forms, kernels, smoothing lengths and time steps
 //!
 //! For a chosen SPH form ([`forms::FormKind`]), kernel ([`kernel`]), shape-function family
-//! ([`shape::ShapeFamily`]), smoothing length, pre-stress and time step, sphstab computes the
-//! dispersion relation ω²(κ), the leapfrog amplification factors and the critical time step, and
-//! names every instability ([`vonneumann::classify::Kind`]).
+//! ([`shape::ShapeFamily`]), smoothing length, pre-stress and time step, sphstab computes in 1D,
+//! 2D and 3D the dispersion relation ω²(κ), the amplification factors and the critical time step
+//! of any of twelve time integrators, and names every instability
+//! ([`vonneumann::classify::Kind`]). A reference particle solver runs the same forms, and the
+//! studies ([`studies`]) set the two against each other and against the papers.
 //!
 //! ## The architecture rule
 //! Each form is defined once, as the rate function of its semi-discrete particle system
-//! ([`forms::Model1D::rate`]). A solver integrates it with [`integrator::kdk_step`]; the numeric
-//! von Neumann engine ([`vonneumann::linearise`]: the 1D chain and the D-dimensional
+//! ([`forms`], in D = 1, 2, 3). The reference solver ([`solver`]: 1D scenes, 2D and 3D blocks)
+//! integrates it with any of the twelve time integrators of [`integrator`]; the numeric von
+//! Neumann engine ([`vonneumann::linearise`]: the 1D chain and the D-dimensional
 //! [`vonneumann::linearise::Bloch`] front ends of one core) linearises *the same function*
 //! exactly (forward-mode [`scalar::Dual`] numbers) about the uniformly pre-stressed periodic
-//! lattice and projects it onto Fourier modes; the amplification matrix is the same leapfrog
+//! lattice and projects it onto Fourier modes; the amplification matrix is the same integrator
 //! step applied to one mode ([`vonneumann::amplification`]). The papers' closed forms
 //! ([`vonneumann::closed_form`]) and this project's derived ones ([`vonneumann::derived`]) are
 //! independent checks; disagreements are listed in `analysis/ERRATA.md`.
+//!
+//! ## Layers
+//! Bottom to top, each importing only from below (docs/ARCHITECTURE.md; `tests/layers.rs`
+//! checks it): core → integrator → forms → engine → analysis | solver → studies → figures. The
+//! solver never imports the analysis or the engine (it is their independent check); [`plot`]
+//! takes plain series and imports core only. The library knows no command line: errors name
+//! fields ([`error::Text`]), the budget is passed in ([`budget::Budget`]), long work reports to
+//! a [`progress::Progress`].
 //!
 //! ## Conventions
 //! - Lengths in units of the particle spacing Δx; wave number κΔx ∈ (0, π].
@@ -31,19 +42,17 @@
 //!   ([`vonneumann::linearise::Lattice1D`]).
 //!
 //! ## Catalogue
-//! | module | contents |
-//! |---|---|
-//! | [`kernel`] | the eleven kernels of SPEC §2 |
-//! | [`shape`] | `sph`, `shepard`, `mls`, `corrected` |
-//! | [`forms`] | the rate functions (2D: allocation-free evaluation with [`forms::RateWorkspace`]) |
-//! | [`integrator`] | kick–drift–kick leapfrog |
-//! | [`vonneumann`] | linearisation, amplification, classification, closed forms, kernel transforms |
-//! | [`analysis`] | `query`, `dispersion`, `timestep`, maps, box prediction (1D chain, 2D/3D zone) |
-//! | [`solver`] | the reference solver (1D, 2D), the Swegle test, [`solver::throughput`] |
-//! | [`pairing`] | the 3D pairing study: growth under pressure vs neighbour number, kernel W* sign |
-//! | [`kernel_guide`] | `kernels --table`: per kernel, critical CFL, phase error, h/Δx stable in compression (1D, 2D), tensile onset, W* sign (1D–3D) |
-//! | [`tradeoff`], [`study`] | the speed/accuracy trade-off study; config and report plumbing of the `analysis/` studies |
-//! | [`plot`], [`figures`] | SVG output |
+//! | layer | module | contents |
+//! |---|---|---|
+//! | core | [`scalar`], [`kernel`], [`shape`], [`lattice`], [`neighbours`] | dual numbers; the eleven kernels of SPEC §2; `sph`, `shepard`, `mls`, `corrected`; lattices in 1D–3D; cell lists |
+//! | core | [`error`], [`params`], [`budget`], [`progress`] | errors naming fields; the shared parameter checks; the resource budget; progress reports |
+//! | integrator | [`integrator`] | twelve time integrators: one step for the solver, one amplification for the engine |
+//! | forms | [`forms`] | the rate functions (allocation-free evaluation with [`forms::RateWorkspace`]) |
+//! | engine | [`vonneumann`] | linearisation, amplification, classification, closed forms, kernel transforms |
+//! | analysis | [`analysis`] | `query`, `dispersion`, `timestep`, maps, box prediction (1D chain, 2D/3D zone) |
+//! | solver | [`solver`] | the reference solver: 1D scenes, 2D and 3D blocks, any integrator |
+//! | studies | [`studies`] | Swegle test, box operator, throughput, trade-off, atlas, pairing, artificial stress, kernel guide |
+//! | figures | [`figures`], [`plot`] | figures from `analysis/configs`; SVG plots from plain series |
 //!
 //! References: \[B00] Belytschko, Guo, Liu, Xiao 2000; [V21\] Vignjevic, De Vuyst, Campbell 2021;
 //! \[B98] Belytschko, Krongauz, Dolbow, Gerlach 1998; [T\] thesis on total-Lagrangian SPH.

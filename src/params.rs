@@ -3,7 +3,7 @@
 //! files and configs. Errors name the caller's field ([`ParamNames`]); the binary maps fields
 //! to flags.
 
-use crate::error::{Error, Result, check_range};
+use crate::error::{Error, Result, check_range, field};
 use crate::kernel::Kernel;
 
 /// Allowed range of h/Δx.
@@ -108,4 +108,14 @@ pub fn check_count(field: &'static str, n: usize, lo: usize, hi: usize) -> Resul
             range: format!("must be an integer in [{lo}, {hi}]").into(),
         })
     }
+}
+
+/// Refuses artificial stress (the field `art_eps`) in `dim` 3: it is implemented in 2D only.
+pub fn check_art_stress_dim(dim: usize, art_stress: bool) -> Result<()> {
+    if dim == 3 && art_stress {
+        return Err(Error::Incompatible(
+            field("art_eps") + " (artificial stress) is available with " + field("dim") + " 2 only",
+        ));
+    }
+    Ok(())
 }

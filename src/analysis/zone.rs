@@ -12,7 +12,7 @@ use crate::error::{Error, Result, field};
 use crate::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use crate::kernel::Kernel;
 use crate::lattice::{Lattice, LatticeKind, grid_index};
-use crate::params::{check_common, check_count};
+use crate::params::{check_art_stress_dim, check_common, check_count};
 use crate::shape::KernelParams;
 use crate::shape::ShapeFamily;
 use crate::vonneumann::amplification::{AMPLIFICATION_TOL, critical_dt_given};
@@ -143,14 +143,7 @@ impl<const D: usize> Query<D> {
                     + format!(" {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)"),
             ));
         }
-        if D == 3 && self.art_stress.is_some() {
-            return Err(Error::Incompatible(
-                field("art_eps")
-                    + " (artificial stress) is available with "
-                    + field("dim")
-                    + " 2 only",
-            ));
-        }
+        check_art_stress_dim(D, self.art_stress.is_some())?;
         if self.material == MaterialSpec::Hydro && self.stress >= 1.0 {
             return Err(Error::OutOfRange {
                 field: "stress",

@@ -37,7 +37,7 @@ pub struct ArtStressConfig {
     #[serde(default = "default_size")]
     pub size: usize,
     /// Stored measurements of another code to draw next to sphstab's (path relative to the
-    /// working directory; read by the command line, see [`Comparison`]).
+    /// working directory; read by the command line, see [`Comparison`](super::Comparison)).
     #[serde(default)]
     pub compare: Option<String>,
     /// Figure written to figures/ (with its data next to it as .json).

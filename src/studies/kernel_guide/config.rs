@@ -33,7 +33,7 @@ pub const MAX_SUPPORT_2D: f64 = 6.0;
 /// Largest tension of the onset scan.
 pub const TENSION_CAP: f64 = 0.999;
 /// Tension below the scan: growth already here means growth for any tension (the tensile
-/// growth rate vanishes like √σ̄, so it is still ~1e-4 c/Δx ≫ [`GROWTH_TOL`] here).
+/// growth rate vanishes like √σ̄, so it is still ~1e-4 c/Δx ≫ [`GROWTH_TOL`](crate::vonneumann::classify::GROWTH_TOL) here).
 pub const TENSION_FLOOR: f64 = 1e-8;
 /// Bisection steps of the tensile onset (bracket = scan gap / 2³⁰).
 pub const ONSET_BISECTIONS: usize = 30;
@@ -93,5 +93,5 @@ impl GuideConfig {
     }
 }
 
-/// The tension of [`TensileOnset::growth_at_reference`].
+/// The tension of [`TensileOnset::growth_at_reference`](super::TensileOnset::growth_at_reference).
 pub const REFERENCE_TENSION: f64 = 0.01;

@@ -21,7 +21,7 @@ pub struct TimeStepCell {
     pub critical_dt: Option<f64>,
     /// c Δt_crit / h.
     pub critical_cfl: Option<f64>,
-    /// Δt of the error columns (Δx/c) = [`SAFETY`] × `critical_dt`.
+    /// Δt of the error columns (Δx/c) = [`SAFETY`](super::SAFETY) × `critical_dt`.
     pub dt_used: Option<f64>,
     /// Phase error per wavelength travelled (radians; negative: the wave lags), 10 ppw.
     pub phase_error_10ppw: Option<f64>,
@@ -95,11 +95,11 @@ pub struct KernelGuideRow {
     pub kernel: String,
     /// ζ.
     pub zeta: f64,
-    /// [form × h] time-step cells, in the order of [`GUIDE_FORMS`] × [`GUIDE_H`].
+    /// [form × h] time-step cells, in the order of [`GUIDE_FORMS`] × [`GUIDE_H`](super::GUIDE_H).
     pub time_step: Vec<TimeStepCell>,
     /// 1D and 2D compression scans.
     pub compression: Vec<CompressionScan>,
-    /// Tensile onset at each of [`GUIDE_H`].
+    /// Tensile onset at each of [`GUIDE_H`](super::GUIDE_H).
     pub tension: Vec<TensileOnset>,
     /// W* in 1D, 2D, 3D.
     pub positivity: Vec<Positivity>,

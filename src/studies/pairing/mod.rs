@@ -10,7 +10,7 @@
 //! (the support test of every neighbour search); `n_h_continuum` = (4π/3)(R/Δx)³ is the
 //! neighbour number of a uniform continuum (Dehnen & Aly's N_H = 4πH³n/3, H the support radius).
 //!
-//! A mode grows when γ > [`GROWTH_TOL`] (1e-6 c/Δx); below it the row reports growth 0 and no
+//! A mode grows when γ > [`GROWTH_TOL`](crate::vonneumann::classify::GROWTH_TOL) (1e-6 c/Δx); below it the row reports growth 0 and no
 //! wave vector. A mode is longitudinal when its longitudinal fraction |ê·k̂|² is ≥ ½ (degenerate
 //! eigenspaces: see [`DEGENERACY_TOL`]) — pairing is the longitudinal instability (particles
 //! approach each other in pairs along k); in a zero-shear material under pressure the sum form

@@ -131,7 +131,7 @@ pub(super) fn scan_k<const D: usize>(lin: &Bloch<D>, k: [f64; D]) -> Result<Scan
 
 /// Growth over the sampled zone of a D-dimensional question (2D or 3D): the fastest mode, the
 /// fastest longitudinal (pairing) and the fastest transverse mode (c/Δx, 0 when below
-/// [`GROWTH_TOL`]), as [`evaluate_row`] scans them.
+/// [`GROWTH_TOL`]), as [`evaluate_row`](super::evaluate_row) scans them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ZoneGrowth {
     /// Largest growth rate of any mode.

@@ -5,15 +5,15 @@ use crate::budget::{Budget, fmt_count};
 use crate::error::{Error, Result, Text, check_range, field, fields};
 use crate::forms::{FormKind, Material, Model, ModelParams};
 use crate::kernel::Kernel;
-use crate::params::check_common;
+use crate::params::{check_art_stress_dim, check_common};
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::solver::run::{BoundaryDensity, Run};
 use crate::studies::box_operator::MAX_DENSE_DOFS;
 use std::f64::consts::PI;
 
 /// Largest number of free mechanical degrees of freedom (D × free particles) for which the box
-/// prediction is the dense exact operator ([`box_growth`]); larger boxes use the standing modes
-/// the box admits ([`box_prediction`]). 1,000 in both dimensions: up to `size` 28 in 2D
+/// prediction is the dense exact operator ([`box_growth`](crate::studies::box_operator::box_growth)); larger boxes use the standing modes
+/// the box admits ([`box_prediction`](crate::analysis::box_prediction)). 1,000 in both dimensions: up to `size` 28 in 2D
 /// (22² free particles) and 12 in 3D (6³ free particles) with 3 fixed layers.
 pub const MAX_DENSE_BOX_DOFS: usize = 1000;
 
@@ -177,14 +177,7 @@ impl SwegleConfig {
                 field("form") + format!(" {} is not available in {}D", self.form.name(), self.dim),
             ));
         }
-        if self.dim == 3 && self.art_stress.is_some() {
-            return Err(Error::Incompatible(
-                field("art_eps")
-                    + " (artificial stress) is available with "
-                    + field("dim")
-                    + " 2 only",
-            ));
-        }
+        check_art_stress_dim(self.dim, self.art_stress.is_some())?;
         self.form.check_shape(self.shape)?;
         // resources, before anything is allocated (the budget)
         let particles = self.particles() as f64;

@@ -40,12 +40,12 @@ fn infinite_rate<const D: usize>(lin: &Bloch<D>) -> Result<(f64, Option<FastestM
 }
 
 /// The engine's predictions for a Swegle configuration, computed without running it (the
-/// same numbers [`run_swegle`] reports next to its measurement).
+/// same numbers [`run_swegle`](super::run_swegle) reports next to its measurement).
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct SweglePrediction {
     /// Growth rate of the finite particle set (c/Δx).
     pub box_rate: f64,
-    /// `dense-operator` or `standing-modes` (as [`SwegleReport::box_method`]).
+    /// `dense-operator` or `standing-modes` (as [`SwegleReport::box_method`](super::SwegleReport::box_method)).
     pub box_method: &'static str,
     /// Wave vector (κΔx per axis) of the fastest standing mode the box admits.
     pub box_kappa: Vec<f64>,
@@ -58,7 +58,7 @@ pub struct SweglePrediction {
     pub infinite_longitudinal: f64,
 }
 
-/// The predictions of [`run_swegle`] without the time integration: the dense box operator (or
+/// The predictions of [`run_swegle`](super::run_swegle) without the time integration: the dense box operator (or
 /// the box's standing modes) and the infinite lattice, with the fastest modes.
 pub fn predict_swegle(cfg: &SwegleConfig) -> Result<SweglePrediction> {
     cfg.validate()?;

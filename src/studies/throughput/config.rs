@@ -7,7 +7,7 @@ use crate::forms::{
     ArtificialStress, ArtificialViscosity, FormKind, Material, ModelParams, ObjectiveRate,
 };
 use crate::kernel::Kernel;
-use crate::params::{ParamNames, check_common_named};
+use crate::params::{ParamNames, check_art_stress_dim, check_common_named};
 use crate::shape::{KernelParams, ShapeFamily};
 use serde::Serialize;
 
@@ -74,7 +74,7 @@ pub struct ThroughputConfig {
     pub repeats: usize,
     /// Amplitude A of the initial velocity field, in units of c.
     pub amplitude: f64,
-    /// Whether stencil builds reuse provably unchanged pairs ([`Run::set_pair_reuse`]).
+    /// Whether stencil builds reuse provably unchanged pairs ([`Run::set_pair_reuse`](crate::solver::Run::set_pair_reuse)).
     pub pair_reuse: bool,
     /// The budget the timing runs must stay within.
     pub budget: Budget,
@@ -141,14 +141,7 @@ impl ThroughputConfig {
                     ),
             ));
         }
-        if self.dim == 3 && self.art_stress.is_some() {
-            return Err(Error::Incompatible(
-                field("art_eps")
-                    + " (artificial stress) is available with "
-                    + field("dim")
-                    + " 2 only",
-            ));
-        }
+        check_art_stress_dim(self.dim, self.art_stress.is_some())?;
         self.form.check_shape(self.shape)?;
         check_range("h_over_dx", self.h_over_dx, 0.0, 10.0, false, true)?;
         // the same checks as every other command (support must reach the neighbours, …)

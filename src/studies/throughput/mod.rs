@@ -1,4 +1,4 @@
-//! Throughput of the solver ([`Run::step`], D ∈ {2, 3}) on a square or cubic block: time per
+//! Throughput of the solver ([`Run::step`](crate::solver::Run::step), D ∈ {2, 3}) on a square or cubic block: time per
 //! particle-step, neighbours per particle, memory per particle, and the scaling exponent of
 //! the time per step with the particle count.
 //!

@@ -23,7 +23,7 @@ pub struct BlockTiming {
     /// Measured peak bytes while building and running the block, per particle (null without
     /// a memory probe).
     pub bytes_per_particle: Option<f64>,
-    /// Bytes per particle held by the run at the end ([`Run::state_bytes`]: state, model,
+    /// Bytes per particle held by the run at the end ([`Run::state_bytes`](crate::solver::Run::state_bytes): state, model,
     /// step buffers, rate workspace with its stencils, integrator arrays; capacities).
     pub state_bytes_per_particle: f64,
     /// Allocations per timed step (null without a memory probe).
@@ -33,7 +33,7 @@ pub struct BlockTiming {
     /// Full stencil builds (neighbour search) per timed step.
     pub full_builds_per_step: f64,
     /// Stencil builds per timed step that reused the pairs of the last full build (only their
-    /// kernel data recomputed; bitwise the same stencils, [`Run::set_pair_reuse`]).
+    /// kernel data recomputed; bitwise the same stencils, [`Run::set_pair_reuse`](crate::solver::Run::set_pair_reuse)).
     pub pair_refreshes_per_step: f64,
 }
 

@@ -5,7 +5,7 @@
 //! |---|---|
 //! | `ns_per_particle_step` | wall time of the wave scene below (the real solver, same rate function), median of `repeats` runs, divided by particles × steps |
 //! | `neighbours_per_particle` | masters within the support radius R of a master (reference lattice, self excluded) |
-//! | `bytes_per_particle` | peak heap bytes while building and running the scene, above the level before, per particle (needs a counting allocator: [`MemoryProbe`]; `None` without one) |
+//! | `bytes_per_particle` | peak heap bytes while building and running the scene, above the level before, per particle (needs a counting allocator: [`MemoryProbe`](crate::studies::throughput::MemoryProbe); `None` without one) |
 //! | `phase_error_10ppw`, `_20ppw` | \|c_num/c − 1\| at κΔx = 2π/10, 2π/20 from the engine's ω²(κ) at σ̄ = 0 (2D: the longitudinal branch along x) |
 //! | `wave_l2_error` | relative L2 error of the particle velocities of a standing wave v = V sin(kx) cos(ωt) (20 points per wavelength, periodic, Δt = 0.2 Δx/c, t = 2⅛ periods) against the continuum solution |
 //! | `max_stable_tension` | largest σ̄ ≤ 0.999 (2D hydro: ≤ 0.95) up to which no mode grows (scan, then bisection to 1e-3 relative); 0 if a mode grows at σ̄ = 1e-6 |
