@@ -340,7 +340,7 @@ fn swegle_kind_draws_the_box_slope_over_the_fit() {
 }
 
 /// The scene kind against the analytic solutions, each from the scene's published data:
-/// uniform bar (V21 §7.1: E = 2, v = 0.001 X) σ = E g t, derived in tests/reproduction.rs
+/// uniform bar (V21 §7.1: E = 2, v = 0.001 X) σ = E g t, derived in tests/it/reproduction.rs
 /// (`v21_uniform`: "σ̇ = (C + σ) ∂v/∂x integrates to C + σ = C(1 + g t), i.e. σ = C g t
 /// exactly"); wall impact (V21 §7.4: E = 200 GPa, ρ = 8000, v0 = 50 m/s) σ = −ρ c v0 =
 /// −2 GPa behind X − X_wall = c t, c = 5000 m/s; end pull (V21 §7.5: E = 70.8 GPa, ρ = 1550,

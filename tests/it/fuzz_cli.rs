@@ -8,7 +8,7 @@
 //! run ends within [`LIMIT`].
 //!
 //! The default suite runs a few dozen cases; the long campaign is
-//! `FUZZ_CASES=2000 cargo test --release --test fuzz_cli -- --ignored --nocapture`.
+//! `FUZZ_CASES=2000 cargo test --release --test it -- --ignored fuzz_cli::campaign --nocapture`.
 
 
 use proptest::prelude::*;
@@ -373,7 +373,7 @@ proptest! {
 
 /// The long campaign (see the module docs); the same properties, many more cases.
 #[test]
-#[ignore = "long fuzzing campaign: FUZZ_CASES=2000 cargo test --release --test fuzz_cli -- --ignored"]
+#[ignore = "long fuzzing campaign: FUZZ_CASES=2000 cargo test --release --test it -- --ignored fuzz_cli::campaign"]
 fn campaign() {
     let n = cases(500);
     let mut runner = proptest::test_runner::TestRunner::new(ProptestConfig {

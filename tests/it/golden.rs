@@ -349,7 +349,7 @@ fn regenerate_golden_data() {
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
         .unwrap_or_default();
     let doc = json!({
-        "note": "outputs of the per-dimension code before the dimension-generic refactor (issue 11); see tests/golden.rs",
+        "note": "outputs of the per-dimension code before the dimension-generic refactor (issue 11); see tests/it/golden.rs",
         "commit": commit,
         "data": compute(),
     });

@@ -19,7 +19,7 @@
 //!
 //! The file was written by `regenerate_solver1d_golden` (ignored) from commit c708382 (the code
 //! before the 1D solver rework; the commit is recorded in the file), with
-//! `cargo test --release --test golden_solver1d -- --ignored regenerate_solver1d_golden`.
+//! `cargo test --release --test it -- --ignored regenerate_solver1d_golden`.
 //! It is a regression oracle, not an independent check.
 
 use serde_json::{Value, json};
@@ -372,9 +372,9 @@ fn regenerate_solver1d_golden() {
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
         .unwrap_or_default();
     let doc = json!({
-        "note": "final states of short 1D solver runs before the issue-13 item-5 rework; see tests/golden_solver1d.rs",
+        "note": "final states of short 1D solver runs before the issue-13 item-5 rework; see tests/it/golden_solver1d.rs",
         "commit": commit,
-        "command": "cargo test --release --test golden_solver1d -- --ignored regenerate_solver1d_golden",
+        "command": "cargo test --release --test it -- --ignored regenerate_solver1d_golden",
         "data": compute(),
     });
     std::fs::write(path(), serde_json::to_string(&doc).unwrap()).unwrap();

@@ -14,7 +14,7 @@
 //! nothing more is allowed.
 //!
 //! Where the numbers came from: `tests/golden/solver2d.json` was written by
-//! `SPHSTAB_WRITE_GOLDEN=1 cargo test --release --test golden_solver2d` at commit c708382 (the
+//! `SPHSTAB_WRITE_GOLDEN=1 cargo test --release --test it -- golden_solver2d::` at commit c708382 (the
 //! solver before the compact stencils), and is compared against, never rewritten, by the plain
 //! `cargo test`. It is a regression oracle, not an independent check (those are in
 //! solver2d.rs, swegle.rs, vonneumann2d.rs and friends).
@@ -310,7 +310,7 @@ fn solver_reproduces_golden_data() {
             .collect();
         let doc = json!({
             "generated_at_commit": commit,
-            "command": "SPHSTAB_WRITE_GOLDEN=1 cargo test --release --test golden_solver2d",
+            "command": "SPHSTAB_WRITE_GOLDEN=1 cargo test --release --test it -- golden_solver2d::",
             "tolerance": "per field: |new - old| <= 1e-12 * max|old|",
             "cases": obj,
         });

@@ -133,7 +133,7 @@ fn tensile_onset_follows_the_inflection_point_criterion() {
 /// (m4: n = 4, m6: n = 6; the EFG cubic is m4 compressed by 2), negative first beyond k = 2π
 /// for odd n (m5: n = 5, a five-fold root, resolved to ~5e-3). In 3D the odd-power B-splines'
 /// transform (3/s³) sincⁿ⁻¹(s)(sin s − s cos s) first turns negative at k = 2π too
-/// (tests/pairing.rs derives it).
+/// (tests/it/pairing.rs derives it).
 #[test]
 fn bspline_transforms_sign() {
     for name in ["m4", "m6", "efg-cubic"] {

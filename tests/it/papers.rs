@@ -343,7 +343,7 @@ fn swegle_nearest_neighbour_criterion_and_growth() {
 
 /// [V21] eq A.72, the *continuous* nonlocal/LNL relation ω²/κ² = c² (c + (1 − c)|W*(κ)|²), with
 /// W* by rustfft (checked against the analytic m4 transform (sin(k/2)/(k/2))⁴ in
-/// tests/closed_form.rs), against the discrete `lnl` engine: they agree as κ → 0 (both → 1 for
+/// tests/it/closed_form.rs), against the discrete `lnl` engine: they agree as κ → 0 (both → 1 for
 /// the c-part, and S1 → −κ W*(κh)), and differ at finite κ by the lattice aliasing of the
 /// discrete sums (printed; ERRATA E5). The FFT route and the analytic transform agree to 1e-8.
 #[test]

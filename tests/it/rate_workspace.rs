@@ -168,7 +168,7 @@ fn configs() -> Vec<(String, ModelParams2D, Option<Lattice2D>)> {
                 let mut p = params(form, shape, mat, "m4");
                 // total-lagrangian: the golden rows (written when its rate function ignored the
                 // viscosity) are its plain rates; with the viscosity now applied, its "av+art"
-                // rows are computed without it (tests/damping.rs checks its viscosity)
+                // rows are computed without it (tests/it/damping.rs checks its viscosity)
                 if with_av && form != FormKind::TotalLagrangian {
                     p.av = Some(av(true));
                 }

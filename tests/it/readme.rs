@@ -4,7 +4,7 @@
 //! scratch directory holding copies of `analysis/` and `figures/`; `cargo test`/`cargo bench`
 //! lines are skipped (they are this test's own harness). Long (≈ 8 min in all: the full atlas,
 //! two trade-off studies, the 10⁶-particle scaling run), so it is `#[ignore]`d and run by
-//! `.ci/run` as a separate step: `cargo test --release --test readme -- --ignored`.
+//! `.ci/run` as a separate step: `cargo test --release --test it -- --ignored readme::`.
 
 use std::path::Path;
 use std::process::Command;
@@ -63,7 +63,7 @@ fn readme_lists_commands() {
 }
 
 #[test]
-#[ignore = "≈ 8 min: run by .ci/run (cargo test --release --test readme -- --ignored)"]
+#[ignore = "≈ 8 min: run by .ci/run (cargo test --release --test it -- --ignored readme::)"]
 fn readme_commands_run_verbatim_in_order() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = std::env::temp_dir().join(format!("sphstab-readme-{}", std::process::id()));

@@ -6,7 +6,7 @@
 //! `kdk` and `rk4` (and `verlet-euler` for one form).
 //!
 //! The forms of every dimension build their stencils with rayon, which allocates a little when
-//! work is *injected* into its pool from outside (tests/no_alloc.rs); as there, the steps run
+//! work is *injected* into its pool from outside (tests/no_alloc/solver2d.rs); as there, the steps run
 //! inside one `ThreadPool::install`, where the count must be exactly zero. The pool's worker
 //! threads still allocate now and then on their own, depending on timing (crossbeam's epoch
 //! bags and deque buffers grow when threads steal from each other, which the machine's load

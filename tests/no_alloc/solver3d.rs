@@ -4,7 +4,7 @@
 //! for a hydrodynamic material with and without viscosity, for a mixed form and for the
 //! total-Lagrangian form.
 //!
-//! As in tests/no_alloc.rs (2D): inside one `ThreadPool::install` the count must be exactly
+//! As in tests/no_alloc/solver2d.rs (2D): inside one `ThreadPool::install` the count must be exactly
 //! zero; from the test thread on the global pool (where rayon's injector may take a block now
 //! and then: a block every 63 injected jobs, a step injecting a fixed number of parallel loops)
 //! it must not depend on the number of particles: at most one block per step, and the counts

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates the analysis golden data of tests/golden_analysis.rs.
+"""Regenerates the analysis golden data of tests/it/golden_analysis.rs.
 
 Each case is a list of `sphstab` arguments; its JSON output is stored with the arguments in
 cases.json. The committed file was produced by the code before issue 13's performance work
