@@ -16,7 +16,7 @@
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
-use sphstab::analysis::{Query1D, Query2D, Query3D};
+use sphstab::analysis::{Query, Query1D};
 use sphstab::forms::{DiffusionForm, FormKind};
 use sphstab::integrator::Integrator;
 use sphstab::kernel;
@@ -148,7 +148,7 @@ fn families() -> Vec<(String, Vec<DMatrix<Complex64>>)> {
     ms.push(lin1.jacobian(0.0));
     out.push(("1D lnl Jacobians, viscosity and δ-SPH".into(), ms));
 
-    let mut q3 = Query3D::new(FormKind::Lnl, m4, 1.2, 0.01);
+    let mut q3 = Query::<3>::new(FormKind::Lnl, m4, 1.2, 0.01);
     q3.av = Some((1.0, 0.0));
     q3.grid = 5;
     let lin3 = q3.linearise_at(q3.stress).unwrap();
@@ -171,7 +171,7 @@ fn families() -> Vec<(String, Vec<DMatrix<Complex64>>)> {
         .collect();
     out.push(("3D lnl verlet-euler cycles (N_s 40), viscosity".into(), ms));
 
-    let mut q2 = Query2D::new(FormKind::Nonlocal, m4, 1.2, 0.01);
+    let mut q2 = Query::<2>::new(FormKind::Nonlocal, m4, 1.2, 0.01);
     q2.av = Some((1.0, 0.0));
     q2.grid = 12;
     let lin2 = q2.linearise_at(q2.stress).unwrap();

@@ -322,12 +322,12 @@ impl<const D: usize> Model<D> {
         if comps.contains(&Comp::Tau(0)) {
             z.tau = vec![iso; n];
         }
-        if let Some(c) = &self.chain {
-            if comps.contains(&Comp::SpX(0)) {
-                z.sp_x = c.sp_x_ref.iter().map(|&x| [x; D]).collect();
-                z.sp_sigma = vec![iso; c.sp_x_ref.len()];
-                z.sp_vol.clone_from(&c.sp_vol_ref);
-            }
+        if let Some(c) = &self.chain
+            && comps.contains(&Comp::SpX(0))
+        {
+            z.sp_x = c.sp_x_ref.iter().map(|&x| [x; D]).collect();
+            z.sp_sigma = vec![iso; c.sp_x_ref.len()];
+            z.sp_vol.clone_from(&c.sp_vol_ref);
         }
         z
     }

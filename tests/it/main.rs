@@ -1,56 +1,73 @@
 //! The integration tests, in one binary (`cargo test --release --test it`): one module per
-//! topic, so that the suite links once instead of once per file. Run one topic with a filter,
-//! e.g. `cargo test --release --test it -- damping::`. `common` holds the shared helpers.
+//! topic, so that the suite compiles and links once instead of once per file. Run one topic
+//! with a filter, e.g. `cargo test --release --test it -- damping::`. `common` holds the shared
+//! helpers.
 //!
 //! The allocation-counting tests are in their own binary (`tests/no_alloc/`): they install a
 //! counting global allocator, which would see the allocations of every test running in
 //! parallel here.
+//!
+//! Slow studies are `#[ignore]`d only where a faster test of the same claim runs in the default
+//! suite (each names it); `.ci/run` runs them, with the README's own commands (`readme::`).
 
 mod common;
 
+// kernels, shape functions, derivatives
+mod derivative_audit;
+mod kernels;
+mod layers;
+mod shape;
+
+// the von Neumann engine: closed forms, classification, the papers' statements
 mod antiplane;
-mod art_stress;
 mod classify;
-mod cli;
-mod cli2d;
-mod cli_throughput;
 mod closed_form;
 mod core_claim;
 mod damping;
-mod derivative_audit;
 mod derived;
 mod diffusion;
 mod extremes;
 mod fast_paths;
-mod figures;
-mod fuzz_cli;
+mod papers;
+mod properties;
+mod timestep_bounds;
+mod vonneumann;
+mod vonneumann2d;
+mod vonneumann3d;
+
+// time integrators
+mod integrator;
+mod integrators;
+mod long_run;
+
+// the reference solver against the engine
+mod pair_reuse;
+mod rate_workspace;
+mod rod;
+mod scenes;
+mod solver2d;
+mod swegle;
+mod swegle3d;
+
+// golden data of the engine and the solver
 mod golden;
 mod golden_analysis;
 mod golden_solver1d;
 mod golden_solver2d;
-mod integrator;
-mod integrators;
+
+// studies, figures and the documents generated from the code
+mod art_stress;
+mod figures;
 mod kernel_guide;
-mod kernels;
-mod layers;
-mod limits;
-mod long_run;
-mod pair_reuse;
 mod pairing;
-mod papers;
-mod properties;
-mod rate_workspace;
 mod readme;
 mod reproduction;
-mod rod;
-mod scenes;
-mod shape;
-mod solver2d;
-mod swegle;
-mod swegle3d;
-mod throughput3d;
-mod timestep_bounds;
 mod tradeoff;
-mod vonneumann;
-mod vonneumann2d;
-mod vonneumann3d;
+
+// the command line
+mod cli;
+mod cli2d;
+mod cli_throughput;
+mod fuzz_cli;
+mod limits;
+mod throughput3d;

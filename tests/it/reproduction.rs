@@ -57,7 +57,9 @@ fn list(v: &[f64], digits: usize) -> String {
 }
 
 /// ✔ when `ok`, else ✘; `note` in parentheses. A row whose disagreement is a recorded erratum
-/// says so in its note (rows are tallied by their first word: ✔, erratum, partly, ✘).
+/// says so in its note (rows are tallied by their first word: ✔, erratum, partly, ✘). A ✘ must
+/// cite the erratum that explains it as `erratum Ek` (an entry of analysis/ERRATA.md), or the
+/// test fails ([`unexplained_failures`]).
 fn verdict(ok: bool, note: &str) -> String {
     match (ok, note.is_empty()) {
         (true, true) => "✔".into(),
@@ -74,6 +76,46 @@ fn erratum(ok: bool, e: &str, note: &str) -> String {
     } else {
         format!("✘ (expected {e}: {note})")
     }
+}
+
+/// The erratum ids (`E1`, `E2`, …) that analysis/ERRATA.md defines (its `## Ek.` headings).
+fn errata_ids() -> Vec<String> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("analysis/ERRATA.md");
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("## "))
+        .filter_map(|l| l.split_once('.').map(|(id, _)| id))
+        .filter(|id| {
+            id.len() > 1 && id.starts_with('E') && id[1..].bytes().all(|b| b.is_ascii_digit())
+        })
+        .map(str::to_string)
+        .collect()
+}
+
+/// The (item, verdict) pairs whose verdict is ✘ without an erratum: a ✘ passes only when it
+/// cites `erratum Ek` with `Ek` one of `errata`. (`erratum(false, …)`'s "✘ (expected Ek: …)"
+/// does not: the erratum was expected to explain the row and does not.)
+fn unexplained_failures<'a>(
+    verdicts: &[(&'a str, &'a str)],
+    errata: &[String],
+) -> Vec<(&'a str, &'a str)> {
+    let cites_erratum = |v: &str| {
+        v.match_indices("erratum E").any(|(i, m)| {
+            let rest = &v[i + m.len() - 1..];
+            let id: String = rest
+                .chars()
+                .take(1)
+                .chain(rest.chars().skip(1).take_while(char::is_ascii_digit))
+                .collect();
+            errata.contains(&id)
+        })
+    };
+    verdicts
+        .iter()
+        .filter(|(_, v)| v.starts_with('✘') && !cites_erratum(v))
+        .copied()
+        .collect()
 }
 
 /// [B00] Table I, the 2×2-cell column as printed (j, k, value).
@@ -1982,8 +2024,16 @@ fn render(rows: &[Row]) -> String {
 
 #[test]
 fn reproduction_md_matches_the_code() {
-    let [f17, f18] = v21_figs17_18();
-    let [f21, f22] = v21_figs21_22();
+    // the two slowest rows (time-domain runs, most of this test's time) run next to the others:
+    // every row is computed on its own, so the order of computing them changes nothing
+    let (([f17, f18], fig13), rest) = rayon::join(
+        || rayon::join(v21_figs17_18, v21_fig13),
+        || {
+            let [f21, f22] = v21_figs21_22();
+            (f21, f22, v21_fig12(), v21_fig11())
+        },
+    );
+    let (f21, f22, fig12, fig11) = rest;
     let rows = vec![
         b00_table1(),
         b00_table2(),
@@ -2000,9 +2050,9 @@ fn reproduction_md_matches_the_code() {
         v21_fig7(),
         v21_uniform(false),
         v21_uniform(true),
-        v21_fig12(),
-        v21_fig11(),
-        v21_fig13(),
+        fig12,
+        fig11,
+        fig13,
         f17,
         f18,
         f21,
@@ -2017,6 +2067,18 @@ fn reproduction_md_matches_the_code() {
         thesis_fig56(),
         thesis_fig59(),
     ];
+    // a ✘ without an erratum fails here, before the file is compared (or rewritten)
+    let verdicts: Vec<(&str, &str)> = rows
+        .iter()
+        .map(|r| (r.item, r.agree.as_str()))
+        .chain(NOT_REPRODUCED.iter().map(|n| (n.0, n.2)))
+        .collect();
+    let unexplained = unexplained_failures(&verdicts, &errata_ids());
+    assert!(
+        unexplained.is_empty(),
+        "rows marked ✘ without an erratum (cite it as `erratum Ek` of analysis/ERRATA.md, or fix \
+         the code): {unexplained:#?}"
+    );
     let text = render(&rows);
     let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("REPRODUCTION.md");
     if std::env::var_os("SPHSTAB_WRITE_REPRODUCTION").is_some() {
@@ -2029,6 +2091,61 @@ fn reproduction_md_matches_the_code() {
         "REPRODUCTION.md differs from what the code computes; if the change is deliberate, \
          rewrite it with SPHSTAB_WRITE_REPRODUCTION=1 cargo test --release --test it -- reproduction::\n\
          --- computed ---\n{text}"
+    );
+}
+
+/// The ✘ check of [`reproduction_md_matches_the_code`] on synthetic rows: a ✘ without an
+/// erratum, with an erratum the helper `erratum` expected but that does not explain the row,
+/// or citing an id ERRATA.md does not define, is reported; a ✘ citing a defined erratum, and
+/// every other verdict, is not.
+#[test]
+fn a_cross_without_an_erratum_is_reported() {
+    let errata = errata_ids();
+    assert!(
+        errata.len() >= 17
+            && ["E1", "E4", "E17"]
+                .iter()
+                .all(|e| errata.contains(&e.to_string())),
+        "{errata:?}"
+    );
+    let bare = verdict(false, "");
+    let noted = verdict(false, "growth 2× the paper's");
+    let expected = erratum(false, "E4", "the other three values differ");
+    let undefined = verdict(false, "erratum E99: no such entry");
+    let explained = verdict(false, "erratum E4: the paper's value is misprinted");
+    let explained_late = verdict(false, "2× the paper's; erratum E17");
+    let ok = verdict(true, "");
+    let recorded = erratum(true, "E4", "3 of 4 equal");
+    let rows = [
+        ("bare", bare.as_str()),
+        ("noted", noted.as_str()),
+        ("expected", expected.as_str()),
+        ("undefined", undefined.as_str()),
+        ("explained", explained.as_str()),
+        ("explained late", explained_late.as_str()),
+        ("ok", ok.as_str()),
+        ("recorded", recorded.as_str()),
+        ("partly", "partly (✘ for one of two statements)"),
+        ("needs code", "needs code: a solver"),
+    ];
+    let names: Vec<&str> = unexplained_failures(&rows, &errata)
+        .iter()
+        .map(|r| r.0)
+        .collect();
+    assert_eq!(names, ["bare", "noted", "expected", "undefined"]);
+    // the whole id counts: E12 is not E1
+    let only_e1 = ["E1".to_string()];
+    let e12 = verdict(false, "erratum E12: …");
+    let e1 = verdict(false, "erratum E1: …");
+    let cited = [("E12", e12.as_str()), ("E1", e1.as_str())];
+    assert_eq!(
+        unexplained_failures(&cited, &only_e1),
+        [("E12", e12.as_str())]
+    );
+    assert_eq!(
+        unexplained_failures(&[("bare", bare.as_str())], &[]).len(),
+        1,
+        "with no errata every ✘ is unexplained"
     );
 }
 
