@@ -51,10 +51,10 @@ pub trait SecondOrderSystem<T> {
     }
 }
 
-/// N_s of `verlet-euler` when `--euler-every` is not given (DualSPHysics' default).
+/// N_s of `verlet-euler` when `euler_every` is not given (DualSPHysics' default).
 pub const DEFAULT_EULER_EVERY: usize = 40;
 
-/// Allowed range of `--euler-every`.
+/// Allowed range of `euler_every`.
 /// The amplification of one cycle takes N_s steps per column, per mode and per bisection step, so
 /// the bound keeps the analysis time bounded (3D `timestep --integrator verlet-euler
 /// --euler-every 1000`: 0.3 s); DualSPHysics uses 40.

@@ -13,17 +13,17 @@ use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::PI;
 
-/// Largest `--box` (free particles per side): 1000² standing modes take ~4 s.
+/// Largest `box` (free particles per side): 1000² standing modes take ~4 s.
 pub const MAX_BOX: usize = 1000;
-/// Largest `--box` in 3D: 100³ = 1e6 standing modes (the 2D bound's count).
+/// Largest `box` in 3D: 100³ = 1e6 standing modes (the 2D bound's count).
 pub const MAX_BOX_3D: usize = 100;
 
-/// Largest `--box` in dimension `dim`.
+/// Largest `box` in dimension `dim`.
 pub const fn max_box(dim: usize) -> usize {
     if dim == 3 { MAX_BOX_3D } else { MAX_BOX }
 }
 
-/// Largest `map --n` (same cost per wave vector as `--grid`).
+/// Largest `n` of a growth map (same cost per wave vector as `grid`).
 pub const MAX_MAP_N: usize = 1024;
 
 /// Growth-rate map over the zone: (κx, κy) grid and γ; in 3D over a plane ([`Plane`]).

@@ -530,10 +530,10 @@ pub struct Dispersion2D {
     pub damping_ratio: Option<Vec<Vec<Option<f64>>>>,
 }
 
-/// Largest `--grid` (wave vectors per reciprocal direction): 1024² wave vectors take ~8 s for
+/// Largest `grid` (wave vectors per reciprocal direction): 1024² wave vectors take ~8 s for
 /// the elastic classical form on this project's 2-core machine (512²: 2.0 s, measured).
 pub const MAX_GRID: usize = 1024;
-/// Largest `dispersion --dim 2 --points` (per path segment).
+/// Largest `points` of a 2D dispersion path (per path segment).
 pub const MAX_PATH_POINTS: usize = 100_000;
 
 /// Dispersion along the high-symmetry path of the lattice ([`Lattice::symmetry_points`]), `n`

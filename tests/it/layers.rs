@@ -61,7 +61,7 @@ fn allowed(from: &str, to: &str) -> Result<(), &'static str> {
         ("solver", "engine" | "analysis") => {
             Err("the solver is the independent check of the analysis: never the engine or analysis")
         }
-        ("plot", _) => Err("plot takes plain series: it imports core only"),
+        ("plot", t) if t != "core" => Err("plot takes plain series: it imports core only"),
         ("studies" | "figures", "plot") => Ok(()),
         (_, "plot") => Err("plot is for studies and figures"),
         _ if rank(to) < rank(from) => Ok(()),

@@ -17,9 +17,9 @@ pub const PPW: [f64; 2] = [10.0, 20.0];
 pub const SAFETY: f64 = 0.9;
 /// The h/Δx interval of the compression scans.
 pub const SCAN_H: (f64, f64) = (0.8, 6.0);
-/// Default step of the compression scans (`--h-step`).
+/// Default step of the compression scans (`h_step`).
 pub const DEFAULT_H_STEP: f64 = 0.05;
-/// Allowed `--h-step`.
+/// Allowed `h_step`.
 pub const H_STEP_RANGE: (f64, f64) = (0.01, 1.0);
 /// Pre-stress of the compression scans (pressure 0.01 C, as the trade-off study's
 /// `stable_in_compression` and one of the pairing study's stresses).

@@ -16,9 +16,9 @@ pub const LATTICES: [&str; 3] = ["sc", "bcc", "fcc"];
 pub const MAX_H_VALUES: usize = 1000;
 /// Largest number of stresses.
 pub const MAX_STRESSES: usize = 16;
-/// h/Δx range accepted by `--h-min`/`--h-max`.
+/// h/Δx range accepted by `h_min`/`h_max`.
 pub const H_LIMITS: (f64, f64) = (0.1, 10.0);
-/// σ̄ range accepted by `--stresses` (hydro: σ̄ = 1 − ρ/ρ0 < 1).
+/// σ̄ range accepted by `stresses` (hydro: σ̄ = 1 − ρ/ρ0 < 1).
 pub const STRESS_LIMITS: (f64, f64) = (-10.0, 1.0);
 /// What to compute (CLI flags or an `analysis/` JSON config).
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
