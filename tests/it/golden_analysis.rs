@@ -72,16 +72,14 @@ fn compare(path: &str, gold: &Value, new: &Value, scale: f64, worst: &mut (f64, 
     }
 }
 
-#[test]
-fn analysis_matches_the_pre_issue_13_golden_data() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/golden/analysis/cases.json"
-    ))
-    .unwrap();
+/// Runs every case of the golden file `file` (under tests/golden/) through the binary and
+/// compares its JSON with the recorded output; `count` cases are expected.
+fn replay(file: &str, count: usize) {
+    let path = format!("{}/tests/golden/{file}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path).unwrap();
     let gold: Value = serde_json::from_str(&text).unwrap();
     let cases = gold["cases"].as_array().unwrap();
-    assert_eq!(cases.len(), 157);
+    assert_eq!(cases.len(), count);
     let mut worst = (0.0, String::new());
     for c in cases {
         let args: Vec<&str> = c["args"]
@@ -105,6 +103,11 @@ fn analysis_matches_the_pre_issue_13_golden_data() {
     println!("worst relative difference {:.2e} at {}", worst.0, worst.1);
 }
 
+#[test]
+fn analysis_matches_the_pre_issue_13_golden_data() {
+    replay("analysis/cases.json", 157);
+}
+
 /// Golden data of issue 23's consolidation (one model, run and query for every dimension):
 /// 54 commands recorded with the binary of revision ad41a62, before `Model1D`, `Run1D` and the
 /// 1D stack were deleted — `query`, `dispersion` and `timestep` for all ten forms in 1D (the
@@ -112,35 +115,7 @@ fn analysis_matches_the_pre_issue_13_golden_data() {
 /// 1D-only form. Every number must be reproduced to 1e-12 relative (`runtime_s` skipped).
 #[test]
 fn consolidated_crate_matches_the_pre_issue_23_golden_data() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/golden/cli/cases.json"
-    ))
-    .unwrap();
-    let gold: Value = serde_json::from_str(&text).unwrap();
-    let cases = gold["cases"].as_array().unwrap();
-    assert_eq!(cases.len(), 54);
-    let mut worst = (0.0, String::new());
-    for c in cases {
-        let args: Vec<&str> = c["args"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|a| a.as_str().unwrap())
-            .collect();
-        let out = Command::new(env!("CARGO_BIN_EXE_sphstab"))
-            .args(&args)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let new: Value = serde_json::from_slice(&out.stdout).unwrap();
-        compare(&args.join(" "), &c["output"], &new, 0.0, &mut worst);
-    }
-    println!("worst relative difference {:.2e} at {}", worst.0, worst.1);
+    replay("cli/cases.json", 54);
 }
 
 /// The comparison is not vacuous: a change of 1e-10 in one number of a golden case fails it.
