@@ -4,11 +4,14 @@
 //! (19 × 19), 3D and 2D `verlet-euler` cycles with viscosity (35 × 35, 14 × 14) and the 1D
 //! `verlet-euler` cycles of `tests/integrators.rs::verlet_euler_with_viscosity_long_cycles`
 //! (7 × 7), each family timed as one batch (stalling and converging matrices in the proportion
-//! the crate meets them), and the cycles on which nalgebra's first attempt stalls (`eigen`'s
-//! retries). The set-up checks defective matrices (Jordan blocks) against their exact
-//! eigenvalues and prints each family's size and how many of its matrices stall the first
-//! attempt. `cargo bench --bench eigen` runs them. (The comparison with faer that removed it
-//! from the dependencies is this bench at the commit before.)
+//! the crate meets them), and the cycles on which nalgebra's first attempt stalls. Columns: the
+//! crate's `eigen` (nalgebra's complex Schur, retried on exactly similar matrices when it
+//! stalls), `before` (the route it replaced: nalgebra, faer's eigenvalue solver when nalgebra
+//! stalls) and faer alone. The set-up prints each family's size, how many matrices
+//! stall nalgebra's first attempt, and the largest distance between the eigenvalues of `eigen`
+//! and faer's (matched, relative to ‖m‖₁), then times the three interleaved (21 rounds in
+//! rotating order, median ratios: robust to the load of a shared machine). Defective matrices
+//! (Jordan blocks) are checked first. `cargo bench --bench eigen` runs them.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use nalgebra::DMatrix;
@@ -20,14 +23,15 @@ use sphstab::kernel;
 use sphstab::vonneumann::amplification::Modes;
 use sphstab::vonneumann::linearise::eigen;
 use std::f64::consts::PI;
+use std::time::Instant;
 
-/// `eigen`'s first attempt (a copy: its `balance` and `shifted_schur` are private), to pick the
-/// matrices on which it stalls.
-mod first_attempt {
+/// The route `eigen` replaced (its code at the parent commit): balance, nalgebra on m + μI,
+/// faer's eigenvalue solver if that stalls.
+mod before {
     use nalgebra::DMatrix;
     use num_complex::Complex64;
 
-    fn balance(m: &mut DMatrix<Complex64>) {
+    pub fn balance(m: &mut DMatrix<Complex64>) {
         const RADIX: f64 = 2.0;
         let n = m.nrows();
         let l1 = |z: &Complex64| z.re.abs() + z.im.abs();
@@ -67,7 +71,7 @@ mod first_attempt {
         }
     }
 
-    fn shifted_schur(m: &DMatrix<Complex64>) -> Option<Vec<Complex64>> {
+    pub fn shifted_schur(m: &DMatrix<Complex64>) -> Option<Vec<Complex64>> {
         let n = m.nrows();
         let norm = (0..n)
             .map(|j| m.column(j).iter().map(|z| z.norm()).sum::<f64>())
@@ -78,6 +82,27 @@ mod first_attempt {
         let schur = nalgebra::linalg::Schur::try_new(shifted, 4.0 * f64::EPSILON, 30 * n)?;
         let ev = schur.eigenvalues()?;
         Some(ev.iter().map(|&z| z - mu).collect())
+    }
+
+    pub fn faer(m: &DMatrix<Complex64>) -> Option<Vec<Complex64>> {
+        let n = m.nrows();
+        let f = faer::Mat::<faer::c64>::from_fn(n, n, |i, j| {
+            let z = m[(i, j)];
+            faer::c64::new(z.re, z.im)
+        });
+        let ev = f.eigenvalues().ok()?;
+        Some(ev.into_iter().map(|z| Complex64::new(z.re, z.im)).collect())
+    }
+
+    pub fn eigen(mut m: DMatrix<Complex64>) -> Option<Vec<Complex64>> {
+        balance(&mut m);
+        shifted_schur(&m).or_else(|| faer(&m))
+    }
+
+    /// faer alone, on the balanced matrix.
+    pub fn faer_only(mut m: DMatrix<Complex64>) -> Option<Vec<Complex64>> {
+        balance(&mut m);
+        faer(&m)
     }
 
     /// Whether nalgebra's first attempt stalls.
@@ -101,6 +126,12 @@ fn distance(a: &[Complex64], b: &[Complex64]) -> f64 {
         worst = worst.max(d);
     }
     worst
+}
+
+fn norm1(m: &DMatrix<Complex64>) -> f64 {
+    m.column_iter()
+        .map(|c| c.iter().map(|z| z.norm()).sum::<f64>())
+        .fold(0.0, f64::max)
 }
 
 /// The matrix families: (name, matrices).
@@ -195,7 +226,7 @@ fn families() -> Vec<(String, Vec<DMatrix<Complex64>>)> {
             );
         }
     }
-    ms.retain(|m| m.iter().all(|z| z.norm() < 1e300) && first_attempt::stalls(m));
+    ms.retain(|m| m.iter().all(|z| z.norm() < 1e300) && before::stalls(m));
     out.push((
         "verlet-euler cycles that stall nalgebra's first attempt".into(),
         ms,
@@ -203,10 +234,47 @@ fn families() -> Vec<(String, Vec<DMatrix<Complex64>>)> {
     out
 }
 
+/// An eigenvalue route: `None` if it does not converge.
+type Route = fn(DMatrix<Complex64>) -> Option<Vec<Complex64>>;
+
+/// Seconds for `f` over a clone of `ms` (the clone untimed).
+fn time_batch(ms: &[DMatrix<Complex64>], f: Route) -> f64 {
+    let ms = ms.to_vec();
+    let t = Instant::now();
+    let n: usize = ms.into_iter().map(|m| f(m).unwrap().len()).sum();
+    let s = t.elapsed().as_secs_f64();
+    std::hint::black_box(n);
+    s
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Interleaved timing of the three routes (rounds in rotating order, so that a change of the
+/// machine's load hits all three alike): median of the per-round ratios before/eigen and
+/// faer/eigen, and the median time of `eigen` per matrix.
+fn interleaved(ms: &[DMatrix<Complex64>]) -> (f64, f64, f64) {
+    let routes: [Route; 3] = [|m| eigen(m).ok(), before::eigen, before::faer_only];
+    let (mut r_before, mut r_faer, mut t_eigen) = (Vec::new(), Vec::new(), Vec::new());
+    for round in 0..21 {
+        let mut t = [0.0; 3];
+        for i in 0..3 {
+            let r = (round + i) % 3;
+            t[r] = time_batch(ms, routes[r]);
+        }
+        r_before.push(t[1] / t[0]);
+        r_faer.push(t[2] / t[0]);
+        t_eigen.push(t[0] / ms.len() as f64);
+    }
+    (median(r_before), median(r_faer), median(t_eigen))
+}
+
 /// Defective matrices (the zero-energy modes at Γ are Jordan blocks of eigenvalue 0): Q J Qᴴ
 /// with J = J_k(λ) ⊕ diag(1, −2, 0.5i), Q a dense unitary (Householder) matrix. The eigenvalues
-/// of a Jordan block of size k move by O(ε^{1/k}) under round-off: `eigen` must converge and
-/// stay within a few ε^{1/k} of the exact ones.
+/// of a Jordan block of size k move by O(ε^{1/k}) under round-off; prints the largest distance
+/// of `eigen`'s and faer's eigenvalues from the exact ones.
 fn jordan_checks() {
     for lambda in [Complex64::new(0.0, 0.0), Complex64::new(0.7, 0.2)] {
         for k in 2..=4 {
@@ -234,13 +302,14 @@ fn jordan_checks() {
                 - (&v * v.adjoint()) * Complex64::new(2.0, 0.0);
             let a = &q * &j * q.adjoint();
             let exact: Vec<Complex64> = (0..n).map(|i| j[(i, i)]).collect();
-            let e = eigen(a).expect("eigen converges on a Jordan block");
-            let d = distance(&e, &exact);
-            let bound = f64::EPSILON.powf(1.0 / k as f64);
+            let e = eigen(a.clone()).expect("eigen converges on a Jordan block");
+            let f = before::faer_only(a).expect("faer converges");
             eprintln!(
-                "Jordan block J_{k}({lambda}) in {n}×{n}: distance from the exact eigenvalues {d:.1e} (ε^(1/{k}) = {bound:.1e})"
+                "Jordan block J_{k}({lambda}) in {n}×{n}: distance from the exact eigenvalues: eigen {:.1e}, faer {:.1e} (ε^(1/{k}) = {:.1e})",
+                distance(&e, &exact),
+                distance(&f, &exact),
+                f64::EPSILON.powf(1.0 / k as f64)
             );
-            assert!(d < 10.0 * bound, "J_{k}({lambda}): {d:e}");
         }
     }
 }
@@ -255,19 +324,55 @@ fn benches(c: &mut Criterion) {
         } else {
             format!("{n}×{n} to {n_max}×{n_max}")
         };
-        let stalled = ms.iter().filter(|m| first_attempt::stalls(m)).count();
+        let stalled = ms.iter().filter(|m| before::stalls(m)).count();
+        let worst = ms
+            .iter()
+            .map(|m| {
+                let a = eigen(m.clone()).expect("eigen converges");
+                let b = before::faer_only(m.clone()).expect("faer converges");
+                distance(&a, &b) / norm1(m).max(f64::MIN_POSITIVE)
+            })
+            .fold(0.0, f64::max);
         eprintln!(
-            "{name}: {} matrices {n}, {stalled} stall nalgebra's first attempt",
+            "{name}: {} matrices {n}, {stalled} stall nalgebra's first attempt; eigen vs faer: max distance/‖m‖₁ {worst:.1e}",
             ms.len()
+        );
+        assert!(worst < 1e-10, "{name}: eigen and faer disagree ({worst:e})");
+        let (rb, rf, te) = interleaved(&ms);
+        eprintln!(
+            "    interleaved, 21 rounds: eigen {:.1} µs per matrix; time ratios before/eigen {rb:.2}, faer alone/eigen {rf:.2}",
+            te * 1e6
         );
         let mut g = c.benchmark_group(format!("{name}, {} of {n}", ms.len()));
         g.sample_size(20);
-        g.bench_function("eigen", |b| {
+        g.bench_function("eigen (nalgebra)", |b| {
             b.iter_batched(
                 || ms.clone(),
                 |ms| {
                     ms.into_iter()
                         .map(|m| eigen(m).unwrap().len())
+                        .sum::<usize>()
+                },
+                BatchSize::LargeInput,
+            )
+        });
+        g.bench_function("before (nalgebra, faer when it stalls)", |b| {
+            b.iter_batched(
+                || ms.clone(),
+                |ms| {
+                    ms.into_iter()
+                        .map(|m| before::eigen(m).unwrap().len())
+                        .sum::<usize>()
+                },
+                BatchSize::LargeInput,
+            )
+        });
+        g.bench_function("faer alone", |b| {
+            b.iter_batched(
+                || ms.clone(),
+                |ms| {
+                    ms.into_iter()
+                        .map(|m| before::faer_only(m).unwrap().len())
                         .sum::<usize>()
                 },
                 BatchSize::LargeInput,
