@@ -821,7 +821,7 @@ fn query_takes_the_integrator() {
 use crate::common;
 
 /// `verlet-euler` with viscosity: the N_s-step cycle is highly non-normal (nalgebra's Schur
-/// iteration stalled on it before eigenvalues fell back to a second nalgebra attempt), and for N_s = 1000 its entries
+/// iteration stalled on it before eigenvalues fell back to faer), and for N_s = 1000 its entries
 /// overflow. The growth per step from the scaled power E·V^(N_s−1)
 /// (`ModeSystem::growth_per_step`) equals the spectral radius of the directly formed cycle to
 /// 1e-9 where that is finite; at N_s = 100 and Δt = 0.05 Δx/c (below the N_s = 40 limit
