@@ -233,7 +233,7 @@ pub struct SceneReport {
 /// the continuum problem (the first non-finite value stops it too).
 pub const RUNAWAY_FACTOR: f64 = 1e3;
 
-/// Field names of a scene for the shared validation ([`crate::analysis::check_common_named`]).
+/// Field names of a scene for the shared validation ([`crate::params::check_common_named`]).
 const SCENE_NAMES: ParamNames = ParamNames {
     h: "h_over_dx",
     stress: "initial_stress / modulus",
