@@ -5,8 +5,8 @@
 //! block of `sphstab throughput` (its defaults). `cargo bench --bench engine` runs them.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sphstab::analysis::{MaterialSpec, Query, growth_map, query_nd, query2d};
-use sphstab::analysis::{Query1D, dispersion};
+use sphstab::analysis::dispersion;
+use sphstab::analysis::{MaterialSpec, Query, growth_map, query};
 use sphstab::forms::{FormKind, Material, Model, ModelParams};
 use sphstab::kernel;
 use sphstab::lattice::Lattice;
@@ -19,16 +19,16 @@ use sphstab::vonneumann::linearise::PhaseTable;
 
 fn benches(c: &mut Criterion) {
     let m4 = kernel::by_name("m4").unwrap();
-    let mut q = Query1D::new(FormKind::Classical, m4, 1.2, 0.01);
-    q.points = 1024;
+    let mut q = Query::<1>::new(FormKind::Classical, m4, 1.2, 0.01);
+    q.grid = 1024;
     c.bench_function("dispersion 1D, 1024 points (classical m4)", |b| {
-        b.iter(|| dispersion(&q).unwrap())
+        b.iter(|| dispersion(&q, q.grid).unwrap())
     });
 
     // the three routes to ω² over a 512-point κ grid of one cell (issue 13, item 1)
-    let mut qc = Query1D::new(FormKind::Classical, m4, 1.3, 0.05);
-    qc.points = 512;
-    let lin = qc.linearise().unwrap();
+    let mut qc = Query::<1>::new(FormKind::Classical, m4, 1.3, 0.05);
+    qc.grid = 512;
+    let lin = qc.chain().unwrap();
     let kappas = qc.kappas();
     let table = PhaseTable::new(&kappas, lin.reach());
     let series = lin.cosine_series().unwrap();
@@ -48,17 +48,17 @@ fn benches(c: &mut Criterion) {
     });
     g1.finish();
     c.bench_function("linearisation of one 1D cell (classical m4 h 1.3)", |b| {
-        b.iter(|| qc.linearise().unwrap())
+        b.iter(|| qc.chain().unwrap())
     });
     let q2 = Query::<2>::new(FormKind::Classical, m4, 1.2, 0.01);
     c.bench_function(
         "query 2D, default (classical m4 elastic, 64x64 zone)",
-        |b| b.iter(|| query2d(&q2).unwrap()),
+        |b| b.iter(|| query(&q2).unwrap()),
     );
     let q3 = Query::<3>::new(FormKind::Classical, m4, 1.2, 0.01);
     c.bench_function(
         "query 3D, default (classical m4 elastic sc, 16^3 zone)",
-        |b| b.iter(|| query_nd(&q3).unwrap()),
+        |b| b.iter(|| query(&q3).unwrap()),
     );
 
     let acfg = AtlasConfig {

@@ -30,7 +30,7 @@ pub struct ParamNames {
 }
 
 impl ParamNames {
-    /// The fields of the questions ([`crate::analysis::Query1D`], [`crate::analysis::Query`]).
+    /// The fields of the questions ([`crate::analysis::Query`]).
     pub const QUERY: ParamNames = ParamNames {
         h: "h_over_dx",
         stress: "stress",

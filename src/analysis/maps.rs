@@ -4,7 +4,7 @@
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use super::zone::Query;
+use super::query::Query;
 use crate::error::Result;
 use crate::lattice::grid_index;
 use crate::params::check_count;

@@ -1,24 +1,61 @@
-//! High-level questions in every dimension: is a configuration stable (`query`), its dispersion,
-//! its critical time step, growth-rate maps and the finite-box prediction. Inputs are validated
-//! here so the library and the CLI give the same errors. One shared layer ([`common`]: report
-//! setup; the engine's [`crate::vonneumann::amplification::critical_dt`] and
-//! [`crate::vonneumann::classify::growth_kind`]) and two front ends: [`chain`] (1D, κΔx ∈ (0, π],
-//! every 1D form) and [`zone`] / [`maps`] (D ∈ {2, 3}, the Brillouin zone of a lattice).
+//! High-level questions in every dimension: is a configuration stable ([`query`]), its
+//! dispersion ([`dispersion`]), its critical time step ([`timestep`]), growth-rate maps and the
+//! finite-box prediction. One question type, [`Query<D>`] for D ∈ {1, 2, 3}, and one report type
+//! per question with one JSON schema ([`report`], [`SCHEMA_VERSION`]). Inputs are validated here
+//! so the library and the CLI give the same errors.
+//!
+//! Behind the three functions are two engines of the von Neumann layer, chosen by D: the chain
+//! linearisation over κΔx ∈ (0, π] in 1D ([`chain`], every form of \[B00\]) and the Bloch
+//! linearisation of a lattice over its Brillouin zone for D ≥ 2 ([`zone`], [`maps`]).
 
 pub mod chain;
 pub mod common;
 pub mod maps;
+pub mod query;
+pub mod report;
 pub mod zone;
 
-pub use chain::{
-    DispersionReport, Header, Query1D, QueryReport, TimestepReport, dispersion, query, timestep,
-    timestep_with,
-};
 pub use common::{IntegratorReport, Setup, linearised_av};
 pub use maps::{
     GrowthMap, MAX_BOX, MAX_BOX_3D, MAX_MAP_N, Plane, box_prediction, growth_map, max_box,
 };
-pub use zone::{
-    Dispersion2D, Instability2D, MAX_GRID, MAX_PATH_POINTS, MaterialSpec, Polarisation, Query,
-    QueryReport2D, continuum_moduli, default_grid, dispersion2d, fold, max_grid, query_nd, query2d,
+pub use query::{MAX_GRID, MaterialSpec, Query, default_grid, max_grid, max_path_points};
+pub use report::{
+    DispersionReport, Header, Instability, Polarisation, QueryReport, SCHEMA_VERSION,
+    TimestepReport,
 };
+
+use crate::error::Result;
+
+/// Answers a stability question: growing modes and their kinds, zero-energy modes, the critical
+/// Δt of `q.integrator` and, with `q.dt`, the fully discrete check.
+pub fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
+    if D == 1 {
+        chain::query(q)
+    } else {
+        q.validate()?;
+        zone::query(q)
+    }
+}
+
+/// The dispersion ω²(κ) along the high-symmetry path of the lattice, `points` per segment (1D:
+/// κΔx = πk/points, k = 1..points).
+pub fn dispersion<const D: usize>(q: &Query<D>, points: usize) -> Result<DispersionReport> {
+    if D == 1 {
+        chain::dispersion(q, points)
+    } else {
+        q.validate()?;
+        zone::dispersion(q, points)
+    }
+}
+
+/// The critical time step of `q.integrator` (with 2/ω_max and, for dissipative systems,
+/// \[B00\] eq 120) and its spurious growth at `q.dt` (default 1/ω_max).
+pub fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
+    if D == 1 {
+        chain::timestep(q)
+    } else {
+        q.validate()?;
+        zone::timestep(q)
+    }
+}

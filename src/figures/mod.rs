@@ -48,7 +48,7 @@
 //! `panels`, each with its `title`, optional `y_range` and its curves of one kind, instead of
 //! top-level curves.
 
-use crate::analysis::{Query1D, dispersion};
+use crate::analysis::{Query, dispersion};
 use crate::budget::Budget;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
@@ -203,7 +203,7 @@ fn default_points() -> usize {
 }
 
 impl Series {
-    fn query(&self, points: usize) -> Result<Query1D> {
+    fn query(&self, points: usize) -> Result<Query<1>> {
         let form = FormKind::by_name(&self.form)?;
         let k = kernel::by_name(&self.kernel)?;
         let h = match (self.h, self.support) {
@@ -215,7 +215,7 @@ impl Series {
                 ));
             }
         };
-        let mut q = Query1D::new(form, k, h, self.stress);
+        let mut q = Query::<1>::new(form, k, h, self.stress);
         if let Some(s) = &self.shape {
             q.shape = ShapeFamily::by_name(s)?;
         }
@@ -225,7 +225,7 @@ impl Series {
         if let Some(a) = self.alpha_s {
             q.alpha_s = a;
         }
-        q.points = points;
+        q.grid = points;
         q.validate()?;
         Ok(q)
     }
@@ -241,7 +241,7 @@ impl Series {
         let phi = |x: f64| lattice_shape(q.shape, kp, x).unwrap_or([f64::NAN; 3]);
         let s = q.stress;
         let y: Vec<f64> = match self.route {
-            Route::Engine => dispersion(&q)?.omega2,
+            Route::Engine => dispersion(&q, q.grid)?.omega2_branch(0),
             Route::B00Eq32 => kappas
                 .iter()
                 .map(|&k| cf::b00_eq32_continuum(s, k))

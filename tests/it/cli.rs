@@ -102,8 +102,13 @@ fn dispersion_json_and_svg() {
         "--plot",
         svg.to_str().unwrap(),
     ]);
-    assert_eq!(v["kappa_dx"].as_array().unwrap().len(), 64);
+    // schema version 1: κ and the branch are one-component arrays in 1D, `path` is κΔx
+    assert_eq!(v["schema_version"], 1);
+    assert_eq!(v["kappa"].as_array().unwrap().len(), 64);
     assert_eq!(v["omega2"].as_array().unwrap().len(), 64);
+    assert_eq!(v["omega2"][0].as_array().unwrap().len(), 1);
+    let pi = std::f64::consts::PI;
+    assert_eq!(v["path"][63].as_f64(), Some(pi));
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(text.starts_with("<svg") || text.contains("<svg"));
     assert!(text.contains("ω²Δx²/c²") && text.contains("κΔx/π") && text.contains("continuum"));
@@ -227,4 +232,56 @@ fn closed_pipe_ends_quietly() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(141), "{err}");
     assert!(err.is_empty(), "{err}");
+}
+
+/// Issue 23: `query`, `dispersion` and `timestep` print one schema (version 1) in every
+/// dimension — the same keys in 1D, 2D and 3D, except `alpha_s` (1D only); wave vectors have D
+/// components.
+#[test]
+fn one_json_schema_in_every_dimension() {
+    let keys = |v: &serde_json::Value| {
+        let mut k: Vec<String> = v
+            .as_object()
+            .unwrap()
+            .keys()
+            .filter(|k| *k != "alpha_s")
+            .cloned()
+            .collect();
+        k.sort();
+        k
+    };
+    for verb in ["query", "dispersion", "timestep"] {
+        let size = if verb == "dispersion" {
+            "--points"
+        } else {
+            "--grid"
+        };
+        let out: Vec<serde_json::Value> = ["1", "2", "3"]
+            .iter()
+            .map(|d| json(&[verb, "--dim", d, "--stress", "0.05", size, "4", "--json"]))
+            .collect();
+        for (d, v) in out.iter().enumerate() {
+            assert_eq!(v["schema_version"], 1, "{verb} --dim {}", d + 1);
+            assert_eq!(v["dim"], d + 1);
+            assert_eq!(keys(v), keys(&out[0]), "{verb} --dim {}", d + 1);
+            assert_eq!(v.get("alpha_s").is_some(), d == 0, "{verb}");
+        }
+        if verb == "query" {
+            for (d, v) in out.iter().enumerate() {
+                // classical m4 h 1.2 in tension grows: a D-component fastest wave vector
+                assert_eq!(v["kappa_at_max"].as_array().unwrap().len(), d + 1);
+                let rows = v["instabilities"].as_array().unwrap();
+                assert!(
+                    rows.iter()
+                        .all(|r| r["kappa_at_max"].as_array().unwrap().len() == d + 1)
+                );
+            }
+        }
+        if verb == "dispersion" {
+            for (d, v) in out.iter().enumerate() {
+                assert_eq!(v["kappa"][0].as_array().unwrap().len(), d + 1);
+                assert_eq!(v["omega2"][0].as_array().unwrap().len(), d + 1);
+            }
+        }
+    }
 }

@@ -9,7 +9,7 @@
 use crate::common;
 
 use common::*;
-use sphstab::analysis::{Query1D, query};
+use sphstab::analysis::{Query, query};
 use sphstab::forms::FormKind;
 use sphstab::kernel::{self, Kernel};
 use sphstab::vonneumann::classify::Kind;
@@ -29,9 +29,9 @@ fn ask(
     sig: f64,
     c: f64,
 ) -> sphstab::analysis::QueryReport {
-    let mut q = Query1D::new(form, k, h, sig);
+    let mut q = Query::<1>::new(form, k, h, sig);
     q.c_partition = c;
-    q.points = POINTS;
+    q.grid = POINTS;
     query(&q).unwrap_or_else(|e| panic!("{form:?} {} h={h}: {e}", k.name()))
 }
 

@@ -30,7 +30,7 @@ use crate::common;
 use common::k;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
-use sphstab::analysis::{Query1D, dispersion, timestep_with};
+use sphstab::analysis::{Query, dispersion, timestep};
 use sphstab::error::Result;
 use sphstab::forms::FormKind;
 use sphstab::integrator::Integrator;
@@ -71,8 +71,8 @@ fn jvv(c: &[(f64, f64)], kappa: f64) -> f64 {
         .sum::<f64>()
 }
 
-fn nonlocal(alpha: Option<f64>) -> Query1D {
-    let mut q = Query1D::new(FormKind::Nonlocal, k("m4"), H, 0.0);
+fn nonlocal(alpha: Option<f64>) -> Query<1> {
+    let mut q = Query::<1>::new(FormKind::Nonlocal, k("m4"), H, 0.0);
     q.av = alpha.map(|a| (a, 0.0));
     q
 }
@@ -80,16 +80,19 @@ fn nonlocal(alpha: Option<f64>) -> Query1D {
 #[test]
 fn viscous_damping_matches_the_lattice_sum_and_its_continuum_limit() {
     let mut q = nonlocal(Some(1.0));
-    q.points = 256;
-    let r = dispersion(&q).unwrap();
-    let (rate, ratio) = (r.damping_rate.unwrap(), r.damping_ratio.unwrap());
+    q.grid = 256;
+    let r = dispersion(&q, q.grid).unwrap();
+    let (rate, ratio) = (
+        r.damping_rate_branch(0).unwrap(),
+        r.damping_ratio_branch(0).unwrap(),
+    );
     let c = viscosity_coefficients(1.0);
     let nu: f64 = 0.5 * c.iter().map(|&(x, cj)| cj * x * x).sum::<f64>();
     let (mut under, mut over) = (0, 0);
-    for i in 0..r.kappa_dx.len() {
-        let kap = r.kappa_dx[i];
+    for i in 0..r.path.len() {
+        let kap = r.path[i];
         let j = jvv(&c, kap);
-        let w2 = r.omega2[i];
+        let w2 = r.omega2[i][0];
         // the matching is unambiguous exactly where the pair oscillates (margin for rounding)
         if 0.25 * j * j < w2 * (1.0 - 1e-6) {
             under += 1;
@@ -115,7 +118,7 @@ fn viscous_damping_matches_the_lattice_sum_and_its_continuum_limit() {
         "{under} underdamped, {over} overdamped"
     );
     // continuum limit at the smallest κ: |ratio − 1| ≤ (κ x_max)²/12, x_max = 2 (support 2.6)
-    let kap = r.kappa_dx[0];
+    let kap = r.path[0];
     let s = rate[0].unwrap();
     let limit = -0.5 * nu * kap * kap;
     let bound = (2.0 * kap).powi(2) / 12.0;
@@ -129,21 +132,25 @@ fn viscous_damping_matches_the_lattice_sum_and_its_continuum_limit() {
 #[test]
 fn no_viscosity_no_damping() {
     let mut q = nonlocal(None);
-    q.points = 64;
-    let r = dispersion(&q).unwrap();
+    q.grid = 64;
+    let r = dispersion(&q, q.grid).unwrap();
     assert!(r.damping_rate.is_none() && r.damping_ratio.is_none());
     let json = serde_json::to_value(&r).unwrap();
     assert!(json.get("damping_rate").is_none());
     // the eigenvalues of the non-dissipative J: Re s = 0 to rounding on every branch
-    let lin = q.linearise().unwrap();
-    for (&kap, &w2) in r.kappa_dx.iter().zip(&r.omega2) {
+    let lin = q.chain().unwrap();
+    for (&kap, &w2) in r.path.iter().zip(&r.omega2_branch(0)) {
         if w2 <= 1e-12 {
             continue;
         }
         let d = branch_damping(&lin.eigenvalues(kap).unwrap(), &[w2])[0].unwrap();
         assert!(d.abs() <= 1e-13, "κ {kap}: Re s = {d}");
     }
-    let t = timestep_with(&q, Integrator::VerletLagged, None).unwrap();
+    let t = timestep(&Query {
+        integrator: Integrator::VerletLagged,
+        ..q
+    })
+    .unwrap();
     assert!(t.critical_dt_eq120.is_none());
     assert!(
         serde_json::to_value(&t)
@@ -165,9 +172,9 @@ struct Oscillators {
 
 impl Oscillators {
     fn new(alpha: f64) -> Self {
-        let q = Query1D::new(FormKind::TotalLagrangian, k("m4"), H, 0.0);
+        let q = Query::<1>::new(FormKind::TotalLagrangian, k("m4"), H, 0.0);
         Self {
-            tl: q.linearise().unwrap(),
+            tl: q.chain().unwrap(),
             c: viscosity_coefficients(alpha),
         }
     }
@@ -253,10 +260,14 @@ fn eq120_is_the_critical_step_of_verlet_lagged_on_damped_oscillators() {
         assert!((from_eigs / by_hand - 1.0).abs() <= 1e-9, "α {alpha}");
         assert!((lagged / from_eigs - 1.0).abs() <= 1e-6, "α {alpha}");
         // the engine: total-lagrangian with the viscosity in its rate function
-        let mut q = Query1D::new(FormKind::TotalLagrangian, k("m4"), H, 0.0);
+        let mut q = Query::<1>::new(FormKind::TotalLagrangian, k("m4"), H, 0.0);
         q.av = Some((alpha, 0.0));
-        q.points = 128;
-        let t = timestep_with(&q, Integrator::VerletLagged, None).unwrap();
+        q.grid = 128;
+        let t = timestep(&Query {
+            integrator: Integrator::VerletLagged,
+            ..q
+        })
+        .unwrap();
         let (e120, crit) = (t.critical_dt_eq120.unwrap(), t.step.critical_dt.unwrap());
         eprintln!("  engine TL + viscosity: eq 120 {e120:.9}, verlet-lagged {crit:.9}");
         assert!((e120 / from_eigs - 1.0).abs() <= 1e-9, "α {alpha}: {e120}");
@@ -270,11 +281,19 @@ fn eq120_in_timestep_for_the_nonlocal_form() {
     // estimate for every integrator
     for alpha in [0.5, 1.0, 2.0] {
         let mut q = nonlocal(Some(alpha));
-        q.points = 128;
-        let lagged = timestep_with(&q, Integrator::VerletLagged, None).unwrap();
-        let kdk = timestep_with(&q, Integrator::Kdk, None).unwrap();
+        q.grid = 128;
+        let lagged = timestep(&Query {
+            integrator: Integrator::VerletLagged,
+            ..q
+        })
+        .unwrap();
+        let kdk = timestep(&Query {
+            integrator: Integrator::Kdk,
+            ..q
+        })
+        .unwrap();
         let e = lagged.critical_dt_eq120.unwrap();
-        let lin = q.linearise().unwrap();
+        let lin = q.chain().unwrap();
         assert_eq!(e, critical_dt_eq120(&lin, &q.kappas()).unwrap());
         assert_eq!(Some(e), kdk.critical_dt_eq120);
         let (l, k) = (

@@ -53,7 +53,7 @@ fn smoothing_length_extremes() {
             }
         }
     }
-    let q = sphstab::analysis::Query1D::new(FormKind::Classical, k("lucy"), 0.8, 0.1);
+    let q = sphstab::analysis::Query::<1>::new(FormKind::Classical, k("lucy"), 0.8, 0.1);
     assert!(matches!(
         sphstab::analysis::query(&q),
         Err(sphstab::error::Error::OutOfRange {

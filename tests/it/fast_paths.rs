@@ -12,7 +12,7 @@
 //!   in σ̄ (the atlas interpolates them, `Linearisation::lerp`): the columns at σ̄ = 0 must equal
 //!   the midpoint of those at ±0.9 to rounding, and a wrong interpolation must be detected.
 
-use sphstab::analysis::Query1D;
+use sphstab::analysis::Query;
 use sphstab::forms::FormKind;
 use sphstab::kernel;
 use sphstab::vonneumann::linearise::PhaseTable;
@@ -30,8 +30,8 @@ fn tabulated_route_is_bitwise_the_matrix_route() {
     for form in forms() {
         for k in ["m4", "wendland-c4", "gaussian", "efg-quartic"] {
             for (h, s) in [(1.3, 0.05), (2.2, -0.4)] {
-                let q = Query1D::new(form, kernel::by_name(k).unwrap(), h, s);
-                let lin = q.linearise().unwrap();
+                let q = Query::<1>::new(form, kernel::by_name(k).unwrap(), h, s);
+                let lin = q.chain().unwrap();
                 let table = PhaseTable::new(&kappas, lin.reach());
                 for (i, &kap) in kappas.iter().enumerate() {
                     assert_eq!(
@@ -58,8 +58,8 @@ fn cosine_series_matches_the_matrix_route_and_keeps_relative_accuracy_as_kappa_t
     for form in forms() {
         for k in ["m4", "m6", "wendland-c2", "gaussian", "lucy", "efg-cubic"] {
             for (h, s) in [(1.1, 0.3), (1.6, 0.0), (3.0, -0.6)] {
-                let q = Query1D::new(form, kernel::by_name(k).unwrap(), h, s);
-                let lin = q.linearise().unwrap();
+                let q = Query::<1>::new(form, kernel::by_name(k).unwrap(), h, s);
+                let lin = q.chain().unwrap();
                 let Some(cs) = lin.cosine_series() else {
                     // consistent mass (least squares) or dissipative: not a cosine series
                     assert!(form == FormKind::LeastSquares || lin.is_dissipative());
@@ -94,7 +94,7 @@ fn jacobian_columns_are_affine_in_the_pre_stress() {
     let m4 = kernel::by_name("m4").unwrap();
     for form in forms() {
         for h in [1.2, 2.5] {
-            let lin = |s: f64| Query1D::new(form, m4, h, s).linearise().unwrap();
+            let lin = |s: f64| Query::<1>::new(form, m4, h, s).chain().unwrap();
             let (a, mid, b) = (lin(-0.9), lin(0.0), lin(0.9));
             let d = a.lerp(&b, 0.5).unwrap().distance(&mid).unwrap();
             assert!(d < 1e-13, "{form:?} h {h}: {d:e}");

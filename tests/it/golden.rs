@@ -15,8 +15,8 @@ use crate::common;
 
 use common::{k, material_specs};
 use serde_json::{Value, json};
-use sphstab::analysis::{Query, query2d};
-use sphstab::analysis::{Query1D, dispersion};
+use sphstab::analysis::dispersion;
+use sphstab::analysis::{Query, query};
 use sphstab::forms::FormKind;
 use sphstab::lattice::Lattice;
 use sphstab::shape::KernelParams;
@@ -54,13 +54,13 @@ fn dispersion_1d() -> Value {
     for form in forms {
         for (kern, h) in kernels {
             for sig in [-0.05, 0.01, 0.2] {
-                let mut q = Query1D::new(form, k(kern), h, sig);
-                q.points = 64;
+                let mut q = Query::<1>::new(form, k(kern), h, sig);
+                q.grid = 64;
                 if form == FormKind::LeastSquares {
                     q.alpha_s = 0.1;
                 }
-                let r = match dispersion(&q) {
-                    Ok(r) => json!(r.omega2),
+                let r = match dispersion(&q, q.grid) {
+                    Ok(r) => json!(r.omega2_branch(0)),
                     Err(e) => json!(format!("error: {e}")),
                 };
                 out.push(json!({
@@ -108,7 +108,7 @@ fn bloch_2d() -> Value {
                             [b[0].0.re, b[1].0.re]
                         })
                         .collect();
-                    let r = query2d(&q).unwrap();
+                    let r = query(&q).unwrap();
                     out.push(json!({
                         "form": form.name(), "material": mname, "lattice": lname, "stress": sig,
                         "k": ks, "omega2": w2,

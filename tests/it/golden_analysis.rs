@@ -12,11 +12,42 @@
 //! stable mode) from demanding agreement below 1e-12 of the quantity's scale. Strings and
 //! booleans must be identical; `runtime_s` and `threads` (machine-dependent) are skipped.
 //! Growth rates are compared squared ([`growth`]).
+//!
+//! **Old → new field map (schema version 1, issue 23).** The golden files hold the output of
+//! the two schemas before `query`, `dispersion` and `timestep` shared one report per question;
+//! the comparison reads them through this map, and nothing else:
+//! - a 1D scalar that became a one-component vector (`kappa_at_max`, the κ of a dispersion
+//!   point, a branch value ω², its continuum, damping rate and ratio) is compared with the
+//!   vector's only component ([`compare`]);
+//! - `kappa_dx` (1D dispersion) is now `kappa`;
+//! - fields the new schema adds ([`ADDED`]) may appear in the output without a golden value;
+//!   every golden field must still be present with its value.
 
 use serde_json::Value;
 use std::process::Command;
 
 const TOL: f64 = 1e-12;
+
+/// Fields schema version 1 adds to some reports (the header in every dimension, the 1D
+/// polarisation and zone fraction, the path of a 1D dispersion, the 2D/3D `timestep` header).
+const ADDED: [&str; 13] = [
+    "schema_version",
+    "dim",
+    "shape",
+    "support_over_dx",
+    "c_partition",
+    "material",
+    "lattice",
+    "nearest_neighbour_over_dx",
+    "grid",
+    "polarisation",
+    "zone_fraction",
+    "labels",
+    "path",
+];
+
+/// Renamed fields: (golden name, name in schema version 1).
+const RENAMED: [(&str, &str); 1] = [("kappa_dx", "kappa")];
 
 /// Growth rates γ = √max(0, −ω²) are compared as γ² = −ω²: the square root is infinitely
 /// ill-conditioned at 0 (a rounding change of 1e-16 in ω² moves a growth of 1e-6, the
@@ -28,6 +59,10 @@ fn growth(path: &str) -> bool {
 
 fn compare(path: &str, gold: &Value, new: &Value, scale: f64, worst: &mut (f64, String)) {
     match (gold, new) {
+        // a 1D scalar that is a one-component vector in schema version 1
+        (g, Value::Array(b)) if !g.is_array() && b.len() == 1 => {
+            compare(path, g, &b[0], scale, worst)
+        }
         (Value::Number(a), Value::Number(b)) => {
             let (mut a, mut b) = (a.as_f64().unwrap(), b.as_f64().unwrap());
             let mut scale = scale;
@@ -55,17 +90,26 @@ fn compare(path: &str, gold: &Value, new: &Value, scale: f64, worst: &mut (f64, 
             }
         }
         (Value::Object(a), Value::Object(b)) => {
-            let keys = |o: &serde_json::Map<String, Value>| {
-                let mut k: Vec<String> = o.keys().cloned().collect();
-                k.sort();
-                k
+            let renamed = |k: &str| {
+                RENAMED
+                    .iter()
+                    .find(|(old, _)| *old == k)
+                    .map_or(k.to_string(), |(_, new)| new.to_string())
             };
-            assert_eq!(keys(a), keys(b), "{path}: fields");
+            let mut want: Vec<String> = a.keys().map(|k| renamed(k)).collect();
+            want.sort();
+            let mut got: Vec<String> = b
+                .keys()
+                .filter(|k| want.contains(k) || !ADDED.contains(&k.as_str()))
+                .cloned()
+                .collect();
+            got.sort();
+            assert_eq!(want, got, "{path}: fields");
             for (k, x) in a {
                 if k == "runtime_s" || k == "threads" {
                     continue;
                 }
-                compare(&format!("{path}.{k}"), x, &b[k], 0.0, worst);
+                compare(&format!("{path}.{k}"), x, &b[&renamed(k)], 0.0, worst);
             }
         }
         _ => assert_eq!(gold, new, "{path}"),
@@ -125,4 +169,31 @@ fn a_perturbed_number_fails_the_comparison() {
     let gold: Value = serde_json::json!({"omega2": [0.5, -0.02, 1.0], "stable": false});
     let new: Value = serde_json::json!({"omega2": [0.5, -0.02 + 1e-10, 1.0], "stable": false});
     compare("case", &gold, &new, 0.0, &mut (0.0, String::new()));
+}
+
+/// The old → new map is not a loophole: a perturbed one-component vector fails, a golden field
+/// missing from the output fails, and an output field outside [`ADDED`] fails.
+#[test]
+fn the_schema_map_still_fails_on_changes() {
+    let run = |gold: Value, new: Value| {
+        std::panic::catch_unwind(|| compare("case", &gold, &new, 0.0, &mut (0.0, String::new())))
+            .is_err()
+    };
+    use serde_json::json;
+    assert!(!run(
+        json!({"kappa_dx": [1.0]}),
+        json!({"kappa": [[1.0]], "dim": 1})
+    ));
+    assert!(run(
+        json!({"kappa_dx": [1.0]}),
+        json!({"kappa": [[1.0 + 1e-9]]})
+    ));
+    assert!(run(
+        json!({"stable": true, "grid": 8}),
+        json!({"stable": true})
+    ));
+    assert!(run(
+        json!({"stable": true}),
+        json!({"stable": true, "growth": 0.0})
+    ));
 }

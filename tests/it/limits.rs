@@ -398,7 +398,10 @@ fn inapplicable_flags_are_errors() {
         (&["map", "--dim", "1"], "--dim"),
         (&["simulate", "thesis-wave", "--t-end", "1"], "--t-end"),
         (&["query", "--lattice", "hex"], "--lattice"),
-        (&["query", "--grid", "32"], "--grid"),
+        // `--grid` samples κ in 1D too (schema version 1); with --points it is one too many,
+        // and `dispersion` samples its path with --points only
+        (&["query", "--grid", "32", "--points", "64"], "--points"),
+        (&["dispersion", "--grid", "32"], "--grid"),
         (&["dispersion", "--dim", "2", "--points", "0"], "--points"),
         (&["stiffness", "--points", "8"], "--points"),
     ]);

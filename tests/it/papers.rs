@@ -418,7 +418,7 @@ fn v21_a72_continuum_against_discrete_lnl() {
 #[test]
 fn least_squares_critical_dt_matches_exact_lattice_values() {
     use common::exact::{Q, mls_quartic_lattice};
-    use sphstab::analysis::{Query1D, query};
+    use sphstab::analysis::{Query, query};
     for (d_mx, r) in [(1.5, Q::new(3, 2)), (2.5, Q::new(5, 2))] {
         let ex: Vec<(f64, [f64; 3])> = mls_quartic_lattice(r, false)
             .into_iter()
@@ -445,7 +445,7 @@ fn least_squares_critical_dt_matches_exact_lattice_values() {
                 if w2(c) > w2(d) { b = d } else { a = c }
             }
             let wc = w2(0.5 * (a + b)).max(wmax);
-            let mut qq = Query1D::new(FormKind::LeastSquares, k("efg-quartic"), d_mx, 0.0);
+            let mut qq = Query::<1>::new(FormKind::LeastSquares, k("efg-quartic"), d_mx, 0.0);
             qq.shape = MLS;
             qq.alpha_s = alpha_s;
             let rep = query(&qq).unwrap();

@@ -1309,8 +1309,8 @@ fn thesis_gradient_gain() -> Row {
 
 /// [T §4.6.3.3, Figs 4.10–4.12]: Δt = h/c (eq 4.47), h the cover (support radius), c = c_b.
 fn thesis_dt() -> Row {
-    use sphstab::analysis::{Query1D, query, timestep};
-    let mut q = Query1D::new(FormKind::TotalLagrangian, k("mollifier"), 5.5, 0.0);
+    use sphstab::analysis::{Query, query, timestep};
+    let mut q = Query::<1>::new(FormKind::TotalLagrangian, k("mollifier"), 5.5, 0.0);
     q.shape = ShapeFamily::Sph;
     let r = timestep(&q).unwrap();
     let dt = r.step.critical_dt.unwrap();
@@ -1402,9 +1402,9 @@ fn thesis_interface() -> Row {
 /// [T §4.7.3, Figs 4.20–4.22]: TL stable, the updated-Lagrangian (Eulerian-kernel) forms tensile
 /// unstable, mollifier h = 5.5Δx. σ̄ is not given: 0.01 chosen.
 fn thesis_tension() -> Row {
-    use sphstab::analysis::{Query1D, query};
+    use sphstab::analysis::{Query, query};
     let run = |f: FormKind, shape: ShapeFamily| {
-        let mut q = Query1D::new(f, k("mollifier"), 5.5, 0.01);
+        let mut q = Query::<1>::new(f, k("mollifier"), 5.5, 0.01);
         q.shape = shape;
         query(&q).unwrap()
     };
@@ -1415,11 +1415,19 @@ fn thesis_tension() -> Row {
         r.instabilities
             .iter()
             .filter(|i| i.growth_rate > 0.0)
-            .map(|i| format!("[{:.3}π, {:.3}π]", i.kappa_min / PI, i.kappa_max / PI))
+            .map(|i| {
+                format!(
+                    "[{:.3}π, {:.3}π]",
+                    i.kappa_min.unwrap_or(f64::NAN) / PI,
+                    i.kappa_max.unwrap_or(f64::NAN) / PI
+                )
+            })
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let kmax = |r: &sphstab::analysis::QueryReport| r.kappa_at_max.unwrap_or(f64::NAN) / PI;
+    let kmax = |r: &sphstab::analysis::QueryReport| {
+        r.kappa_at_max.as_ref().map_or(f64::NAN, |k| k[0]) / PI
+    };
     Row {
         item: "Thesis Figs 4.20, 4.21, 4.22",
         shows: "pre-stressed bar in tension with a 5% kick of the centre particle: TL (4.21) vs updated Lagrangian (4.22); set-up Fig 4.20",

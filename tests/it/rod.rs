@@ -4,7 +4,7 @@
 use crate::common;
 
 use common::*;
-use sphstab::analysis::{Query1D, query};
+use sphstab::analysis::{Query, query};
 use sphstab::forms::FormKind;
 use sphstab::shape::ShapeFamily;
 use sphstab::solver::rod::{RodConfig, run_rod};
@@ -50,7 +50,7 @@ fn b00_rod_eulerian_unstable_lagrangian_stable() {
 /// linearisation says stable at σ̄ = 0.1 (ERRATA E3), and so does the run.
 #[test]
 fn b00_rod_efg_mls_follows_the_engine() {
-    let mut q = Query1D::new(FormKind::EulerianNodal, k("efg-quartic"), 1.5, 0.1);
+    let mut q = Query::<1>::new(FormKind::EulerianNodal, k("efg-quartic"), 1.5, 0.1);
     q.shape = ShapeFamily::Mls;
     let verdict = query(&q).unwrap().stable;
     let r = rod(

@@ -245,7 +245,7 @@ fn atlas_shards_merge_into_the_whole_sweep() {
 /// R(z) = 1 + z + z²/2 + z³/6 + z⁴/24, critical Δt = 2√2/ω_max.
 #[test]
 fn integrator_rows_match_closed_forms_on_the_oscillator() {
-    use sphstab::analysis::Query1D;
+    use sphstab::analysis::Query;
     use sphstab::forms::FormKind;
     use sphstab::kernel;
     let cfg = TradeoffConfig {
@@ -259,13 +259,13 @@ fn integrator_rows_match_closed_forms_on_the_oscillator() {
     };
     let rep = run(&cfg, None, ()).unwrap();
     assert_eq!(rep.integrator_rows.len(), 3 * 12);
-    let q = Query1D::new(
+    let q = Query::<1>::new(
         FormKind::by_name("total-lagrangian").unwrap(),
         kernel::by_name("m4").unwrap(),
         1.0,
         0.0,
     );
-    let lin = q.linearise().unwrap();
+    let lin = q.chain().unwrap();
     // ω_max over the study's κ grid (256 points, as the study), from ω²
     let wmax = (1..=256)
         .map(|k| lin.omega2(PI * k as f64 / 256.0).0)
@@ -397,7 +397,7 @@ fn integrator_rows_match_closed_forms_on_the_oscillator() {
 /// CFL = Δt_crit/(h/Δx).
 #[test]
 fn cfl_table_matches_the_leapfrog_and_rk4_limits() {
-    use sphstab::analysis::{Query1D, timestep_with};
+    use sphstab::analysis::{Query, timestep};
     use sphstab::forms::FormKind;
     use sphstab::integrator::Integrator;
     use sphstab::kernel;
@@ -407,9 +407,13 @@ fn cfl_table_matches_the_leapfrog_and_rk4_limits() {
             for h in [1.2, 2.0] {
                 let f = FormKind::by_name(form).unwrap();
                 let k = kernel::by_name(kern).unwrap();
-                let mut q = Query1D::new(f, k, h, 0.0);
-                q.points = CFL_POINTS;
-                let t = timestep_with(&q, Integrator::Kdk, None).unwrap();
+                let mut q = Query::<1>::new(f, k, h, 0.0);
+                q.grid = CFL_POINTS;
+                let t = timestep(&Query {
+                    integrator: Integrator::Kdk,
+                    ..q
+                })
+                .unwrap();
                 let leap = t.critical_dt_from_omega_max.unwrap();
                 let kdk = cfl_cell(f, k, h, Integrator::Kdk).unwrap();
                 let rk4 = cfl_cell(f, k, h, Integrator::Rk4).unwrap();

@@ -170,10 +170,10 @@ fn long_wave_limit_recovers_continuum_for_consistent_forms() {
 /// unrelated ρ0 and C).
 #[test]
 fn normalised_results_are_scale_free() {
-    use sphstab::analysis::{Query1D, query};
+    use sphstab::analysis::{Query, query};
     use sphstab::vonneumann::linearise::Lattice1D;
     let base = {
-        let q = Query1D::new(
+        let q = Query::<1>::new(
             FormKind::Classical,
             kernel::by_name("m4").unwrap(),
             1.2,
@@ -182,13 +182,13 @@ fn normalised_results_are_scale_free() {
         query(&q).unwrap()
     };
     for (dx, rho0, c) in [(1e-6, 2.8, 0.686275), (1e6, 7800.0, 2e11), (1.0, 1.0, 1.0)] {
-        let mut q = Query1D::new(
+        let mut q = Query::<1>::new(
             FormKind::Classical,
             kernel::by_name("m4").unwrap(),
             1.2,
             0.05,
         );
-        q.lattice = Lattice1D {
+        q.units = Lattice1D {
             dx,
             rho0,
             modulus: c,

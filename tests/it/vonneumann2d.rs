@@ -287,7 +287,7 @@ fn neo_hookean_linearises_to_hooke() {
 /// material the extra repulsion cannot stabilise it — and growth rises again (0.167 at ε = 0.3).
 #[test]
 fn artificial_stress_trades_longitudinal_for_transverse_growth() {
-    use sphstab::analysis::{MaterialSpec, Query, query2d};
+    use sphstab::analysis::{MaterialSpec, Query, query};
     let mut rates = Vec::new();
     for eps in [0.0, 0.1, 0.2, 0.3] {
         let mut q = Query::<2>::new(
@@ -301,7 +301,7 @@ fn artificial_stress_trades_longitudinal_for_transverse_growth() {
         if eps > 0.0 {
             q.art_stress = Some((eps, 4));
         }
-        let r = query2d(&q).unwrap();
+        let r = query(&q).unwrap();
         let lf = r.polarisation.as_ref().unwrap().longitudinal_fraction;
         eprintln!(
             "ε = {eps}: growth {:.5} c/Δx, longitudinal fraction {lf:.3}",

@@ -5,7 +5,7 @@
 //!   D; lattice sums of the kernel, no rate function);
 //! - the 1D and 2D engines along a lattice axis of sc, with the 3D kernel summed over lattice
 //!   planes / lines (a different patch, neighbour search and dimension of every sum);
-//! - the continuum wave speeds of `analysis::continuum_moduli` as κ → 0, and invariances
+//! - the continuum wave speeds of `Query::continuum_moduli` as κ → 0, and invariances
 //!   (Δx scaling, extreme stress and h/Δx).
 //!
 //! Units: Δx = (volume per particle)^⅓ = 1, ρ0 = 1, C = 1; normalised D = ω²Δx²/c².
@@ -17,8 +17,8 @@ use crate::common;
 
 use common::{k, material_specs};
 use num_complex::Complex64;
-use sphstab::analysis::Query1D;
-use sphstab::analysis::{MaterialSpec, Query, continuum_moduli};
+use sphstab::analysis::MaterialSpec;
+use sphstab::analysis::Query;
 use sphstab::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use sphstab::kernel::{self, Kernel};
 use sphstab::lattice::Lattice;
@@ -341,9 +341,9 @@ fn along_an_axis_3d_reduces_to_1d_and_2d_with_summed_kernels() {
                 sb,
             )
             .unwrap();
-            let mut q1 = Query1D::new(form, summed, 1.0, sb);
+            let mut q1 = Query::<1>::new(form, summed, 1.0, sb);
             q1.shape = ShapeFamily::Sph;
-            let l1 = q1.linearise().unwrap();
+            let l1 = q1.chain().unwrap();
             let kappas: Vec<f64> = (1..=16).map(|i| PI * i as f64 / 16.0).collect();
             let one_d: Vec<f64> = kappas.iter().map(|&kap| l1.omega2(kap).0).collect();
             let scale = one_d.iter().fold(0.0f64, |a, w| a.max(w.abs()));
@@ -387,7 +387,7 @@ fn along_an_axis_3d_reduces_to_1d_and_2d_with_summed_kernels() {
 }
 
 /// Largest |ω²/|k|² − continuum| over the three branches at |k| = ε in direction `dir`, with the
-/// continuum speeds² (S, S, P) of `continuum_moduli` in ascending order.
+/// continuum speeds² (S, S, P) of `Query::continuum_moduli` in ascending order.
 fn long_wave_deviation(lin: &Bloch<3>, cont: (f64, f64), dir: [f64; 3], eps: f64) -> f64 {
     let (p, s) = cont;
     let want = [s, s, p];
@@ -405,7 +405,7 @@ fn directions() -> [[f64; 3]; 3] {
     [[1.0, 0.0, 0.0], [d, d, d], g.map(|c| c / gn)]
 }
 
-/// (c) κ → 0: the branches tend to the continuum, ω²/|k|² → (S, S, P) of `continuum_moduli`
+/// (c) κ → 0: the branches tend to the continuum, ω²/|k|² → (S, S, P) of `Query::continuum_moduli`
 /// (Jaumann: P = 1, S = G; Truesdell: P = 1 + σ̄, S = G + σ̄; hydro: P = 1, S = 0), exactly
 /// for shapes with a first-order consistent gradient: then M1 = I (Σ_J ∇φ_J ⊗ x_J = I) and the
 /// gradient symbol is k + O(|k|³) (closed forms of `derived`; `local` has no kernel-variation
@@ -435,7 +435,7 @@ fn long_wave_limit_is_the_continuum_for_consistent_gradients() {
     for (form, shape, lname, lat) in cases {
         for (mname, spec) in material_specs() {
             let q = query(form, shape, lat, spec, sb);
-            let cont = continuum_moduli(&q).unwrap();
+            let cont = q.continuum_moduli().unwrap();
             let lin = q.linearise_at(sb).unwrap();
             for dir in directions() {
                 let dev = long_wave_deviation(&lin, cont, dir, eps);
@@ -456,7 +456,7 @@ fn long_wave_limit_is_the_continuum_for_consistent_gradients() {
         ] {
             let (_, spec) = material_specs()[2];
             let q = query(form, shape, lat, spec, sb);
-            let cont = continuum_moduli(&q).unwrap();
+            let cont = q.continuum_moduli().unwrap();
             let lin = q.linearise_at(sb).unwrap();
             let dev = directions()
                 .into_iter()

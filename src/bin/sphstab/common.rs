@@ -1,7 +1,8 @@
 //! Flags shared by `query`, `dispersion` and `timestep`.
 
 use anyhow::Result;
-use sphstab::analysis::Query1D;
+use sphstab::analysis::Query;
+use sphstab::budget::Budget;
 use sphstab::forms::FormKind;
 use sphstab::kernel;
 use sphstab::shape::ShapeFamily;
@@ -76,8 +77,9 @@ pub struct Config {
     /// δ-SPH density diffusion.
     #[command(flatten)]
     pub diffusion: DiffusionArgs,
-    /// 2D/3D: wave vectors per reciprocal direction (the zone is sampled grid^D), 2D in
-    /// [2, 1024] (default 64), 3D in [2, 128] (default 16).
+    /// Wave-vector sampling: 1D, κ points in (0, π] (default 512, same as --points); 2D/3D, wave
+    /// vectors per reciprocal direction (the zone is sampled grid^D), 2D in [2, 1024] (default
+    /// 64), 3D in [2, 128] (default 16). (`dispersion` samples its path with --points.)
     #[arg(long)]
     pub grid: Option<usize>,
 }
@@ -96,25 +98,72 @@ impl Config {
         }
     }
 
-    /// Builds and validates the query in D ∈ {2, 3} dimensions, within `budget`.
-    pub fn query_nd<const D: usize>(
-        &self,
-        budget: &sphstab::budget::Budget,
-    ) -> Result<sphstab::analysis::Query<D>> {
-        use sphstab::analysis::{MaterialSpec, Query};
-        use sphstab::forms::ObjectiveRate;
-        let q1 = self.query(2)?;
-        let mut q = Query::<D>::new(q1.form, q1.kernel, q1.h_over_dx, q1.stress);
-        if self.shape.is_some() {
-            q.shape = q1.shape;
+    /// Builds and validates the question in D dimensions, within `budget`: the flags every
+    /// dimension shares, then the lattice and material flags of D ≥ 2 (refused in 1D).
+    pub fn query<const D: usize>(&self, budget: &Budget) -> Result<Query<D>> {
+        if D == 1 {
+            self.reject_2d_flags()?;
+            if self.art_eps.is_some() {
+                return Err(sphstab::error::Error::Incompatible(
+                    "--art-eps: artificial stress is implemented in 2D (--dim 2) only".into(),
+                )
+                .into());
+            }
         }
-        q.c_partition = q1.c_partition;
-        q.av = q1.av;
-        q.diffusion = q1.diffusion;
-        q.dt = q1.dt;
-        q.grid = self.grid.unwrap_or(sphstab::analysis::default_grid(D));
-        q.art_stress = art_stress(self.art_eps, self.art_n)?;
+        let form = FormKind::by_name(&self.form)?;
+        let k = kernel::by_name(&self.kernel)?;
+        let h = match (self.h, self.support) {
+            (Some(h), _) => h,
+            (None, Some(r)) => {
+                let (lo, hi) = sphstab::params::H_RANGE;
+                sphstab::error::check_range(
+                    "--support",
+                    r,
+                    lo * k.zeta(),
+                    hi * k.zeta(),
+                    true,
+                    true,
+                )?;
+                if r <= 1.0 {
+                    return Err(sphstab::error::Error::OutOfRange {
+                        field: "support",
+                        value: r,
+                        range: "the support R/Δx must exceed 1 so that particles have neighbours"
+                            .into(),
+                    }
+                    .into());
+                }
+                r / k.zeta()
+            }
+            (None, None) => 1.2,
+        };
+        let mut q = Query::<D>::new(form, k, h, self.stress);
+        if let Some(s) = &self.shape {
+            q.shape = ShapeFamily::by_name(s)?;
+        }
+        q.c_partition = self.c;
+        q.alpha_s = self.alpha_s;
+        q.dt = self.dt;
+        if self.av_alpha.is_some() || self.av_beta.is_some() {
+            q.av = Some((self.av_alpha.unwrap_or(0.0), self.av_beta.unwrap_or(0.0)));
+        }
+        q.diffusion = self.diffusion.get()?;
+        if let Some(g) = self.grid {
+            q.grid = g;
+        }
         q.budget = *budget;
+        if D > 1 {
+            self.lattice_and_material(&mut q)?;
+        }
+        q.validate()?;
+        Ok(q)
+    }
+
+    /// The D ≥ 2 flags: `--art-eps/--art-n`, `--lattice/--gamma`, `--material/--poisson/--rate`.
+    fn lattice_and_material<const D: usize>(&self, q: &mut Query<D>) -> Result<()> {
+        use sphstab::analysis::MaterialSpec;
+        use sphstab::forms::ObjectiveRate;
+        q.art_stress = art_stress(self.art_eps, self.art_n)?;
         let lattice = self
             .lattice
             .as_deref()
@@ -171,12 +220,10 @@ impl Config {
                 .into());
             }
         };
-        q.validate()?;
-        Ok(q)
+        Ok(())
     }
 
-    /// Builds and validates the library query.
-    /// Errors for 2D-only flags given with `--dim 1`.
+    /// Errors for 2D/3D-only flags given with `--dim 1`.
     pub fn reject_2d_flags(&self) -> Result<()> {
         let given = [
             ("--lattice", self.lattice.is_some()),
@@ -185,7 +232,6 @@ impl Config {
             ("--poisson", self.poisson.is_some()),
             ("--rate", self.rate.is_some()),
             ("--art-n", self.art_n.is_some()),
-            ("--grid", self.grid.is_some()),
         ];
         match given.iter().find(|(_, g)| *g) {
             Some((flag, _)) => Err(crate::query::not_in(
@@ -195,56 +241,18 @@ impl Config {
             None => Ok(()),
         }
     }
+}
 
-    pub fn query(&self, points: usize) -> Result<Query1D> {
-        if self.art_eps.is_some() && self.dim.unwrap_or(1) == 1 {
-            return Err(sphstab::error::Error::Incompatible(
-                "--art-eps: artificial stress is implemented in 2D (--dim 2) only".into(),
-            )
-            .into());
+/// Runs `f::<D>` for the dimension of `--dim`: the one place a command branches on it.
+#[macro_export]
+macro_rules! by_dim {
+    ($dim:expr, $f:ident ( $($arg:expr),* )) => {
+        match $dim {
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            _ => $f::<3>($($arg),*),
         }
-        let form = FormKind::by_name(&self.form)?;
-        let k = kernel::by_name(&self.kernel)?;
-        let h = match (self.h, self.support) {
-            (Some(h), _) => h,
-            (None, Some(r)) => {
-                let (lo, hi) = sphstab::params::H_RANGE;
-                sphstab::error::check_range(
-                    "--support",
-                    r,
-                    lo * k.zeta(),
-                    hi * k.zeta(),
-                    true,
-                    true,
-                )?;
-                if r <= 1.0 {
-                    return Err(sphstab::error::Error::OutOfRange {
-                        field: "support",
-                        value: r,
-                        range: "the support R/Δx must exceed 1 so that particles have neighbours"
-                            .into(),
-                    }
-                    .into());
-                }
-                r / k.zeta()
-            }
-            (None, None) => 1.2,
-        };
-        let mut q = Query1D::new(form, k, h, self.stress);
-        if let Some(s) = &self.shape {
-            q.shape = ShapeFamily::by_name(s)?;
-        }
-        q.c_partition = self.c;
-        q.alpha_s = self.alpha_s;
-        q.dt = self.dt;
-        q.points = points;
-        if self.av_alpha.is_some() || self.av_beta.is_some() {
-            q.av = Some((self.av_alpha.unwrap_or(0.0), self.av_beta.unwrap_or(0.0)));
-        }
-        q.diffusion = self.diffusion.get()?;
-        q.validate()?;
-        Ok(q)
-    }
+    };
 }
 
 /// Fails early (before a long run) when `path` cannot be written: a directory, a missing

@@ -2,6 +2,7 @@
 
 use crate::common::Config;
 use anyhow::{Context, Result};
+use sphstab::analysis::DispersionReport;
 use sphstab::budget::Budget;
 
 /// Flags of `dispersion`.
@@ -46,65 +47,21 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
         crate::common::check_writable("--plot", p)?;
     }
-    match a.cfg.dim()? {
-        2 => return run_nd::<2>(a, budget),
-        3 => return run_nd::<3>(a, budget),
-        _ => {}
+    if a.cfg.grid.is_some() {
+        return Err(crate::query::not_in(
+            "--grid",
+            "dispersion (it samples the high-symmetry path: use --points)",
+        ));
     }
-    a.cfg.reject_2d_flags()?;
-    let q = a.cfg.query(a.points)?;
-    let r = sphstab::analysis::dispersion(&q)?;
-    if let Some(path) = &a.plot {
-        let (title, form) = (r.header.to_string(), r.header.setup.form);
-        write_svg(
-            path,
-            sphstab::plot::dispersion_svg(
-                &title,
-                form,
-                &r.kappa_dx,
-                &r.omega2,
-                &r.omega2_continuum,
-            )?,
-        )?;
-        if let Some(rate) = &r.damping_rate {
-            let svg = sphstab::plot::damping_svg(&title, form, &r.kappa_dx, rate)?;
-            write_svg(&damping_path(path), svg)?;
-        }
-    }
-    if a.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
-        return Ok(());
-    }
-    println!("# {}", r.header);
-    let damped = r.damping_rate.as_ref().zip(r.damping_ratio.as_ref());
-    let mut head = format!(
-        "{:>12} {:>16} {:>16} {:>14}",
-        "κΔx/π", "ω²Δx²/c²", "continuum", "growth c/Δx"
-    );
-    if damped.is_some() {
-        head += &format!(" {:>14} {:>12}", "Re s c/Δx", "ξ");
-    }
-    println!("{head}");
-    for i in 0..r.kappa_dx.len() {
-        let mut line = format!(
-            "{:>12.6} {:>16.9e} {:>16.9e} {:>14.6e}",
-            r.kappa_dx[i] / std::f64::consts::PI,
-            r.omega2[i],
-            r.omega2_continuum[i],
-            r.growth_rate[i]
-        );
-        if let Some((rate, xi)) = damped {
-            line += &format!(" {} {}", cell(rate[i], 14, 6), cell(xi[i], 12, 4));
-        }
-        println!("{line}");
-    }
-    Ok(())
+    let dim = a.cfg.dim()?;
+    crate::by_dim!(dim, run_in(a, budget))
 }
 
-/// Names of the D branches of a 2D/3D dispersion plot (sorted by ω² at each wave vector; named
-/// after the continuum's order, the shear branches below the longitudinal one).
+/// Names of the D branches of a dispersion plot (sorted by ω² at each wave vector; named after
+/// the continuum's order, the shear branches below the longitudinal one).
 fn branch_names(d: usize) -> Vec<&'static str> {
     match d {
+        1 => vec!["mechanical branch"],
         2 => vec![
             "lower branch (≈ transverse)",
             "upper branch (≈ longitudinal)",
@@ -117,71 +74,91 @@ fn branch_names(d: usize) -> Vec<&'static str> {
     }
 }
 
-fn run_nd<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
+/// `--plot`: ω² against κΔx/π with the continuum in 1D, along the high-symmetry path with both
+/// continuum branches for D ≥ 2; the damping rate to FILE-damping.svg for dissipative systems.
+fn plot<const D: usize>(path: &std::path::Path, r: &DispersionReport) -> Result<()> {
     use sphstab::plot::{Curve, LinePlot};
-    let q = a.cfg.query_nd::<D>(budget)?;
-    let r = sphstab::analysis::dispersion2d(&q, a.points)?;
-    if let Some(path) = &a.plot {
-        let col = |i: usize, v: &Vec<Vec<f64>>| v.iter().map(|b| b[i]).collect::<Vec<_>>();
-        let names = branch_names(D);
-        let mut curves: Vec<Curve> = (0..D)
-            .map(|b| Curve {
-                label: format!("{}: {}", r.form, names[b]),
-                x: r.path.clone(),
-                y: col(b, &r.omega2),
-                dashed: false,
-            })
-            .collect();
-        curves.push(Curve {
-            label: "continuum S (transverse)".into(),
-            x: r.path.clone(),
-            y: col(0, &r.omega2_continuum),
-            dashed: true,
-        });
-        curves.push(Curve {
-            label: "continuum P (longitudinal)".into(),
-            x: r.path.clone(),
-            y: col(D - 1, &r.omega2_continuum),
-            dashed: true,
-        });
-        let ticks: Vec<(f64, String)> = r.labels.iter().map(|(l, s)| (*s, l.clone())).collect();
-        let names_path: Vec<&str> = r.labels.iter().map(|(l, _)| l.as_str()).collect();
-        let x_desc = format!(
-            "wave vector along the path {} (arc length |Δκ|Δx, dimensionless)",
-            names_path.join("–")
-        );
-        let title = format!(
-            "{} / {} h = {}Δx, σ̄ = {}, {}, {} ({D}D)",
-            r.form, r.kernel, r.h_over_dx, r.stress, q.material, q.lattice.kind
-        );
-        let svg = LinePlot {
-            zero_line: true,
-            x_ticks: Some(ticks.clone()),
-            notes: vec![
-                "Branches are sorted by ω² at each wave vector and named after the continuum's order (shear below longitudinal).".into(),
-            ],
-            ..LinePlot::new(&title, &x_desc, sphstab::plot::OMEGA2_DESC, curves)
-        }
-        .svg()?;
+    let title = r.header.to_string();
+    let form = r.header.setup.form;
+    if D == 1 {
+        let k = r.path.clone();
+        let svg = sphstab::plot::dispersion_svg(
+            &title,
+            form,
+            &k,
+            &r.omega2_branch(0),
+            &r.continuum_branch(0),
+        )?;
         write_svg(path, svg)?;
-        if let Some(rate) = &r.damping_rate {
-            let branches: Vec<(String, Vec<Option<f64>>)> = (0..D)
-                .map(|b| {
-                    (
-                        format!("{}: {}", r.form, names[b]),
-                        rate.iter().map(|row| row[b]).collect(),
-                    )
-                })
-                .collect();
-            let svg = sphstab::plot::damping_curves_svg(
-                &format!("{title} — damping"),
-                &x_desc,
-                &r.path,
-                &branches,
-                Some(ticks),
-            )?;
+        if let Some(rate) = r.damping_rate_branch(0) {
+            let svg = sphstab::plot::damping_svg(&title, form, &k, &rate)?;
             write_svg(&damping_path(path), svg)?;
         }
+        return Ok(());
+    }
+    let names = branch_names(D);
+    let mut curves: Vec<Curve> = (0..D)
+        .map(|b| Curve {
+            label: format!("{form}: {}", names[b]),
+            x: r.path.clone(),
+            y: r.omega2_branch(b),
+            dashed: false,
+        })
+        .collect();
+    curves.push(Curve {
+        label: "continuum S (transverse)".into(),
+        x: r.path.clone(),
+        y: r.continuum_branch(0),
+        dashed: true,
+    });
+    curves.push(Curve {
+        label: "continuum P (longitudinal)".into(),
+        x: r.path.clone(),
+        y: r.continuum_branch(D - 1),
+        dashed: true,
+    });
+    let ticks: Vec<(f64, String)> = r.labels.iter().map(|(l, s)| (*s, l.clone())).collect();
+    let names_path: Vec<&str> = r.labels.iter().map(|(l, _)| l.as_str()).collect();
+    let x_desc = format!(
+        "wave vector along the path {} (arc length |Δκ|Δx, dimensionless)",
+        names_path.join("–")
+    );
+    let svg = LinePlot {
+        zero_line: true,
+        x_ticks: Some(ticks.clone()),
+        notes: vec![
+            "Branches are sorted by ω² at each wave vector and named after the continuum's order (shear below longitudinal).".into(),
+        ],
+        ..LinePlot::new(&title, &x_desc, sphstab::plot::OMEGA2_DESC, curves)
+    }
+    .svg()?;
+    write_svg(path, svg)?;
+    if r.damping_rate.is_some() {
+        let branches: Vec<(String, Vec<Option<f64>>)> = (0..D)
+            .map(|b| {
+                (
+                    format!("{form}: {}", names[b]),
+                    r.damping_rate_branch(b).unwrap_or_default(),
+                )
+            })
+            .collect();
+        let svg = sphstab::plot::damping_curves_svg(
+            &format!("{title} — damping"),
+            &x_desc,
+            &r.path,
+            &branches,
+            Some(ticks),
+        )?;
+        write_svg(&damping_path(path), svg)?;
+    }
+    Ok(())
+}
+
+fn run_in<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
+    let q = a.cfg.query::<D>(budget)?;
+    let r = sphstab::analysis::dispersion(&q, a.points)?;
+    if let Some(path) = &a.plot {
+        plot::<D>(path, &r)?;
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
@@ -192,39 +169,46 @@ fn run_nd<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
         .iter()
         .map(|(l, s)| format!("{l} (s = {s:.4})"))
         .collect();
-    println!(
-        "# {} / {} h/Δx {} σ̄ {} — path {}",
-        r.form,
-        r.kernel,
-        r.h_over_dx,
-        r.stress,
-        path.join(" – ")
-    );
+    println!("# {} — path {}", r.header, path.join(" – "));
     let axes = ["κxΔx/π", "κyΔx/π", "κzΔx/π"];
-    let mut head = format!("{:>8}", "s");
-    for ax in &axes[..D] {
-        head += &format!(" {ax:>10}");
+    let mut head = String::new();
+    if D == 1 {
+        head += &format!("{:>10}", "κΔx/π");
+    } else {
+        head += &format!("{:>8}", "s");
+        for ax in &axes[..D] {
+            head += &format!(" {ax:>10}");
+        }
+    }
+    let sub = |b: usize| if D == 1 { String::new() } else { b.to_string() };
+    for b in 1..=D {
+        head += &format!(" {:>14}", format!("ω²{}Δx²/c²", sub(b)));
     }
     for b in 1..=D {
-        head += &format!(" {:>14}", format!("ω²{b}Δx²/c²"));
+        head += &format!(" {:>14}", format!("continuum{}", sub(b)));
     }
-    head += &format!(" {:>12}", "growth");
+    head += &format!(" {:>12}", "growth c/Δx");
     let damped = r.damping_rate.as_ref().zip(r.damping_ratio.as_ref());
     if damped.is_some() {
         for b in 1..=D {
-            head += &format!(" {:>12}", format!("Re s{b}"));
+            head += &format!(" {:>12}", format!("Re s{} c/Δx", sub(b)));
         }
         for b in 1..=D {
-            head += &format!(" {:>10}", format!("ξ{b}"));
+            head += &format!(" {:>10}", format!("ξ{}", sub(b)));
         }
     }
     println!("{head}");
     for i in 0..r.path.len() {
-        let mut line = format!("{:>8.4}", r.path[i]);
-        for c in &r.kappa[i] {
-            line += &format!(" {:>10.5}", c / std::f64::consts::PI);
+        let mut line = String::new();
+        if D > 1 {
+            line += &format!("{:>8.4} ", r.path[i]);
         }
-        for w in &r.omega2[i] {
+        let ks: Vec<String> = r.kappa[i]
+            .iter()
+            .map(|c| format!("{:>10.6}", c / std::f64::consts::PI))
+            .collect();
+        line += &ks.join(" ");
+        for w in r.omega2[i].iter().chain(&r.omega2_continuum[i]) {
             line += &format!(" {:>14.6e}", w + 0.0);
         }
         // below the growth tolerance is not growth (eigenvalue round-off)

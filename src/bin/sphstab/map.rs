@@ -53,7 +53,7 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) 
         Some(p) => Plane::by_name(p)?,
         None => Plane::Xy,
     };
-    let q = cfg.query_nd::<D>(budget)?;
+    let q = cfg.query::<D>(budget)?;
     let t = std::time::Instant::now();
     let m = sphstab::analysis::growth_map(&q, a.n, plane)?;
     let (xl, yl) = if D == 3 {

@@ -11,7 +11,7 @@ pub struct Args {
     cfg: Config,
     #[command(flatten)]
     integ: crate::common::IntegratorArgs,
-    /// 1D: number of κ points in (0, π], in [2, 10000000] (default 512).
+    /// 1D: number of κ points in (0, π], in [2, 10000000] (default 512); the same as --grid.
     #[arg(long)]
     points: Option<usize>,
     /// Print one JSON document instead of a table.
@@ -25,92 +25,7 @@ pub struct Args {
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
     let dim = a.cfg.dim()?;
-    if dim > 1 {
-        if a.points.is_some() {
-            return Err(not_in(
-                "--points",
-                &format!("--dim {dim} (use --grid for the zone sampling)"),
-            ));
-        }
-        return if dim == 3 {
-            run_nd::<3>(a, budget)
-        } else {
-            run_nd::<2>(a, budget)
-        };
-    }
-    a.cfg.reject_2d_flags()?;
-    if a.box_free.is_some() {
-        return Err(not_in("--box", "--dim 1 (it predicts a 2D or 3D box)"));
-    }
-    let mut q = a.cfg.query(a.points.unwrap_or(512))?;
-    q.integrator = a.integ.integrator()?;
-    let r = sphstab::analysis::query(&q)?;
-    if a.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
-        return Ok(());
-    }
-    println!("{}", r.header);
-    if r.stable {
-        println!("verdict: STABLE (no exponentially growing mode)");
-    } else {
-        let kinds: Vec<String> = r
-            .instabilities
-            .iter()
-            .filter(|i| i.kind != sphstab::vonneumann::classify::Kind::RankDeficiency)
-            .map(|i| kind_name(i.kind))
-            .fold(Vec::new(), |mut v, k| {
-                if !v.contains(&k) {
-                    v.push(k);
-                }
-                v
-            });
-        match r.kappa_at_max {
-            Some(k) => println!(
-                "verdict: UNSTABLE ({}) — max growth rate {:.6} c/Δx at κΔx = {:.4}π",
-                kinds.join(", "),
-                r.max_growth_rate,
-                k / std::f64::consts::PI
-            ),
-            None => println!(
-                "verdict: UNSTABLE ({}) — no exponential growth on the grid (marginal)",
-                kinds.join(", ")
-            ),
-        }
-    }
-    if r.instabilities.is_empty() {
-        println!("no unstable or marginal branch");
-    } else {
-        println!(
-            "{:<16} {:>12} {:>12} {:>14}",
-            "kind", "κΔx/π min", "κΔx/π max", "growth (c/Δx)"
-        );
-        for i in &r.instabilities {
-            println!(
-                "{:<16} {:>12.4} {:>12.4} {:>14.6}{}",
-                kind_name(i.kind),
-                i.kappa_min / std::f64::consts::PI,
-                i.kappa_max / std::f64::consts::PI,
-                i.growth_rate,
-                i.pole_at
-                    .map(|p| format!(
-                        "  (ω² passes a pole at κΔx ≈ {:.4}π: the mass symbol vanishes)",
-                        p / std::f64::consts::PI
-                    ))
-                    .unwrap_or_default()
-            );
-        }
-    }
-    match (r.critical_dt, r.critical_cfl) {
-        (Some(dt), Some(cfl)) => println!(
-            "critical {} Δt = {dt:.6} Δx/c  (CFL c Δt/h = {cfl:.6})",
-            integrator_words(r.integrator)
-        ),
-        _ => println!("{}", no_critical(r.integrator)),
-    }
-    if let (Some(dt), Some(a)) = (r.dt, r.max_amplification) {
-        println!("at Δt = {dt} Δx/c: max |λ| = {a:.9}");
-    }
-    Ok(())
+    crate::by_dim!(dim, run_in(a, budget))
 }
 
 /// A wave vector in units of π: "(0.1234π, 0.5000π)".
@@ -122,13 +37,37 @@ pub fn fmt_k(k: &[f64]) -> String {
     format!("({})", parts.join(", "))
 }
 
-fn run_nd<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
-    let mut q = a.cfg.query_nd::<D>(budget)?;
+/// `--points` (1D: the κ points, as `--grid`) of `query` and `timestep`.
+pub fn points_as_grid(
+    dim: u8,
+    points: Option<usize>,
+    grid: Option<usize>,
+) -> Result<Option<usize>> {
+    match (points, grid) {
+        (Some(_), _) if dim > 1 => Err(not_in(
+            "--points",
+            &format!("--dim {dim} (use --grid for the zone sampling)"),
+        )),
+        (Some(_), Some(_)) => Err(not_in("--points", "--grid (give one of them)")),
+        (Some(p), None) => {
+            sphstab::params::check_count("points", p, 2, sphstab::analysis::max_grid(1))?;
+            Ok(Some(p))
+        }
+        (None, g) => Ok(g),
+    }
+}
+
+fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
+    a.cfg.grid = points_as_grid(D as u8, a.points, a.cfg.grid)?;
+    if D == 1 && a.box_free.is_some() {
+        return Err(not_in("--box", "--dim 1 (it predicts a 2D or 3D box)"));
+    }
+    let mut q = a.cfg.query::<D>(budget)?;
     q.integrator = a.integ.integrator()?;
     if let Some(n) = a.box_free {
         sphstab::params::check_count("box", n, 1, sphstab::analysis::max_box(D))?;
     }
-    let r = sphstab::analysis::query_nd(&q)?;
+    let r = sphstab::analysis::query(&q)?;
     let boxp = match a.box_free {
         Some(n) => Some(sphstab::analysis::box_prediction(
             &q.linearise_at(q.stress)?,
@@ -153,48 +92,70 @@ fn run_nd<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
             fmt_k(&k)
         );
     }
-    println!(
-        "{}, {}, {} (nearest neighbour {:.4}Δx), first zone sampled {}^{D}",
-        r.setup, r.material, r.lattice, r.nearest_neighbour_over_dx, r.grid
-    );
-    let kinds2: Vec<String> = r
-        .instabilities
-        .iter()
-        .filter(|i| i.kind != sphstab::vonneumann::classify::Kind::RankDeficiency)
-        .map(|i| kind_name(i.kind))
-        .collect();
+    if D == 1 {
+        println!("{}, {} κ points in (0, π]", r.header, r.grid);
+    } else {
+        println!("{}, first zone sampled {}^{D}", r.header, r.grid);
+    }
+    let kinds: Vec<String> = r.growth_kinds().into_iter().map(kind_name).collect();
     match (r.stable, &r.kappa_at_max, &r.polarisation) {
         (true, _, _) => println!("verdict: STABLE (no exponentially growing mode)"),
-        (false, Some(k), Some(p)) => println!(
-            "verdict: UNSTABLE ({}) — max growth rate {:.6} c/Δx at κΔx = {}, polarisation ({}), longitudinal fraction {:.3}",
-            kinds2.join(", "),
+        (false, Some(k), pol) => println!(
+            "verdict: UNSTABLE ({}) — max growth rate {:.6} c/Δx at κΔx = {}{}",
+            kinds.join(", "),
             r.max_growth_rate,
             fmt_k(k),
-            p.vector
-                .iter()
-                .map(|c| format!("{c:.3}"))
-                .collect::<Vec<_>>()
-                .join(", "),
-            p.longitudinal_fraction
+            match pol {
+                Some(p) if D > 1 => format!(
+                    ", polarisation ({}), longitudinal fraction {:.3}",
+                    p.vector
+                        .iter()
+                        .map(|c| format!("{c:.3}"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    p.longitudinal_fraction
+                ),
+                _ => String::new(),
+            }
         ),
-        _ => println!("verdict: UNSTABLE (time-step: max |λ| > 1 at the given --dt)"),
+        (false, None, _) => println!(
+            "verdict: UNSTABLE ({}) — no exponential growth on the grid (marginal)",
+            kinds.join(", ")
+        ),
+    }
+    if r.instabilities.is_empty() {
+        println!("no unstable or marginal branch");
     }
     for i in &r.instabilities {
+        let range = match (i.kappa_min, i.kappa_max) {
+            (Some(lo), Some(hi)) => format!(
+                ", κΔx/π in [{:.4}, {:.4}]",
+                lo / std::f64::consts::PI,
+                hi / std::f64::consts::PI
+            ),
+            _ => String::new(),
+        };
         println!(
-            "{:<16} growth {:.6} c/Δx at κΔx = {}, {:.1}% of the zone",
+            "{:<16} growth {:.6} c/Δx at κΔx = {}, {:.1}% of the {}{range}{}",
             kind_name(i.kind),
             i.growth_rate,
             fmt_k(&i.kappa_at_max),
-            100.0 * i.zone_fraction
+            100.0 * i.zone_fraction,
+            if D == 1 { "κ grid" } else { "zone" },
+            i.pole_at
+                .map(|p| format!(
+                    "  (ω² passes a pole at κΔx ≈ {:.4}π: the mass symbol vanishes)",
+                    p / std::f64::consts::PI
+                ))
+                .unwrap_or_default()
         );
     }
-    match r.critical_dt {
-        Some(dt) => println!(
-            "critical {} Δt = {dt:.6} Δx/c (CFL c Δt/h = {:.6})",
-            integrator_words(r.integrator),
-            dt / r.setup.h_over_dx
+    match (r.critical_dt, r.critical_cfl) {
+        (Some(dt), Some(cfl)) => println!(
+            "critical {} Δt = {dt:.6} Δx/c (CFL c Δt/h = {cfl:.6})",
+            integrator_words(r.integrator)
         ),
-        None => println!("{}", no_critical(r.integrator)),
+        _ => println!("{}", no_critical(r.integrator)),
     }
     if let (Some(dt), Some(m)) = (r.dt, r.max_amplification) {
         println!("at Δt = {dt} Δx/c: max |λ| = {m:.9}");

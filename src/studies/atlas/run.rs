@@ -3,7 +3,7 @@
 
 use super::config::{AtlasConfig, CellSpec, Shard, grid};
 use super::report::{AtlasReport, Cell};
-use crate::analysis::Query1D;
+use crate::analysis::Query;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel;
@@ -29,9 +29,9 @@ fn group(cells: &[(usize, CellSpec)], sgrid: &[f64], table: &mut PhaseTable) -> 
     let points = table.kappas().len();
     let (form, k, h, _) = cells[0].1;
     let lin = |s: f64| {
-        let mut q = Query1D::new(form, k, h, s);
-        q.points = points;
-        q.linearise()
+        let mut q = Query::<1>::new(form, k, h, s);
+        q.grid = points;
+        q.chain()
     };
     let n = sgrid.len();
     let mut probes: Vec<(f64, Result<Linearisation>)> = Vec::new();
@@ -135,9 +135,9 @@ pub fn run(
         .collect();
     let start = std::time::Instant::now();
     let done = Counter::new(&progress, mine.len(), 256);
-    // one κ grid for every cell (Query1D::kappas), its phase factors tabulated once per thread
-    let mut q = Query1D::new(FormKind::Classical, kernel::by_name("m4")?, 1.0, 0.0);
-    q.points = cfg.kappas;
+    // one κ grid for every cell (Query::kappas), its phase factors tabulated once per thread
+    let mut q = Query::<1>::new(FormKind::Classical, kernel::by_name("m4")?, 1.0, 0.0);
+    q.grid = cfg.kappas;
     let kappas = q.kappas();
     // cells of one (form, kernel, h) are consecutive in sweep order
     let mut groups: Vec<&[(usize, CellSpec)]> = Vec::new();

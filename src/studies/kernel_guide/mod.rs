@@ -6,7 +6,7 @@
 //! |---|---|
 //! | critical CFL c Δt_crit/h, `kdk`, σ̄ = 0 | the `tradeoff --cfl-table` cells ([`crate::studies::tradeoff::cfl::cfl_cell`]: `timestep`'s bisection on the amplification matrices, [`CFL_POINTS`](crate::studies::tradeoff::cfl::CFL_POINTS) κ points), through [`analyse`](crate::studies::tradeoff::integrators::analyse), which runs the same `IntegratorReport::of` |
 //! | phase and amplitude error per wavelength travelled at 10 and 20 points per wavelength, `kdk` at [`SAFETY`] × Δt_crit | [`crate::studies::tradeoff::integrators::analyse`] (the trade-off study's `phase_error_10ppw`) |
-//! | h/Δx stable in compression, 1D | [`Query1D`](crate::analysis::Query1D) (classical, `sph`, elastic bar) at σ̄ = [`COMPRESSION`]: growth over the κ grid (`query`) |
+//! | h/Δx stable in compression, 1D | [`Query<1>`](crate::analysis::Query) (classical, `sph`, elastic bar) at σ̄ = [`COMPRESSION`]: growth over the κ grid (`query`) |
 //! | h/Δx without pairing / without any growth in compression, 2D | [`crate::studies::pairing::zone_growth`] (the pairing study's zone scan, on the square lattice): classical, `sph`, hydro, σ̄ = [`COMPRESSION`] |
 //! | tensile onset | the trade-off study's tension scan and bisection ([`crate::studies::tradeoff`]), 1D classical |
 //! | first κh with W* < 0 in 1D, 2D, 3D | [`crate::studies::pairing::wstar::sign_criterion_with`] (the pairing study's W* scan, step [`WSTAR_K_STEP`]) |

@@ -9,7 +9,7 @@ use super::config::{
 use super::report::{
     CompressionScan, Interval, KernelGuide, KernelGuideRow, Positivity, TensileOnset, TimeStepCell,
 };
-use crate::analysis::{MaterialSpec, Query, Query1D};
+use crate::analysis::{MaterialSpec, Query};
 use crate::budget::Budget;
 use crate::error::Result;
 use crate::forms::FormKind;
@@ -30,7 +30,7 @@ use rayon::prelude::*;
 pub fn time_step_cell(form: FormKind, k: &'static dyn Kernel, h: f64) -> Result<TimeStepCell> {
     let mut row = IntegratorRow::default();
     analyse(form, k, h, Integrator::Kdk, SAFETY, CFL_POINTS, &mut row)?;
-    let q = Query1D::new(form, k, h, 0.0);
+    let q = Query::<1>::new(form, k, h, 0.0);
     q.validate()?;
     Ok(TimeStepCell {
         form: form.name().into(),
@@ -50,10 +50,10 @@ pub fn time_step_cell(form: FormKind, k: &'static dyn Kernel, h: f64) -> Result<
 /// The largest growth rate (c/Δx) of 1D classical SPH (`sph` shapes, elastic bar) at σ̄ over
 /// [`KAPPAS_1D`] κ points.
 pub fn max_growth_1d(k: &'static dyn Kernel, h: f64, stress: f64) -> Result<f64> {
-    let mut q = Query1D::new(FormKind::Classical, k, h, stress);
+    let mut q = Query::<1>::new(FormKind::Classical, k, h, stress);
     q.shape = ShapeFamily::Sph;
-    q.points = KAPPAS_1D;
-    let lin: Linearisation = q.linearise()?;
+    q.grid = KAPPAS_1D;
+    let lin: Linearisation = q.chain()?;
     let mut g: f64 = 0.0;
     for kap in q.kappas() {
         g = g.max(lin.growth(kap)?);

@@ -5,7 +5,7 @@
 //! [`CFL_POINTS`] κ points); weakly unstable schemes are shown as `weak` with their spurious growth
 //! rate at Δt = 1/ω_max (c/Δx).
 
-use crate::analysis::{IntegratorReport, Query1D};
+use crate::analysis::{IntegratorReport, Query};
 use crate::error::Result;
 use crate::forms::FormKind;
 use crate::integrator::{DEFAULT_EULER_EVERY, Integrator};
@@ -66,9 +66,9 @@ pub fn cfl_cell(
     h: f64,
     integ: Integrator,
 ) -> Result<CflCell> {
-    let mut q = Query1D::new(form, k, h, 0.0);
-    q.points = CFL_POINTS;
-    let lin = q.linearise()?;
+    let mut q = Query::<1>::new(form, k, h, 0.0);
+    q.grid = CFL_POINTS;
+    let lin = q.chain()?;
     let ks = q.kappas();
     let mut grows = false;
     for &kap in &ks {

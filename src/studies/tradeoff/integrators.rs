@@ -18,7 +18,7 @@
 //! λ is the eigenvalue of the scheme's amplification matrix (one cycle; [`Modes::amplification_with`],
 //! the matrix the stability analysis uses) for the physical branch: [`physical_eigenvalue`].
 
-use crate::analysis::{IntegratorReport, Query1D};
+use crate::analysis::{IntegratorReport, Query};
 use crate::error::{Error, Result};
 use crate::forms::{FieldKind, FormKind, Model, State};
 use crate::integrator::{Integrator, Stepper};
@@ -257,9 +257,9 @@ pub fn analyse(
     points: usize,
     row: &mut IntegratorRow,
 ) -> Result<()> {
-    let mut q = Query1D::new(form, k, h, 0.0);
-    q.points = points;
-    let lin = q.linearise()?;
+    let mut q = Query::<1>::new(form, k, h, 0.0);
+    q.grid = points;
+    let lin = q.chain()?;
     let ks = q.kappas();
     let mut grows = false;
     for &kap in &ks {

@@ -8,7 +8,7 @@ use super::report::{Row, TradeoffReport};
 use super::scenes::{
     SCENE_1D_N, SCENE_DT, median, scene_1d, scene_1d_with, scene_2d, scene_description,
 };
-use crate::analysis::{MaterialSpec, Query, Query1D};
+use crate::analysis::{MaterialSpec, Query};
 use crate::budget::Budget;
 use crate::error::Result;
 use crate::forms::{FormKind, Model};
@@ -106,15 +106,15 @@ fn analyse(
     let phase = |w2: f64, kap: f64, c: f64| (w2.max(0.0).sqrt() / kap / c - 1.0).abs();
     let (k10, k20) = (2.0 * PI / 10.0, 2.0 * PI / 20.0);
     if dim == 1 {
-        let mut q = Query1D::new(form, k, h, 0.0);
-        q.points = KAPPAS_1D;
+        let mut q = Query::<1>::new(form, k, h, 0.0);
+        q.grid = KAPPAS_1D;
         q.validate()?;
         let kappas = q.kappas();
-        let lin0 = q.linearise()?;
+        let lin0 = q.chain()?;
         row.phase_error_10ppw = Some(phase(lin0.omega2(k10).0, k10, 1.0));
         row.phase_error_20ppw = Some(phase(lin0.omega2(k20).0, k20, 1.0));
         let grows = |s: f64| -> Result<bool> {
-            let lin = q.linearise_at(s)?;
+            let lin = q.chain_at(s)?;
             for &kap in &kappas {
                 if lin.growth(kap)? > GROWTH_TOL {
                     return Ok(true);
@@ -297,10 +297,10 @@ fn integrator_rows(
             };
             let res = integrators::analyse(form, k, h, integ, cfg.safety, KAPPAS_1D, &mut row)
                 .and_then(|()| {
-                    let q = Query1D::new(form, k, h, 0.0);
+                    let q = Query::<1>::new(form, k, h, 0.0);
                     let x: Vec<[f64; 1]> = (0..SCENE_1D_N).map(|i| [i as f64]).collect();
                     let model = Model::new(
-                        q.params(),
+                        q.params()?,
                         x,
                         vec![1.0; SCENE_1D_N],
                         1.0,

@@ -2,7 +2,7 @@
 //! (20 points per wavelength, periodic) run by the real solver, its cost, memory and L2 error.
 
 use super::integrators;
-use crate::analysis::{MaterialSpec, Query, Query1D};
+use crate::analysis::{MaterialSpec, Query};
 use crate::error::Result;
 use crate::forms::{FormKind, Model};
 use crate::integrator::Integrator;
@@ -101,11 +101,11 @@ pub(super) fn scene_1d_with(
     let steps = scene_steps();
     let mut calls = 0.0;
     let (res, bytes) = with_memory(probe, || -> Result<(f64, f64)> {
-        let q = Query1D::new(form, k, h, 0.0);
+        let q = Query::<1>::new(form, k, h, 0.0);
         let x: Vec<f64> = (0..n).map(|i| i as f64).collect();
         let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
         let model = Model::new(
-            q.params(),
+            q.params()?,
             x_ref,
             vec![1.0; n],
             1.0,

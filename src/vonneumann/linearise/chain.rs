@@ -122,7 +122,7 @@ impl PhaseTable {
 }
 
 /// The physical setting of a linearisation.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lattice1D {
     /// Lattice spacing Δx (physical).
     pub dx: f64,
