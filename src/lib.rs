@@ -20,7 +20,7 @@
 //! independent checks; disagreements are listed in `analysis/ERRATA.md`.
 //!
 //! ## Layers
-//! Bottom to top, each importing only from below (docs/ARCHITECTURE.md; `tests/layers.rs`
+//! Bottom to top, each importing only from below (docs/ARCHITECTURE.md; `tests/it/layers.rs`
 //! checks it): core → integrator → forms → engine → analysis | solver → studies → figures. The
 //! solver never imports the analysis or the engine (it is their independent check); [`plot`]
 //! takes plain series and imports core only. The library knows no command line: errors name

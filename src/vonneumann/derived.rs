@@ -26,8 +26,8 @@
 //! ```
 //!
 //! **The derivation is dimension-agnostic** (checked for this generalisation, and against the
-//! engine on the chain in `tests/vonneumann.rs`, on square and hexagonal lattices in
-//! `tests/vonneumann2d.rs` and on sc, bcc and fcc lattices in `tests/vonneumann3d.rs`): every
+//! engine on the chain in `tests/it/vonneumann.rs`, on square and hexagonal lattices in
+//! `tests/it/vonneumann2d.rs` and on sc, bcc and fcc lattices in `tests/it/vonneumann3d.rs`): every
 //! step is an index contraction that holds for any D. The incremental moduli: for σ = sI the
 //! Truesdell terms Lσ + σLᵀ − tr(L)σ = 2s d − s tr(d) I and the Jaumann terms Wσ − σW = 0 in any
 //! D, and continuity gives the hydro λ' = Kρ/ρ0; the stress increment λ' tr(δL) I + 2G' sym δL
@@ -51,7 +51,7 @@
 //! ```
 //! `lnl` and `cll` ([`lnl`], [`cll`]) mix the forms with partition c and carry a second stress
 //! (τ) and, for `cll`, a mixed continuity equation. Their closed forms were derived (and are
-//! checked against the engine, `tests/vonneumann.rs`) in 1D only: the D-dimensional
+//! checked against the engine, `tests/it/vonneumann.rs`) in 1D only: the D-dimensional
 //! linearisation of the τ and mixed-density terms has not been carried out here, so they are
 //! functions of [`Sums<1>`] only, written on the D = 1 expressions of [`omega2_1d`].
 

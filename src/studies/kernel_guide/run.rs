@@ -26,7 +26,7 @@ use rayon::prelude::*;
 /// The time-step cell of `form` at `h`: [`analyse`] of the trade-off study at [`CFL_POINTS`] κ
 /// points, whose critical Δt is the `timestep` code path of [`crate::studies::tradeoff::cfl::cfl_cell`]
 /// (`IntegratorReport::of` on the same linearisation and κ grid; CFL = Δt_crit/h as there —
-/// `tests/kernel_guide.rs` checks the two agree bit for bit).
+/// `tests/it/kernel_guide.rs` checks the two agree bit for bit).
 pub fn time_step_cell(form: FormKind, k: &'static dyn Kernel, h: f64) -> Result<TimeStepCell> {
     let mut row = IntegratorRow::default();
     analyse(form, k, h, Integrator::Kdk, SAFETY, CFL_POINTS, &mut row)?;

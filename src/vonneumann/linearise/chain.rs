@@ -316,7 +316,7 @@ impl Linearisation {
     /// [`Self::omega2`] at the κ of row `k` of `table`: only the entries of the reduced
     /// stiffness are summed, from tabulated phases — no libm call, no allocation. The
     /// operations and their order are those of the matrix route, so the result is the same to
-    /// the last bit (tests/golden_analysis.rs checks 1e-12).
+    /// the last bit (tests/it/golden_analysis.rs checks 1e-12).
     ///
     /// # Panics
     /// If `table` does not reach [`Self::reach`] (call [`PhaseTable::ensure`] first).
