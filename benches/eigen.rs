@@ -7,7 +7,7 @@
 //! the crate meets them), and the cycles on which nalgebra's first attempt stalls (`eigen`'s
 //! retries). The set-up checks defective matrices (Jordan blocks) against their exact
 //! eigenvalues and prints each family's size and how many of its matrices stall the first
-//! attempt. `cargo bench --bench eigen` runs them. (The comparison with faer that removed it
+//! attempt. `cargo bench --features bench --bench eigen` runs them. (The comparison with faer that removed it
 //! from the dependencies is this bench at the commit before.)
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
@@ -18,75 +18,8 @@ use sphstab::forms::{DiffusionForm, FormKind};
 use sphstab::integrator::Integrator;
 use sphstab::kernel;
 use sphstab::vonneumann::amplification::Modes;
-use sphstab::vonneumann::linearise::eigen;
+use sphstab::vonneumann::linearise::{eigen, eigen_stalls_first_attempt};
 use std::f64::consts::PI;
-
-/// `eigen`'s first attempt (a copy: its `balance` and `shifted_schur` are private), to pick the
-/// matrices on which it stalls.
-mod first_attempt {
-    use nalgebra::DMatrix;
-    use num_complex::Complex64;
-
-    fn balance(m: &mut DMatrix<Complex64>) {
-        const RADIX: f64 = 2.0;
-        let n = m.nrows();
-        let l1 = |z: &Complex64| z.re.abs() + z.im.abs();
-        for _ in 0..100 {
-            let mut done = true;
-            for i in 0..n {
-                let (mut c, mut r) = (0.0, 0.0);
-                for j in (0..n).filter(|&j| j != i) {
-                    c += l1(&m[(j, i)]);
-                    r += l1(&m[(i, j)]);
-                }
-                if c == 0.0 || r == 0.0 || !(c.is_finite() && r.is_finite()) {
-                    continue;
-                }
-                let s = c + r;
-                let mut f = 1.0;
-                let (lo, hi) = (r / RADIX, r * RADIX);
-                while c < lo {
-                    f *= RADIX;
-                    c *= RADIX * RADIX;
-                }
-                while c > hi {
-                    f /= RADIX;
-                    c /= RADIX * RADIX;
-                }
-                if (c + r) / f < 0.95 * s {
-                    done = false;
-                    for j in 0..n {
-                        m[(i, j)] /= f;
-                        m[(j, i)] *= f;
-                    }
-                }
-            }
-            if done {
-                break;
-            }
-        }
-    }
-
-    fn shifted_schur(m: &DMatrix<Complex64>) -> Option<Vec<Complex64>> {
-        let n = m.nrows();
-        let norm = (0..n)
-            .map(|j| m.column(j).iter().map(|z| z.norm()).sum::<f64>())
-            .fold(0.0, f64::max)
-            + 1.0;
-        let mu = Complex64::new(norm, 0.0);
-        let shifted = m + DMatrix::<Complex64>::identity(n, n) * mu;
-        let schur = nalgebra::linalg::Schur::try_new(shifted, 4.0 * f64::EPSILON, 30 * n)?;
-        let ev = schur.eigenvalues()?;
-        Some(ev.iter().map(|&z| z - mu).collect())
-    }
-
-    /// Whether nalgebra's first attempt stalls.
-    pub fn stalls(m: &DMatrix<Complex64>) -> bool {
-        let mut m = m.clone();
-        balance(&mut m);
-        shifted_schur(&m).is_none()
-    }
-}
 
 /// Largest distance between eigenvalues of `a` and `b`, matched greedily.
 fn distance(a: &[Complex64], b: &[Complex64]) -> f64 {
@@ -195,7 +128,7 @@ fn families() -> Vec<(String, Vec<DMatrix<Complex64>>)> {
             );
         }
     }
-    ms.retain(|m| m.iter().all(|z| z.norm() < 1e300) && first_attempt::stalls(m));
+    ms.retain(|m| m.iter().all(|z| z.norm() < 1e300) && eigen_stalls_first_attempt(m));
     out.push((
         "verlet-euler cycles that stall nalgebra's first attempt".into(),
         ms,
@@ -255,7 +188,7 @@ fn benches(c: &mut Criterion) {
         } else {
             format!("{n}×{n} to {n_max}×{n_max}")
         };
-        let stalled = ms.iter().filter(|m| first_attempt::stalls(m)).count();
+        let stalled = ms.iter().filter(|m| eigen_stalls_first_attempt(m)).count();
         eprintln!(
             "{name}: {} matrices {n}, {stalled} stall nalgebra's first attempt",
             ms.len()

@@ -2,7 +2,7 @@
 //! over 512 κ of one linearised cell (per-κ Jacobian matrix, tabulated phases, cosine series),
 //! the linearisation of one 1D cell, the default 2D and 3D queries, a 128×128 2D growth map,
 //! one solver step of a periodic 200×200 hydro patch, and one step of the open 200×200 elastic
-//! block of `sphstab throughput` (its defaults). `cargo bench --bench engine` runs them.
+//! block of `sphstab throughput` (its defaults). `cargo bench --features bench --bench engine` runs them.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphstab::analysis::dispersion;

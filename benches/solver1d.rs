@@ -4,7 +4,7 @@
 //! least-squares consistent-mass solve M a = f ([`BandedLu`]: factorisation and one solve) on
 //! periodic chains of N = 10³, 10⁴, 10⁵ (O(N): the time per particle stays flat), and one step
 //! of the classical chain per integrator (kdk, dkd, symplectic Euler, epec, rk4, euler).
-//! `cargo bench --bench solver1d` runs them.
+//! `cargo bench --features bench --bench solver1d` runs them.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use sphstab::forms::{BandedLu, FormKind, MassOperator, Material, Model, ModelParams};

@@ -1,7 +1,7 @@
 //! Criterion benches of the 2D/3D solver (issue 13, item 4): one `kdk` step of the open 200×200
 //! elastic block of `sphstab throughput` (classical m4, Jaumann, AV, artificial stress) on one
 //! thread and on two, and one step of the 3D periodic 22³ box (classical m4, elastic, AV) on
-//! one thread. `cargo bench --bench solver2d`; divide the time per step by the particle count
+//! one thread. `cargo bench --features bench --bench solver2d`; divide the time per step by the particle count
 //! (40,000 and 10,648) for the time per particle-step of `sphstab throughput`.
 
 use criterion::{Criterion, criterion_group, criterion_main};

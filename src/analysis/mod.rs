@@ -33,7 +33,6 @@ pub fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
     if D == 1 {
         chain::query(q)
     } else {
-        q.validate()?;
         zone::query(q)
     }
 }
@@ -44,7 +43,6 @@ pub fn dispersion<const D: usize>(q: &Query<D>, points: usize) -> Result<Dispers
     if D == 1 {
         chain::dispersion(q, points)
     } else {
-        q.validate()?;
         zone::dispersion(q, points)
     }
 }
@@ -55,7 +53,6 @@ pub fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
     if D == 1 {
         chain::timestep(q)
     } else {
-        q.validate()?;
         zone::timestep(q)
     }
 }

@@ -62,8 +62,8 @@ impl std::fmt::Display for Header {
         if self.dim > 1 {
             write!(
                 f,
-                ", {}, {} (nearest neighbour {:.4}Δx), {}D",
-                self.material, self.lattice, self.nearest_neighbour_over_dx, self.dim
+                ", {}, {} (nearest neighbour {:.4}Δx)",
+                self.material, self.lattice, self.nearest_neighbour_over_dx
             )?;
         }
         Ok(())

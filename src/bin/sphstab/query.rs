@@ -28,8 +28,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     crate::by_dim!(dim, run_in(a, budget))
 }
 
-/// A wave vector in units of π: "(0.1234π, 0.5000π)".
+/// A wave vector in units of π: "(0.1234π, 0.5000π)"; in 1D "0.1234π".
 pub fn fmt_k(k: &[f64]) -> String {
+    if let [k] = k {
+        return format!("{:.4}π", k / std::f64::consts::PI);
+    }
     let parts: Vec<String> = k
         .iter()
         .map(|c| format!("{:.4}π", c / std::f64::consts::PI))

@@ -526,6 +526,16 @@ pub fn eigen(m: DMatrix<Complex64>) -> Result<Vec<Complex64>> {
         .ok_or(Error::NonFinite("Schur decomposition (no convergence)"))
 }
 
+/// Whether [`eigen`]'s first attempt (nalgebra's Schur form of the balanced m + μI) stalls on
+/// `m`, so that a retry answers: for `benches/eigen.rs`, which times the retries on the matrices
+/// that need them.
+pub fn eigen_stalls_first_attempt(m: &DMatrix<Complex64>) -> bool {
+    let mut m = m.clone();
+    balance(&mut m);
+    let mu = Complex64::new(norm1(&m) + 1.0, 0.0);
+    shifted_schur(&m, mu).is_none()
+}
+
 /// Diagonal balancing (Parlett & Reinsch 1969, LAPACK's xGEBAL without permutations): m ←
 /// D⁻¹ m D with D a diagonal of powers of 2 chosen so that each row and column have comparable
 /// norms. Exact in floating point (powers of 2), so the eigenvalues are unchanged, while the
