@@ -10,6 +10,7 @@ use crate::scalar::{Dual, Scalar as _};
 use crate::solver::run::{BoundaryDensity, Run};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
+use rayon::prelude::*;
 
 /// Largest dense operator size (free mechanical degrees of freedom).
 pub const MAX_DENSE_DOFS: usize = 3000;
@@ -25,6 +26,15 @@ const SYMMETRY_TOL: f64 = 1e-12;
 /// Deflation tolerance of the last attempt of the Schur decomposition (relative to the shifted
 /// diagonal).
 const SCHUR_RELAXED_EPS: f64 = 1e-12;
+
+/// The dual-number seed of one Jacobian column: a position or velocity component (particle,
+/// axis), or an auxiliary field of a particle.
+#[derive(Clone, Copy)]
+enum Seed {
+    X(usize, usize),
+    V(usize, usize),
+    Aux(Comp, usize),
+}
 
 /// Growth rate (1/time, physical) of the fastest mode of the finite set, and the number of
 /// free mechanical degrees of freedom.
@@ -52,51 +62,77 @@ pub fn box_growth<const D: usize>(run: &Run<D>) -> Result<(f64, usize)> {
         .collect();
     let nq = aux.len() * n;
     let base: State<Dual, D> = run.z.map(Dual::cst);
-    let mut out = State::<Dual, D>::default();
-    let mut ws = RateWorkspace::<Dual, D>::new();
-    let frozen = |i: usize| run.fixed[i] && run.boundary == BoundaryDensity::Frozen;
-    // column helpers: accelerations of free particles (rows of J_v·) and aux rates (rows of J_q·)
+    // (the run's cached workspaces are not shared between threads: only its model is)
+    let (model, fixed, boundary) = (&run.model, &run.fixed, run.boundary);
+    let frozen = |i: usize| fixed[i] && boundary == BoundaryDensity::Frozen;
+    // one column of the Jacobian per seed: a whole rate evaluation each, independent of the
+    // others, so the columns are evaluated in parallel, each thread with its own workspace
+    // (the same numbers as one after the other: a workspace's reuse of pair data is exact)
+    // (only the rows needed: the accelerations for position and auxiliary seeds, the auxiliary
+    // rates for velocity seeds)
+    let columns = |seeds: &[Seed]| -> Result<Vec<Vec<f64>>> {
+        seeds
+            .par_iter()
+            .map_init(
+                || (State::<Dual, D>::default(), RateWorkspace::<Dual, D>::new()),
+                |(out, ws), &seed| {
+                    let mut z = base.clone();
+                    match seed {
+                        Seed::X(i, a) => z.x[i][a].d = 1.0,
+                        Seed::V(i, a) => z.v[i][a].d = 1.0,
+                        Seed::Aux(c, i) => {
+                            let mut t = z.get(c, i);
+                            t.d = 1.0;
+                            z.set(c, i, t);
+                        }
+                    }
+                    model.rate_with(&z, out, ws)?;
+                    Ok(if let Seed::V(..) = seed {
+                        let out = &*out;
+                        aux.iter()
+                            .flat_map(|&c| {
+                                (0..n).map(move |i| if frozen(i) { 0.0 } else { out.get(c, i).d })
+                            })
+                            .collect()
+                    } else {
+                        free.iter().flat_map(|&i| out.v[i].map(|a| a.d)).collect()
+                    })
+                },
+            )
+            .collect()
+    };
+    // accelerations of free particles (rows of J_v·) and aux rates (rows of J_q·)
     let mut jvx = DMatrix::<f64>::zeros(nx, nx);
     let mut jvq = DMatrix::<f64>::zeros(nx, nq);
     let mut jqv = DMatrix::<f64>::zeros(nq, nx);
-    let mut eval = |seed: &dyn Fn(&mut State<Dual, D>)| -> Result<(Vec<f64>, Vec<f64>)> {
-        let mut z = base.clone();
-        seed(&mut z);
-        run.model.rate_with(&z, &mut out, &mut ws)?;
-        let acc: Vec<f64> = free.iter().flat_map(|&i| out.v[i].map(|a| a.d)).collect();
-        let mut q = Vec::with_capacity(nq);
-        for &c in &aux {
-            q.extend((0..n).map(|i| if frozen(i) { 0.0 } else { out.get(c, i).d }));
-        }
-        Ok((acc, q))
-    };
-    for (k, &i) in free.iter().enumerate() {
-        for a in 0..D {
-            let (acc, _) = eval(&|z| z.x[i][a].d = 1.0)?;
-            for (r, v) in acc.iter().enumerate() {
-                jvx[(r, D * k + a)] = *v;
-            }
-            let (_, q) = eval(&|z| z.v[i][a].d = 1.0)?;
-            for (r, v) in q.iter().enumerate() {
-                jqv[(r, D * k + a)] = *v;
-            }
+    let dofs: Vec<(usize, usize)> = free
+        .iter()
+        .flat_map(|&i| (0..D).map(move |a| (i, a)))
+        .collect();
+    let xs: Vec<Seed> = dofs.iter().map(|&(i, a)| Seed::X(i, a)).collect();
+    for (col, acc) in columns(&xs)?.into_iter().enumerate() {
+        for (r, v) in acc.iter().enumerate() {
+            jvx[(r, col)] = *v;
         }
     }
-    for (ci, &c) in aux.iter().enumerate() {
-        for i in 0..n {
-            // an auxiliary field no free velocity moves (deep in the boundary, or frozen) adds
-            // nothing to J_vq J_qv: its column is not needed
-            if jqv.row(ci * n + i).iter().all(|&v| v == 0.0) {
-                continue;
-            }
-            let (acc, _) = eval(&|z| {
-                let mut t = z.get(c, i);
-                t.d = 1.0;
-                z.set(c, i, t);
-            })?;
-            for (r, v) in acc.iter().enumerate() {
-                jvq[(r, ci * n + i)] = *v;
-            }
+    let vs: Vec<Seed> = dofs.iter().map(|&(i, a)| Seed::V(i, a)).collect();
+    for (col, q) in columns(&vs)?.into_iter().enumerate() {
+        for (r, v) in q.iter().enumerate() {
+            jqv[(r, col)] = *v;
+        }
+    }
+    // an auxiliary field no free velocity moves (deep in the boundary, or frozen) adds
+    // nothing to J_vq J_qv: its column is not needed
+    let (aux_cols, aux_seeds): (Vec<usize>, Vec<Seed>) = aux
+        .iter()
+        .enumerate()
+        .flat_map(|(ci, &c)| (0..n).map(move |i| (ci, c, i)))
+        .filter(|&(ci, _, i)| jqv.row(ci * n + i).iter().any(|&v| v != 0.0))
+        .map(|(ci, c, i)| (ci * n + i, Seed::Aux(c, i)))
+        .unzip();
+    for (col, acc) in aux_cols.into_iter().zip(columns(&aux_seeds)?) {
+        for (r, v) in acc.iter().enumerate() {
+            jvq[(r, col)] = *v;
         }
     }
     let d = -(jvx + &jvq * &jqv);
