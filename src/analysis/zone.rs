@@ -21,6 +21,7 @@ use crate::vonneumann::amplification::{
 };
 use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL, growth_kind};
 use crate::vonneumann::damping::{branch_eigenvalues, critical_dt_eq120, damping_ratio};
+use crate::vonneumann::maximise::refine_grid_max;
 use rayon::prelude::*;
 
 fn polarisation<const D: usize>(p: [num_complex::Complex64; D], k: [f64; D]) -> Polarisation {
@@ -78,7 +79,6 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
     // the continuum's own zero branches: the D − 1 transverse ones of a fluid
     let continuum_zero = if cs == 0.0 { D - 1 } else { 0 };
     let mut grow = Vec::with_capacity(ks.len());
-    let mut pol = Vec::with_capacity(ks.len());
     let mut w2max: f64 = 0.0;
     let mut zeros = Vec::with_capacity(ks.len());
     // one J(k) per wave vector, in parallel
@@ -86,32 +86,45 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
         .par_iter()
         .map(|&k| lin.growth_and_branches(k))
         .collect::<Result<_>>()?;
-    for (g, p, br) in modes {
+    for (g, _, br) in modes {
         if !g.is_finite() || br.iter().any(|b| !b.0.re.is_finite()) {
             return Err(Error::NonFinite("dispersion branches (eigenvalues)"));
         }
         w2max = w2max.max(br[D - 1].0.re);
         zeros.push(br);
         grow.push(g);
-        pol.push(p);
     }
     let growing: Vec<usize> = (0..ks.len()).filter(|&i| grow[i] > GROWTH_TOL).collect();
     let mut inst = Vec::new();
     let (mut gmax, mut kmax, mut pmax) = (0.0, None, None);
-    if let Some(&imax) = growing
-        .iter()
-        .max_by(|&&a, &&b| grow[a].total_cmp(&grow[b]))
-    {
-        gmax = grow[imax];
-        kmax = Some(ks[imax].to_vec());
-        pmax = Some(polarisation(pol[imax], ks[imax]));
+    if !growing.is_empty() {
+        // the maximum over the zone, not over the grid: refined from the grid's best points
+        // (the grid spacing is the first step), independent of the grid to 1e-6 relative
+        let b = q.lattice.reciprocal();
+        let step = b
+            .iter()
+            .map(|r| r.iter().map(|c| c * c).sum::<f64>().sqrt())
+            .fold(f64::INFINITY, f64::min)
+            / q.grid as f64;
+        let f = |k: [f64; D]| -> Result<f64> { Ok(lin.growth(k)?.0) };
+        let Some((k, _)) = refine_grid_max(&f, &ks, &grow, step)? else {
+            unreachable!("a growing grid point exists")
+        };
+        let k = q.lattice.fold(k);
+        let (g, p) = lin.growth(k)?;
+        if !g.is_finite() {
+            return Err(Error::NonFinite("growth rate at the refined maximum"));
+        }
+        gmax = g;
+        kmax = Some(k.to_vec());
+        pmax = Some(polarisation(p, k));
         let kind = growth_kind(cp <= 0.0 || cs < 0.0, q.stress, || {
-            Ok(q.linearise_at(0.0)?.growth(ks[imax])?.0)
+            Ok(q.linearise_at(0.0)?.growth(k)?.0)
         })?;
         inst.push(Instability {
             kind,
             growth_rate: gmax,
-            kappa_at_max: ks[imax].to_vec(),
+            kappa_at_max: k.to_vec(),
             zone_fraction: growing.len() as f64 / ks.len() as f64,
             kappa_min: None,
             kappa_max: None,

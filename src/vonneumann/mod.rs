@@ -8,5 +8,6 @@ pub mod closed_form;
 pub mod damping;
 pub mod derived;
 pub mod linearise;
+pub mod maximise;
 pub mod timestep_bounds;
 pub mod transform;

@@ -116,6 +116,48 @@ fn compare(path: &str, gold: &Value, new: &Value, scale: f64, worst: &mut (f64, 
     }
 }
 
+/// Issue 24 (item 4) changed one answer on purpose: the largest growth rate of a 2D/3D `query`
+/// is now the maximum over the Brillouin zone, refined from the grid's best points, where it
+/// was the grid's maximum. For those cases the golden grid maximum is a lower bound of the new
+/// value, at most 10% below it (the issue measured up to 7% in 3D); the refined maximum's value
+/// and wave vector are tested on their own (`vonneumann3d::growth_maximum_is_independent_of_the_grid`).
+/// After that check the growing mode's fields (rate, wave vector, polarisation; the wave
+/// vector may also move to a symmetric copy) are taken from the golden file, so that every
+/// other number is compared to 1e-12 as before.
+fn accept_refined_maximum(args: &[&str], gold: &Value, new: &mut Value) {
+    let dim = args
+        .windows(2)
+        .find(|w| w[0] == "--dim")
+        .map_or("1", |w| w[1]);
+    if args[0] != "query" || dim == "1" {
+        return;
+    }
+    let case = args.join(" ");
+    let (g, n) = (
+        gold["max_growth_rate"].as_f64().unwrap(),
+        new["max_growth_rate"].as_f64().unwrap(),
+    );
+    if g <= 0.0 {
+        return;
+    }
+    assert!(
+        n >= g * (1.0 - 1e-12) && n <= 1.1 * g,
+        "{case}: refined maximum {n} against the grid's {g}"
+    );
+    println!("{case}: refined / grid maximum = {:.6}", n / g);
+    for key in ["max_growth_rate", "kappa_at_max", "polarisation"] {
+        new[key] = gold[key].clone();
+    }
+    let gi = gold["instabilities"].as_array().unwrap();
+    for (i, ins) in gi.iter().enumerate() {
+        if ins["growth_rate"].as_f64().unwrap() > 0.0 {
+            for key in ["growth_rate", "kappa_at_max"] {
+                new["instabilities"][i][key] = ins[key].clone();
+            }
+        }
+    }
+}
+
 /// Runs every case of the golden file `file` (under tests/golden/) through the binary and
 /// compares its JSON with the recorded output; `count` cases are expected.
 fn replay(file: &str, count: usize) {
@@ -141,7 +183,8 @@ fn replay(file: &str, count: usize) {
             "{args:?}: {}",
             String::from_utf8_lossy(&out.stderr)
         );
-        let new: Value = serde_json::from_slice(&out.stdout).unwrap();
+        let mut new: Value = serde_json::from_slice(&out.stdout).unwrap();
+        accept_refined_maximum(&args, &c["output"], &mut new);
         compare(&args.join(" "), &c["output"], &new, 0.0, &mut worst);
     }
     println!("worst relative difference {:.2e} at {}", worst.0, worst.1);
