@@ -649,7 +649,7 @@ fn growth_maximum_is_independent_of_the_grid() {
     let refined: Vec<(f64, Vec<f64>)> = [8, 16, 32]
         .iter()
         .map(|&n| {
-            let mut qn = q.clone();
+            let mut qn = q;
             qn.grid = n;
             let r = sphstab::analysis::query(&qn).unwrap();
             (r.max_growth_rate, r.kappa_at_max.unwrap())
