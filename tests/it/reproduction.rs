@@ -612,7 +612,7 @@ fn v21_uniform(tension: bool) -> Row {
         };
         Row {
             item: "V21 Figs 9, 16 (1D)",
-            shows: "1D uniform tension (bar of length 1, 100 particles, v = 0.001x, 3 prescribed particles per end, ρ0 = 8, E = 2; m4, h = 1.3Δx): stress at t = 1 and 10",
+            shows: "1D uniform tension (bar of length 1, 100 particles, v = 0.001x, 3 prescribed particles per end, ρ0 = 8, E = 2; m4 and h = 1.3Δx are sphstab's choice: §7.1 gives neither kernel nor h, h = 1.3Δx is V21's value for §7.4): stress at t = 1 and 10",
             how: "`sphstab figures` → figures/v21_fig9_uniform_tension.svg; `sphstab simulate uniform-bar --form nonlocal --t-end 1 --out DIR` (also `--form local`, `lnl`; stress in final.vtk); `sphstab simulate uniform-bar --form classical --json`",
             paper: "nonlocal, local, lnl: \"good agreement with the analytical solutions\"; classical \"unstable and did not reach a solution time of t = 10.0\" (§7.1); analytic σ not printed".into(),
             ours: format!(
@@ -628,7 +628,7 @@ fn v21_uniform(tension: bool) -> Row {
     } else {
         Row {
             item: "V21 Figs 8, 15 (1D)",
-            shows: "1D uniform compression (as Figs 9, 16 with v = −0.001x): stress at t = 1 and 10",
+            shows: "1D uniform compression (as Figs 9, 16 with v = −0.001x; m4 and h = 1.3Δx are sphstab's choice, §7.1 gives neither): stress at t = 1 and 10",
             how: "a scene file = the built-in `uniform-bar` with `\"initial_velocity\": {\"kind\": \"linear\", \"gradient\": -0.001}`: `sphstab simulate FILE --form nonlocal --t-end 1 --out DIR` (also `local`, `lnl`)",
             paper: "local, nonlocal and mixed forms in \"good agreement with the analytical solutions\" (§7.1)".into(),
             ours: format!("analytic σ = E g t; {}", parts.join("; ")),
@@ -720,7 +720,7 @@ fn v21_fig13() -> Row {
         item: "V21 Fig 13",
         shows: "Swegle test, mixed classical–local form (cll), centre-particle speed for several c, ρ/ρ0 = 0.99 and 0.95",
         how: "`sphstab figures` → figures/v21_fig13_cll.svg; `sphstab swegle --form cll --c C --kernel m4 --h 1.2 --density-ratio 0.99 --json` (C = 0, 0.25, 0.5, 0.75, 1; also 0.95)",
-        paper: "increasing c reduces the growth rate; c = 0.5 and c-calculated (eq 49, 0.497 < c < 0.502) almost identical (§7.2; the c set is lost)".into(),
+        paper: "increasing c reduces the growth rate; c = 0.5 and c-calculated (eq 49, 0.497 < c < 0.502) almost identical (§7.2); Fig 13's caption and text name no other c (V21's only list of c values is Fig 17's caption, for the lnl compressive wave: 0, 0.25, 0.5, 0.75, 1.0 and calculated; its constant values are used here)".into(),
         ours: format!(
             "growth at c = 0, 0.25, 0.5, 0.75, 1: {} (0: no growth)",
             parts.join("; ")
@@ -783,7 +783,28 @@ fn v21_figs17_18() -> [Row; 2] {
         plateaus.push(p);
         fronts.push(fr);
     }
-    let mag_ok = plateaus.iter().all(|p| (p / exact - 1.0).abs() <= 0.05);
+    // the caption's c set for lnl: 0, 0.25, 0.5, 0.75, 1 (and c from eq 49: needs code); the
+    // text: "the curves lie between the curves for c values equal to 0 and equal to 1"
+    let cs = [0.0, 0.25, 0.5, 0.75, 1.0];
+    let sweep: Vec<(f64, f64)> = cs
+        .iter()
+        .map(|&cp| {
+            let s = scene_with("compressive-wave", |s| {
+                s.form = "lnl".into();
+                s.c_partition = cp;
+            });
+            let (p, fr, _) = compressive_front(&s);
+            (p, fr)
+        })
+        .collect();
+    let mag_ok = plateaus
+        .iter()
+        .chain(sweep.iter().map(|r| &r.0))
+        .all(|p| (p / exact - 1.0).abs() <= 0.05);
+    let (f0, f1) = (sweep[0].1, sweep[4].1);
+    let between_ok = sweep[1..4]
+        .iter()
+        .all(|r| r.1 >= f0.min(f1) - 0.5 && r.1 <= f0.max(f1) + 0.5);
     let speed_ok = fronts[0].abs() <= 3.0
         && fronts[1].abs() <= 3.0
         && fronts[3] >= fronts[1].min(fronts[2]) - 0.5
@@ -808,10 +829,10 @@ fn v21_figs17_18() -> [Row; 2] {
     let lead = (gain - 1.0) * c * base.t_end / dx;
     let fig17 = Row {
         item: "V21 Fig 17",
-        shows: "compressive wave from a rigid wall (5 cm steel bar, v0 = 50 m/s, E = 200 GPa, ρ = 8000, 500 particles, h = 1.3Δx, viscosity 0.5), before the free-end reflection",
-        how: "`sphstab figures` → figures/v21_fig17_compressive_wave.svg; `sphstab simulate compressive-wave --form F --out DIR` (F = classical, nonlocal, local, lnl; stress in final.vtk; t = 5 μs)",
+        shows: "compressive wave from a rigid wall (5 cm steel bar, v0 = 50 m/s, E = 200 GPa, ρ = 8000, 500 particles, h = 1.3Δx, viscosity 0.5; m4: sphstab's choice, V21 names no kernel), before the free-end reflection",
+        how: "`sphstab figures` → figures/v21_fig17_compressive_wave.svg; `sphstab simulate compressive-wave --form F --out DIR` (F = classical, nonlocal, local, lnl; stress in final.vtk; t = 5 μs); lnl with c = C: a scene file = `compressive-wave` with `\"form\": \"lnl\", \"c_partition\": C`",
         paper: format!(
-            "all forms \"predict the correct compressive stress magnitude\"; classical and nonlocal close to the analytic wave speed, lnl half-way between local and nonlocal (§7.4); caption t = 10 μs; analytic σ = −ρ c v0 = {:.3} GPa (c = √(E/ρ); {:.3} GPa with c_L, ν = 0.3)",
+            "all forms \"predict the correct compressive stress magnitude\"; classical and nonlocal close to the analytic wave speed, lnl half-way between local and nonlocal; caption: lnl \"with different values of the c coefficient: 0, 0.25, 0.5, 0.75, 1.0 and calculated using density-based criterion\", and \"the curves lie between the curves for c values equal to 0 and equal to 1\" (§7.4); caption t = 10 μs; analytic σ = −ρ c v0 = {:.3} GPa (c = √(E/ρ); {:.3} GPa with c_L, ν = 0.3)",
             exact / 1e9,
             -base.rho0 * c_l * v0 / 1e9
         ),
@@ -822,16 +843,34 @@ fn v21_figs17_18() -> [Row; 2] {
             list(&plateaus.iter().map(|p| p / 1e9).collect::<Vec<_>>(), 3),
             list(&fronts, 1)
         ) + &format!(
+            "; lnl at c = 0, 0.25, 0.5, 0.75, 1 (the caption's set): plateau {} GPa, front − c t {} Δx",
+            list(&sweep.iter().map(|r| r.0 / 1e9).collect::<Vec<_>>(), 3),
+            list(&sweep.iter().map(|r| r.1).collect::<Vec<_>>(), 1)
+        ) + &format!(
             "; the sph gradient's long-wave speed on the lattice is {gain:.5} c (h = 1.3Δx), a lead of {lead:.1} Δx at {:.0} μs (the local form's corrected gradient is exact)",
             base.t_end * 1e6
         ),
-        agree: if mag_ok && speed_ok {
+        agree: if mag_ok && speed_ok && between_ok {
             verdict(
                 true,
-                "read as plateau within 5%, classical and nonlocal fronts within 3Δx of c t, lnl's between local's and nonlocal's; c-calculated needs code (eq 49)",
+                "read as plateau within 5%, classical and nonlocal fronts within 3Δx of c t, lnl's between local's and nonlocal's, every lnl front between those of c = 0 and c = 1 (±0.5Δx); c-calculated needs code (eq 49)",
             )
         } else if mag_ok {
-            "partly (stress magnitude ✔ for every form, within 5%; lnl between local and nonlocal ✔; but classical and nonlocal lead c t by more than 3Δx, the lattice speed of the sph gradient, while local is on time — V21 finds classical and nonlocal closest; c-calculated needs code, eq 49)".into()
+            let mark = |ok: bool| if ok { "✔" } else { "✘" };
+            let half_way = fronts[3] >= fronts[1].min(fronts[2]) - 0.5
+                && fronts[3] <= fronts[1].max(fronts[2]) + 0.5;
+            let on_time = fronts[0].abs() <= 3.0 && fronts[1].abs() <= 3.0;
+            format!(
+                "partly (stress magnitude ✔ for every form and every c, within 5%; lnl(0.5) between local and nonlocal {}; lnl fronts at c = 0.25, 0.5, 0.75 between those of c = 0 and c = 1 (±0.5Δx) {}; classical and nonlocal fronts within 3Δx of c t {}{}; c-calculated needs code, eq 49)",
+                mark(half_way),
+                mark(between_ok),
+                mark(on_time),
+                if on_time {
+                    ""
+                } else {
+                    ": they lead by the lattice speed of the sph gradient while local is on time — V21 finds classical and nonlocal closest"
+                }
+            )
         } else {
             verdict(false, "plateau off by more than 5%")
         },
@@ -958,7 +997,7 @@ fn v21_figs21_22() -> [Row; 2] {
     };
     let fig21 = Row {
         item: "V21 Figs 19, 20, 21(a) (1D)",
-        shows: "tensile wave, 1D (0.2 m bar, E = 70.8 GPa, ρ = 1550, ends pulled at ±70 m/s, 200 particles, 7-particle end layers; m4, h = 1.3Δx, viscosity 0.5) at t = 20 μs; Figs 19, 20 are its set-up",
+        shows: "tensile wave, 1D (0.2 m bar, E = 70.8 GPa, ρ = 1550, ends pulled at ±70 m/s, 200 particles, 7-particle end layers, viscosity 0.5; m4 and h = 1.3Δx are sphstab's choice: §7.5 gives neither kernel nor h, h = 1.3Δx is V21's value for §7.4) at t = 20 μs; Figs 19, 20 are its set-up",
         how: "`sphstab figures` → figures/v21_fig21_tensile_wave.svg; `sphstab simulate tensile-wave --form F --t-end 2e-5 --out DIR` (F = classical, nonlocal, lnl; stress in final.vtk)",
         paper: format!(
             "classical unstable, \"large unphysical oscillations\"; nonlocal and lnl match the analytic solution (§7.5); analytic (derived here): σ1 = ρcv = {:.0} MPa, fronts meet at {:.1} μs, overlap {:.3} GPa",
@@ -994,7 +1033,7 @@ fn v21_figs21_22() -> [Row; 2] {
         item: "V21 Fig 22",
         shows: "tensile wave at 20 μs, lnl with several c",
         how: "a scene file = `tensile-wave` with `\"form\": \"lnl\", \"c_partition\": C, \"t_end\": 2e-5`; `sphstab simulate FILE --out DIR`",
-        paper: "\"irrespective of the value used the response appears stable\" (§7.5; the c set is lost)".into(),
+        paper: "\"irrespective of the value used the response appears stable\" (§7.5); Fig 22's caption (\"Effect of different values of c parameter\") and text list no c values: the set used here is Fig 17's caption's, 0, 0.25, 0.5, 0.75, 1.0 (its c calculated by eq 49 needs code)".into(),
         ours: format!(
             "RMS |σ − σ_exact|/σ1 at c = 0, 0.25, 0.5, 0.75, 1: {}; overlap σ: {} GPa",
             list(&sweep.iter().map(|r| r.2).collect::<Vec<_>>(), 3),
@@ -1052,7 +1091,7 @@ fn b00_figs6_7() -> Row {
         how: "`sphstab simulate analysis/scenes/rod-in-tension.json --out DIR` (eulerian-nodal, sph shapes: eq 74's system); `sphstab simulate rod` (total-lagrangian, mls); `sphstab simulate rod --form eulerian-nodal` (mls); `--t-end 4.3e-5` for Fig 7",
         paper: "Eulerian kernel unstable, Lagrangian not; \"the velocity for the Eulerian kernel is 10 times larger\"; Fig 7 shows the instability in the displacement (node count and Δt not given; §4.1.2)".into(),
         ours: format!(
-            "max |v| over the particles to 1e-4 s (41 nodes, 3 fixed layers per end: sphstab's choice): Eulerian (eq 74 system) {:.0} m/s, reaches 10 v0 at t = {:.2e} s; Lagrangian {:.1} m/s; Eulerian with mls shapes {:.1} m/s; max |u| at 4.3e-5 s: Eulerian {:.2e} m, Lagrangian {:.2e} m",
+            "max |v| over the particles to 1e-4 s (41 nodes, 3 fixed layers per end, efg-quartic weight, Δt = 0.2Δx/c and this end time: sphstab's choice, not B00's): Eulerian (eq 74 system) {:.0} m/s, reaches 10 v0 at t = {:.2e} s; Lagrangian {:.1} m/s; Eulerian with mls shapes {:.1} m/s; max |u| at 4.3e-5 s: Eulerian {:.2e} m, Lagrangian {:.2e} m",
             re.max_velocity, t10, rl.max_velocity, rm.max_velocity, ue, ul
         ),
         agree: verdict(
@@ -1141,7 +1180,7 @@ fn b00_fig4() -> Row {
         item: "B00 Fig 4",
         shows: "EFG nodal integration, Eulerian kernel, σ̄ = −1 (C̃ = C + σ = 0: material instability), D_mx = 1.5, 2.5; caption normalises by c² = −C/ρ",
         how: "`sphstab figures` → figures/b00_fig4_material.svg; (a) `sphstab dispersion --form eulerian-nodal --kernel efg-quartic --support 1.5 --shape mls --stress -1` (and `--support 2.5`); (b) C < 0 has no CLI flag: the test negates eq 74's stress term",
-        paper: "\"when σ̄ = −1 … the discrete equations are also unstable for most wave numbers\"; the continuum (ω² = 0) for all (§4.1.1)".into(),
+        paper: "\"when σ̄ = −1 … the discrete equations are also unstable for most wave numbers\"; the continuum (ω² = 0) for all (§4.1.1); the Conclusions call it \"(iii) An instability under compressive stress\", i.e. (a), while the caption's c² = −C/ρ > 0 means C < 0, i.e. (b)".into(),
         ours: format!(
             "(a) C > 0, σ = −C (compression); (b) C < 0, σ = −C > 0 (the caption's c² = −C/ρ > 0): {}",
             parts.join("; ")
@@ -1149,7 +1188,7 @@ fn b00_fig4() -> Row {
         agree: erratum(
             ok,
             "E10",
-            "reproduced by eq 74 only with C < 0 (b), as the caption's normalisation implies; with C > 0 eq 74 is stable at σ̄ = −1, ω² = c²(S2 − S1²) ≥ 0",
+            "reproduced by eq 74 only with C < 0 (b), as the caption's normalisation implies; with C > 0, the compression of B00's Conclusions (iii), eq 74 is stable at σ̄ = −1, ω² = c²(S2 − S1²) ≥ 0",
         ),
     }
 }
@@ -1315,7 +1354,41 @@ fn thesis_dt() -> Row {
     let r = timestep(&q).unwrap();
     let dt = r.step.critical_dt.unwrap();
     q.dt = Some(5.5);
-    let amp = query(&q).unwrap().max_amplification.unwrap();
+    let rep = query(&q).unwrap();
+    let amp = rep.max_amplification.unwrap();
+    // the band the central difference amplifies at Δt = h/c: ωΔt > 2. Edges bisected on the
+    // engine's ω²; `query`'s time-step rows give the same band on its κ grid
+    let l = lin(
+        FormKind::TotalLagrangian,
+        "mollifier",
+        ShapeFamily::Sph,
+        5.5,
+        0.0,
+    );
+    let over = |kap: f64| l.omega2(kap).0.max(0.0).sqrt() * 5.5 - 2.0;
+    let g = grid(20_000);
+    let edges: Vec<f64> = g
+        .windows(2)
+        .filter(|w| (over(w[0]) > 0.0) != (over(w[1]) > 0.0))
+        .map(|w| bisect(over, w[0], w[1]) / PI)
+        .collect();
+    let rows: Vec<(f64, f64)> = rep
+        .instabilities
+        .iter()
+        .filter(|i| i.growth_rate > 0.0)
+        .map(|i| {
+            (
+                i.kappa_min.unwrap_or(f64::NAN) / PI,
+                i.kappa_max.unwrap_or(f64::NAN) / PI,
+            )
+        })
+        .collect();
+    let band_ok = edges.len() == 2
+        && rows.len() == 1
+        && rows[0].0 >= edges[0]
+        && rows[0].0 - edges[0] <= 1.0 / q.grid as f64
+        && rows[0].1 <= edges[1]
+        && edges[1] - rows[0].1 <= 1.0 / q.grid as f64;
     // thesis numbers: E = 200 GPa, ρ = 8000 → c_b = 5000 m/s (c = min(c_b, c_L)); 165 ns
     let cb = (200e9f64 / 8000.0).sqrt();
     let h = 165e-9 * cb;
@@ -1324,20 +1397,26 @@ fn thesis_dt() -> Row {
     Row {
         item: "Thesis Figs 4.10, 4.11, 4.12",
         shows: "probe histories below, at and above Δt = h/c (eq 4.47; TL, modified mollifier, cover 5.5Δx, central difference)",
-        how: "`sphstab timestep --form total-lagrangian --kernel mollifier --h 5.5 --shape sph --stress 0`; `sphstab query … --dt 5.5` (Δt = h/c)",
+        how: "`sphstab timestep --form total-lagrangian --kernel mollifier --h 5.5 --shape sph --stress 0`; `sphstab query … --dt 5.5` (Δt = h/c; the band is its time-step row)",
         paper: format!(
-            "Δt = h/c = 165 ns \"stable\" (Fig 4.11), above it unstable (§4.6.3.3); h = cover = support radius (§2.1, eq 2.8), c = min(c_b, c_L) = {cb:.0} m/s, so h = {:.3} mm = 5.5Δx with Δx = {:.3} mm (derived)",
+            "Δt = h/c = 165 ns \"stable\" (Fig 4.11), above it unstable (§4.6.3.3); h = cover = support radius (§2.1, eq 2.8), c = min(c_b, c_L) = {cb:.0} m/s, so h = {:.3} mm (derived); particle spacing not given: h = 5.5Δx, the cover §2.7.3 recommends, gives Δx = {:.3} mm (derived)",
             h * 1e3,
             dx * 1e3
         ),
         ours: format!(
-            "critical Δt (kdk = central difference) {dt:.4} Δx/c = {:.4} h/c = {:.0} ns; at Δt = h/c the largest amplification per step is {amp:.3} (over the thesis's ~{steps_30us:.0} steps to 30 μs: 10^{:.0})",
+            "critical Δt (kdk = central difference) {dt:.4} Δx/c = {:.4} h/c = {:.0} ns; at Δt = h/c the modes with ωΔt > 2 grow, κΔx ∈ [{}]π (query's {}-point grid: [{}]π), the largest amplification per step is {amp:.3} (over the thesis's ~{steps_30us:.0} steps to 30 μs: 10^{:.0})",
             dt / 5.5,
             dt / 5.5 * 165.0,
+            list(&edges, 4),
+            q.grid,
+            rows.iter()
+                .map(|r| format!("{:.3}, {:.3}", r.0, r.1))
+                .collect::<Vec<_>>()
+                .join("; "),
             steps_30us * amp.log10()
         ),
         agree: erratum(
-            dt < 5.5 && amp > 1.01,
+            dt < 5.5 && amp > 1.01 && band_ok,
             "E11",
             "h/c is 1.38× the von Neumann limit; stable only if h were half the cover",
         ),
@@ -1537,14 +1616,16 @@ fn thesis_fig59() -> Row {
         item: "Thesis Fig 5.9",
         shows: "tensile wave, 2D TL neo-Hookean bar in 1D stress (free sides), plane strain",
         how: "derived in the test (a 2D bar scene with a boundary pulse needs code)",
-        paper: format!("the speed changes from c_L to c_b = √(E/ρ) = {cb:.0} m/s (§5.4.2)"),
+        paper: format!(
+            "the speed changes from c_L to c_b = √(E/ρ) = {cb:.0} m/s (§5.4.2); the model is plane strain, λ3 = 1 (§5.1.1; §5.4 does not restate it for the 2D code)"
+        ),
         ours: format!(
-            "derived: plane strain (λ3 = 1) with free sides has modulus E/(1 − ν²): c = {c_ps:.0} m/s"
+            "derived, for plane strain: λ3 = 1 with free sides has modulus E/(1 − ν²): c = {c_ps:.0} m/s (c_b holds in plane stress)"
         ),
         agree: erratum(
             (c_ps - cb).abs() > 100.0,
             "E15",
-            "c_b is the plane-stress bar speed; the simulation itself needs code",
+            "holds for plane strain: c_b is the plane-stress bar speed; the simulation itself needs code",
         ),
     }
 }
@@ -1555,7 +1636,7 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
     (
         "B00 Fig 17",
         "max eigenvalue vs D_max, 1D bar of 41 and 101 nodes, 2 Gauss points per cell, against eq 137 (α = 12.42)",
-        "needs code: a finite-body eigen-solve (B00 does not specify the boundary nodes); the infinite-lattice bounds are 2–3× the exact λ_max, not 1.1× (E8; tests/it/timestep_bounds.rs)",
+        "needs code: a finite-body eigen-solve (B00 does not specify the boundary nodes). B00 quotes one ratio, for its finite bars: eq 137 over the numerical eigenvalue \"approaches 1.1 as the domain of influence increases\" (§5.1). The 2–3× here are derived by sphstab, not quoted: on the infinite lattice with 2 Gauss points per cell and the lumped mass, eq 137 over the exact λ_max is 2.15, 2.92, 2.90, 2.87 at D_mx = 1.5, 2, 2.5, 3 (E8; tests/it/timestep_bounds.rs)",
     ),
     (
         "B00 Fig 18",
@@ -1565,17 +1646,17 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
     (
         "B00 Fig 19",
         "Taylor bar set-up (r = 3.2 mm, 32.4 mm, 227 m/s, J2 plasticity, 20×50 nodes)",
-        "not reproducible: axisymmetric J2 plasticity, rigid-wall impact and cell/stress-point EFG are outside sphstab's scope",
+        "needs code: an axisymmetric 2D solid scene with J2 plasticity (linear isotropic hardening), impact on a rigid wall and EFG with 2×2 cell quadrature or quadrilateral stress points; B00 gives the material, 20×50 nodes, D_mx = 2 and Δt = 0.005 μs (§6.1)",
     ),
     (
         "B00 Fig 20",
         "Taylor bar radius and height vs time to 80 μs (radius 7.13/6.98 mm, height 21.46 mm; DYNA3D 7.03/21.47)",
-        "not reproducible: as Fig 19",
+        "needs code: as Fig 19",
     ),
     (
         "B00 Plate 1",
         "Taylor bar deformed shape, equivalent plastic strain (max 3.33 cell, 3.18 stress points, DYNA3D 2.96)",
-        "not reproducible: as Fig 19",
+        "needs code: as Fig 19",
     ),
     (
         "B00 Fig 21",
@@ -1615,12 +1696,12 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
     (
         "B00 Plate 2",
         "crack propagation, Lemaitre damage, plate 0.1 × 0.04 m, t = 15–60 μs",
-        "not reproducible: damage model and 2D fracture are outside sphstab's scope",
+        "needs code: a 2D scene with edge tractions (σ = 1 MPa) and the Lemaitre damage law (eqs 150–152; ρ, E, ν, ε_D0, A_t, B_t given, §6.3), EFG with a Lagrangian kernel; node count and D_mx not given (sphstab's choice)",
     ),
     (
         "B00 Plate 3",
         "damage zone in a disk with a hole, t = 1 ms",
-        "not reproducible: as Plate 2",
+        "not reproducible: the \"initial radial velocity … prescribed along the hole\" has no value (§6.3); otherwise as Plate 2",
     ),
     (
         "B00 Table III",
@@ -1665,27 +1746,27 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
     (
         "V21 Fig 23",
         "2D rubber-shell impact set-up (OD 4 cm, ID 3 cm, 50 m/s, 40 particles through the thickness)",
-        "not reproducible: contact of two bodies with curved free surfaces; kernel, h and Δt not given",
+        "needs code: a 2D impact scene of two rings with a contact algorithm (V21's ref. [23], not described in V21) and a 2-particle boundary layer in the classical form (the per-particle form switch of Fig 18(b)); material, speed and 40 particles through the thickness given (§7.6), kernel, h and Δt not (sphstab's choice)",
     ),
     (
         "V21 Fig 24",
         "rubber shells: contact and separation",
-        "not reproducible: as Fig 23",
+        "needs code: as Fig 23",
     ),
     (
         "V21 Fig 25",
         "3D cylinder impact set-up (11,360 particles each, 50 m/s)",
-        "not reproducible: 3D contact",
+        "needs code: a 3D impact scene of two cylinders with contact and the classical-form boundary layer, as Fig 23 (length 4 cm, diameter 1.9 cm, spacing ≈ 0.1 cm, ρ = 2.8 g/cm³, E = 1.0 GPa, ν = 0.3, 50 m/s: given in §7.6); kernel, h and Δt not given",
     ),
     (
         "V21 Fig 26",
         "cylinder impact, von Mises stress",
-        "not reproducible: as Fig 25 (the colour scale's values are lost)",
+        "needs code: as Fig 25; the colour scale's values are lost with the figure, so only \"impact and separation\" can be compared",
     ),
     (
         "V21 Fig 27",
         "single cylinder on a symmetry plane, 100 m/s, E = 100 MPa",
-        "not reproducible: as Fig 25",
+        "needs code: as Fig 25, one cylinder against a symmetry plane instead of contact",
     ),
     (
         "B98 Table II",
@@ -1760,7 +1841,7 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
     (
         "B98 Fig 14",
         "particle positions at t = 10 s, cantilever",
-        "not reproducible: a picture of a run outside sphstab's scope",
+        "needs code: as Fig 12 (nodal quadrature with conservative smoothing, coefficient 0.1, as Fig 13); which of the three meshes is drawn is not stated",
     ),
     (
         "B98 Plate 1",
@@ -1835,7 +1916,7 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
     (
         "Thesis Fig 4.9",
         "probe histories, no smoothing",
-        "needs code: as Fig 4.6 (the dispersion behind the noise — ω² peaks at κΔx = 0.262π, beyond it the group velocity is negative: `sphstab figures` → figures/thesis_fig4_9_dispersion.svg; `sphstab dispersion --form total-lagrangian --shape sph --kernel mollifier --h 5.5 --stress 0`)",
+        "needs code: as Fig 4.6 (the dispersion behind the noise — ω² peaks at κΔx = 0.261π (0.2610π, E11), beyond it the group velocity is negative: `sphstab figures` → figures/thesis_fig4_9_dispersion.svg; `sphstab dispersion --form total-lagrangian --shape sph --kernel mollifier --h 5.5 --stress 0`)",
     ),
     (
         "Thesis Fig 4.13",
@@ -1855,7 +1936,7 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
     (
         "Thesis Fig 4.19",
         "very large density decrease: Δt prohibitive",
-        "not reproducible: no ratio and no number given",
+        "needs code: as Fig 4.18 (a free density ratio; the thesis gives no ratio and no number, only that \"the required time step becomes prohibitively small\")",
     ),
     (
         "Thesis Fig 5.1",
