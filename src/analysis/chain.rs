@@ -239,6 +239,7 @@ pub(super) fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
         grid: q.grid,
         critical_dt_from_omega_max: from_w,
         critical_dt_eq120: eq120,
-        step: IntegratorReport::of(&lin, &kappas, integ, dt, q.h_over_dx, grows)?,
+        physical_growth_kind: None,
+        step: IntegratorReport::of(&lin, &kappas, integ, dt, q.h_over_dx)?,
     })
 }

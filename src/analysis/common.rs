@@ -104,49 +104,58 @@ pub struct IntegratorReport {
     pub integrator: &'static str,
     /// N_s of `verlet-euler` (null for the others).
     pub euler_every: Option<usize>,
-    /// Largest |s| over the modes that do not grow in the semi-discrete system (ω_max).
+    /// Largest oscillation frequency |Im s| over the eigenvalues that do not grow in the
+    /// semi-discrete system (ω_max; with the oscillating branches of modes whose other branch
+    /// grows).
     pub omega_max: f64,
-    /// Largest Δt with growth per step ≤ 1 + 1e-7 on every non-growing mode, by bisection on the
-    /// amplification matrices; null when the integrator amplifies at every Δt (weak
-    /// instability) or the semi-discrete system grows.
+    /// Dissipative systems only (absent otherwise): the largest decay rate −Re s over the same
+    /// eigenvalues.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub decay_rate_max: Option<f64>,
+    /// The semi-discrete system's largest growth rate max Re s (0 if nothing grows): physical
+    /// (spatial) growth, present at every Δt and reported by `query` with its kind.
+    pub physical_growth_rate: f64,
+    /// The largest Δt at which the scheme adds no growth beyond the semi-discrete system's:
+    /// growth per step ≤ e^{1.01 γ(k)Δt}(1 + 1e-7) at every mode k, γ(k) the mode's own growth
+    /// rate (1% for the scheme's truncation error; |λ| ≤ 1 + 1e-7 for a mode that does not grow), by bisection on the amplification
+    /// matrices; null when the integrator adds growth at every Δt (weak instability).
     pub critical_dt: Option<f64>,
     /// The integrator's stability limit on the imaginary axis over ω_max (2/ω_max for the
     /// leapfrog family, 2√2/ω_max for rk4), for non-dissipative systems; null where there is no
-    /// closed form.
+    /// closed form, and for a weakly unstable scheme (no Δt is stable).
     pub critical_dt_closed_form: Option<f64>,
     /// c Δt_crit / h.
     pub critical_cfl: Option<f64>,
     /// Whether the integrator amplifies non-growing modes at every Δt (|λ| > 1 + 1e-7 already at
-    /// ω_max Δt = 0.1): the weak instability, kind `integrator`.
+    /// |s|_max Δt = 0.1): the weak instability, kind `integrator`.
     pub weak_instability: bool,
-    /// Growth per unit time the integrator adds at `spurious_growth_dt` (max over the
-    /// non-growing modes of ln|λ|/Δt; 0 if none amplifies).
+    /// Growth per unit time the integrator adds at `spurious_growth_dt` beyond the semi-discrete
+    /// system: max over the modes of (ln|λ| − 1.01 γ(k)Δt)/Δt; 0 if none gains more than 1e-7
+    /// per step.
     pub spurious_growth_rate: f64,
-    /// The Δt of `spurious_growth_rate`: `dt` if given, else 1/ω_max (half the leapfrog limit).
+    /// What the added growth is: `time-step` (Δt above `critical_dt`), `integrator` (the weak
+    /// instability, at every Δt), null when there is none.
+    pub added_growth_kind: Option<&'static str>,
+    /// The Δt of `spurious_growth_rate`: `dt` if given, else 1/|s|_max (half the leapfrog limit
+    /// without dissipation).
     pub spurious_growth_dt: f64,
 }
 
 impl IntegratorReport {
     /// The report of `integ` on `lin` over the modes `ks`; `dt` is where the spurious growth is
-    /// evaluated (default 1/ω_max); `h_over_dx` gives the CFL number. `grows`: the
-    /// semi-discrete system has growing modes (then no critical Δt is reported).
+    /// evaluated (default 1/|s|_max); `h_over_dx` gives the CFL number.
     pub fn of<L: crate::vonneumann::amplification::Modes>(
         lin: &L,
         ks: &[L::K],
         integ: crate::integrator::Integrator,
         dt: Option<f64>,
         h_over_dx: f64,
-        grows: bool,
     ) -> Result<Self> {
         use crate::vonneumann::amplification::{spurious_growth_rate, step_stability};
         let st = step_stability(lin, ks, integ)?;
         let weak = st.weak;
-        let critical_dt = if grows { None } else { st.critical_dt };
-        let at = dt.unwrap_or(if st.omega_max > 0.0 {
-            1.0 / st.omega_max
-        } else {
-            1.0
-        });
+        let critical_dt = st.critical_dt;
+        let at = dt.unwrap_or(if st.s_max > 0.0 { 1.0 / st.s_max } else { 1.0 });
         let (rate, _) = spurious_growth_rate(lin, ks, integ, at)?;
         Ok(Self {
             integrator: integ.name(),
@@ -155,11 +164,18 @@ impl IntegratorReport {
                 _ => None,
             },
             omega_max: st.omega_max,
+            decay_rate_max: lin.is_dissipative().then_some(st.decay_rate_max),
+            physical_growth_rate: st.growth_rate,
             critical_dt,
             critical_dt_closed_form: st.closed_form_dt,
             critical_cfl: critical_dt.filter(|d| d.is_finite()).map(|d| d / h_over_dx),
             weak_instability: weak,
             spurious_growth_rate: rate,
+            added_growth_kind: (rate > 0.0).then_some(if weak {
+                "integrator"
+            } else {
+                "time-step"
+            }),
             spurious_growth_dt: at,
         })
     }

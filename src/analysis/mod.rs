@@ -50,9 +50,21 @@ pub fn dispersion<const D: usize>(q: &Query<D>, points: usize) -> Result<Dispers
 /// The critical time step of `q.integrator` (with 2/ω_max and, for dissipative systems,
 /// \[B00\] eq 120) and its spurious growth at `q.dt` (default 1/ω_max).
 pub fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
-    if D == 1 {
-        chain::timestep(q)
+    let mut r = if D == 1 {
+        chain::timestep(q)?
     } else {
-        zone::timestep(q)
+        zone::timestep(q)?
+    };
+    if r.step.physical_growth_rate > 0.0 {
+        // the kind of the fastest growth, exactly as `query` classifies it
+        use crate::vonneumann::classify::Kind;
+        let qr = query(q)?;
+        r.physical_growth_kind = qr
+            .instabilities
+            .iter()
+            .filter(|i| i.growth_rate > 0.0 && !matches!(i.kind, Kind::TimeStep | Kind::Integrator))
+            .max_by(|a, b| a.growth_rate.total_cmp(&b.growth_rate))
+            .map(|i| i.kind);
     }
+    Ok(r)
 }

@@ -223,8 +223,12 @@ pub struct TimestepReport {
     /// semi-discrete system grows or no mode oscillates.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub critical_dt_eq120: Option<f64>,
-    /// The integrator's critical Δt, CFL number, weak instability and spurious growth
-    /// (`critical_dt` is null if the semi-discrete system grows).
+    /// Kind of the semi-discrete system's fastest growth (`step.physical_growth_rate`), as
+    /// `query` classifies it; absent when nothing grows.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub physical_growth_kind: Option<crate::vonneumann::classify::Kind>,
+    /// The integrator's critical Δt (also when the semi-discrete system grows: the largest Δt
+    /// that adds no growth to it), CFL number, weak instability and added growth.
     #[serde(flatten)]
     pub step: IntegratorReport,
 }

@@ -349,3 +349,115 @@ fn eulerian_nodal_mls_in_tension_oscillates_as_the_engine_says() {
     // multiply the amplitude by e^{γ t} ≫ 2 over this run
     assert!(max_late <= max_early * 1.01);
 }
+
+/// Issue 24, item 2: `timestep` gives a Δt with its defaults (classical m4, h = 1.2Δx, σ̄ = 0.01,
+/// kdk), although the semi-discrete system grows there (tensile, which it reports as physical
+/// growth with its kind). The Δt is checked in the time domain, by the solver's own rate
+/// function: the mode nearest the fastest oscillating one (ω² at its maximum over the modes
+/// that do not grow), seeded on a 200-particle periodic chain, stays bounded for 40 steps at
+/// 0.98 Δt_crit and grows by orders of magnitude at 1.02 Δt_crit (the leapfrog's |λ| ≈ 1.5 per
+/// step there); 40 steps are far too short for the physical growth (0.15 c/Δx, seeded by
+/// rounding only) to matter.
+#[test]
+fn default_timestep_gives_a_step_that_holds_in_the_time_domain() {
+    use sphstab::analysis::{Query, timestep};
+    let q = Query::<1>::new(FormKind::Classical, k("m4"), 1.2, 0.01);
+    let r = timestep(&q).unwrap();
+    assert!(
+        r.step.physical_growth_rate > 0.1,
+        "{}",
+        r.step.physical_growth_rate
+    );
+    assert_eq!(
+        r.physical_growth_kind,
+        Some(sphstab::vonneumann::classify::Kind::Tensile)
+    );
+    let dtc = r.step.critical_dt.expect("a Δt with the defaults");
+    assert!(dtc.is_finite() && dtc > 0.0);
+    // the fastest oscillating mode, and the nearest mode of the chain
+    let l = lin(FormKind::Classical, "m4", ShapeFamily::Sph, 1.2, 0.01);
+    let (_, kap) = grid(2000)
+        .into_iter()
+        .map(|kap| (l.omega2(kap).0, kap))
+        .filter(|p| p.0 > 0.0)
+        .fold((f64::MIN, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+    let n = 200;
+    let m = (kap * n as f64 / (2.0 * PI)).round() as usize;
+    let peak = |frac: f64| {
+        let hist = run_mode_k(
+            "m4",
+            FormKind::Classical,
+            ShapeFamily::Sph,
+            1.2,
+            0.01,
+            n,
+            m,
+            1e-8,
+            frac * dtc,
+            40,
+        );
+        let first = hist[0].abs().max(hist[1].abs());
+        hist.iter().fold(0.0f64, |a, &b| a.max(b.abs())) / first
+    };
+    let (below, above) = (peak(0.98), peak(1.02));
+    eprintln!(
+        "Δt_crit = {dtc}: peak/initial amplitude at 0.98 Δt_crit {below:.3e}, at 1.02 {above:.3e}"
+    );
+    assert!(below < 20.0, "{below}");
+    assert!(above > 1e4, "{above}");
+}
+
+/// Issue 24, item 3: the labels of every integrator's `timestep` report agree with each other
+/// and with what the scheme does at a probe Δt, without and with viscosity (classical m4,
+/// h = 1.2Δx, σ̄ = 0.01: the defaults, a growing system). A weakly unstable scheme has no
+/// critical Δt and no closed form; any other scheme's `critical_dt` is a real boundary: at
+/// 0.95 of it the scheme adds no growth (`added_growth_kind` null, rate 0), at 1.05 it adds
+/// growth named `time-step`; `decay_rate_max` is present exactly with viscosity, and
+/// `omega_max` is then the oscillation frequency, below the decay-inclusive |s| that sets
+/// the default probe Δt.
+#[test]
+fn timestep_labels_agree_for_every_integrator() {
+    use sphstab::analysis::{Query, timestep};
+    use sphstab::integrator::Integrator;
+    for av in [None, Some((1.0, 0.0))] {
+        for integ in Integrator::all(40) {
+            let mut q = Query::<1>::new(FormKind::Classical, k("m4"), 1.2, 0.01);
+            q.grid = 128;
+            q.av = av;
+            q.integrator = integ;
+            let r = timestep(&q).unwrap().step;
+            let name = format!("{} (viscosity {av:?})", integ.name());
+            assert_eq!(r.decay_rate_max.is_some(), av.is_some(), "{name}");
+            assert!(r.physical_growth_rate > 0.0, "{name}");
+            if r.weak_instability {
+                assert!(
+                    r.critical_dt.is_none() && r.critical_dt_closed_form.is_none(),
+                    "{name}: weak, yet a critical Δt"
+                );
+                assert_eq!(r.added_growth_kind, Some("integrator"), "{name}");
+                continue;
+            }
+            let dtc = r.critical_dt.unwrap_or_else(|| panic!("{name}: no Δt"));
+            match r.added_growth_kind {
+                None => assert!(r.spurious_growth_rate == 0.0 && r.spurious_growth_dt <= dtc),
+                Some(kind) => assert!(
+                    kind == "time-step" && r.spurious_growth_dt > dtc,
+                    "{name}: {kind} at {} (critical {dtc})",
+                    r.spurious_growth_dt
+                ),
+            }
+            for (frac, adds) in [(0.95, false), (1.05, true)] {
+                let mut qd = q;
+                qd.dt = Some(frac * dtc);
+                let s = timestep(&qd).unwrap().step;
+                assert_eq!(
+                    s.added_growth_kind,
+                    adds.then_some("time-step"),
+                    "{name} at {frac} Δt_crit: rate {}",
+                    s.spurious_growth_rate
+                );
+                assert_eq!(s.spurious_growth_rate > 0.0, adds, "{name} at {frac}");
+            }
+        }
+    }
+}

@@ -74,7 +74,14 @@ pub fn cfl_cell(
     for &kap in &ks {
         grows |= lin.growth(kap)? > GROWTH_TOL;
     }
-    let r = IntegratorReport::of(&lin, &ks, integ, None, h, grows)?;
+    let r = IntegratorReport::of(&lin, &ks, integ, None, h)?;
+    // a system that grows at σ̄ = 0 has no cell (as before the limit was defined for growing
+    // systems too)
+    let (critical_dt, critical_cfl) = if grows {
+        (None, None)
+    } else {
+        (r.critical_dt, r.critical_cfl)
+    };
     Ok(CflCell {
         form: form.name().into(),
         shape: q.shape.name().into(),
@@ -82,8 +89,8 @@ pub fn cfl_cell(
         kernel: k.name().into(),
         integrator: integ.name().into(),
         omega_max: r.omega_max,
-        critical_dt: r.critical_dt,
-        critical_cfl: r.critical_cfl,
+        critical_dt,
+        critical_cfl,
         weak: r.weak_instability,
         weak_growth_rate: r.spurious_growth_rate,
     })
