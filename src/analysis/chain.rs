@@ -240,6 +240,7 @@ pub(super) fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
         critical_dt_from_omega_max: from_w,
         critical_dt_eq120: eq120,
         physical_growth_kind: None,
+        critical_dt_inviscid: None,
         step: IntegratorReport::of(&lin, &kappas, integ, dt, q.h_over_dx)?,
     })
 }

@@ -55,6 +55,17 @@ pub fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
     } else {
         zone::timestep(q)?
     };
+    if q.av.is_some() {
+        let mut q0 = *q;
+        q0.av = None;
+        r.critical_dt_inviscid = if D == 1 {
+            chain::timestep(&q0)?
+        } else {
+            zone::timestep(&q0)?
+        }
+        .step
+        .critical_dt;
+    }
     if r.step.physical_growth_rate > 0.0 {
         // the kind of the fastest growth, exactly as `query` classifies it
         use crate::vonneumann::classify::Kind;

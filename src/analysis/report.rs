@@ -223,6 +223,13 @@ pub struct TimestepReport {
     /// semi-discrete system grows or no mode oscillates.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub critical_dt_eq120: Option<f64>,
+    /// With artificial viscosity only (absent otherwise): the same integrator's critical Δt
+    /// without viscosity. The analysis linearises Monaghan viscosity on every pair (two-sided,
+    /// `critical_dt`); codes switch it off for receding pairs, a switch no linear analysis
+    /// represents, and their limit lies in the bracket of the two (measured by issue 24: kdk
+    /// 2.15 in [2.031, 2.465], dkd 1.8 in [1.0155, 2.465], 1D nonlocal m4 h = 1.3, α = 1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub critical_dt_inviscid: Option<f64>,
     /// Kind of the semi-discrete system's fastest growth (`step.physical_growth_rate`), as
     /// `query` classifies it; absent when nothing grows.
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -125,5 +125,11 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     }
     print_eq120(r.critical_dt_eq120);
     print_step(&r.step);
+    if let Some(d) = r.critical_dt_inviscid {
+        println!(
+            "viscosity: the analysis applies it to every pair (two-sided); codes switch it off for receding pairs, and their measured limits lay between this Δt and the inviscid one, {} Δx/c",
+            plain(d)
+        );
+    }
     Ok(())
 }
