@@ -296,6 +296,34 @@ impl<S: Scalar, const D: usize> State<S, D> {
     }
 }
 
+impl<const D: usize> State<f64, D> {
+    /// The stress the momentum equation integrates at each particle: σ, or for the mixed forms
+    /// (lnl, cll: the state carries τ) (1 − c)σ + cτ with the partition coefficient
+    /// `c_partition` (\[V21\] eq 50–56, §7.2; σ is integrated from the velocity gradient of the
+    /// kernel, τ from the corrected local one). Empty when the state carries no stress: the
+    /// Lagrangian forms (their stress is a function of the positions) and hydrodynamic
+    /// materials (a function of the density).
+    pub fn total_stress(&self, c_partition: f64) -> Vec<Tensor<f64, D>> {
+        if self.tau.is_empty() {
+            return self.sigma.clone();
+        }
+        let c = c_partition;
+        self.sigma
+            .iter()
+            .zip(&self.tau)
+            .map(|(s, t)| {
+                let mut m = [[0.0; D]; D];
+                for a in 0..D {
+                    for b in 0..D {
+                        m[a][b] = (1.0 - c) * s[a][b] + c * t[a][b];
+                    }
+                }
+                m
+            })
+            .collect()
+    }
+}
+
 impl FormKind {
     /// Whether the form is available in every dimension (the B00 stress-point, least-squares
     /// and eulerian-nodal forms are 1D only: [`super::Model::new`] refuses them for D > 1).

@@ -1,7 +1,7 @@
 //! Output formats as pure functions returning strings: CSV time histories and legacy-VTK
 //! particle snapshots (POLYDATA with vertices, readable by ParaView).
 
-use crate::forms::State;
+use crate::forms::{FormKind, State, Tensor};
 use std::fmt::Write;
 
 /// CSV with a header row.
@@ -19,7 +19,7 @@ pub fn csv(header: &[&str], rows: impl IntoIterator<Item = Vec<f64>>) -> String 
 fn vtk<const D: usize>(
     title: &str,
     pts: &[[f64; D]],
-    scalars: &[(&str, Vec<f64>)],
+    scalars: &[(String, Vec<f64>)],
     vectors: &[(&str, Vec<[f64; D]>)],
 ) -> String {
     // x y z with the missing coordinates 0
@@ -60,29 +60,65 @@ fn vtk<const D: usize>(
     s
 }
 
-/// Legacy VTK of a state in D dimensions (points with the missing coordinates 0; density and
-/// the independent σ components when carried). In 2D and 3D the velocity is a vector; in 1D it
-/// is the scalar `velocity` and the stress the scalar `stress`.
-pub fn vtk_state<const D: usize>(title: &str, z: &State<f64, D>) -> String {
+/// The names of the two stress parts of a mixed form (σ, τ): lnl mixes the nonlocal and the
+/// local stress, cll the classical and the local one; None for the other forms.
+pub fn stress_part_names(form: FormKind) -> Option<(&'static str, &'static str)> {
+    match form {
+        FormKind::Lnl => Some(("nonlocal", "local")),
+        FormKind::Cll => Some(("classical", "local")),
+        _ => None,
+    }
+}
+
+/// Legacy VTK of a state of `form` in D dimensions (points with the missing coordinates 0;
+/// density when carried). The stress written is the one the form's momentum equation
+/// integrates ([`State::total_stress`]): σ, or for lnl and cll (1 − c)σ + cτ with c =
+/// `c_partition`, followed by the two parts, named after [`stress_part_names`]
+/// (`stress_nonlocal`/`stress_classical` and `stress_local` in 1D, `sigma_xx_local`, … in 2D
+/// and 3D). In 2D and 3D the velocity is a vector and the stress its independent components
+/// `sigma_xx`, …; in 1D they are the scalars `velocity` and `stress`. A form without a stress
+/// state (the Lagrangian forms, hydrodynamic materials) writes none; the stress-point forms
+/// write the particles' σ (their stress points' σ is not at the particles).
+pub fn vtk_state<const D: usize>(
+    title: &str,
+    z: &State<f64, D>,
+    form: FormKind,
+    c_partition: f64,
+) -> String {
     const NAMES: [&str; 6] = [
         "sigma_xx", "sigma_yy", "sigma_xy", "sigma_zz", "sigma_xz", "sigma_yz",
     ];
-    let mut sc = Vec::new();
+    let mut sc: Vec<(String, Vec<f64>)> = Vec::new();
     if D == 1 {
-        sc.push(("velocity", z.v.iter().map(|v| v[0]).collect()));
+        sc.push(("velocity".into(), z.v.iter().map(|v| v[0]).collect()));
     }
     if !z.rho.is_empty() {
-        sc.push(("density", z.rho.clone()));
+        sc.push(("density".into(), z.rho.clone()));
     }
-    if !z.sigma.is_empty() {
+    let mut stress = |suffix: &str, t: &[Tensor<f64, D>]| {
+        if t.is_empty() {
+            return;
+        }
         if D == 1 {
-            sc.push(("stress", z.sigma.iter().map(|s| s[0][0]).collect()));
+            sc.push((
+                format!("stress{suffix}"),
+                t.iter().map(|s| s[0][0]).collect(),
+            ));
         } else {
             for (k, name) in NAMES.iter().enumerate().take(crate::forms::n_sym(D)) {
                 let (a, b) = crate::forms::voigt(k);
-                sc.push((*name, z.sigma.iter().map(|s| s[a][b]).collect()));
+                sc.push((
+                    format!("{name}{suffix}"),
+                    t.iter().map(|s| s[a][b]).collect(),
+                ));
             }
         }
+    };
+    stress("", &z.total_stress(c_partition));
+    if !z.tau.is_empty() {
+        let (ps, pt) = stress_part_names(form).unwrap_or(("sigma", "tau"));
+        stress(&format!("_{ps}"), &z.sigma);
+        stress(&format!("_{pt}"), &z.tau);
     }
     if D == 1 {
         vtk(title, &z.x, &sc, &[])
@@ -102,7 +138,7 @@ mod tests {
             v: vec![[0.1], [0.2], [0.3]],
             ..Default::default()
         };
-        let s = vtk_state("t", &z);
+        let s = vtk_state("t", &z, FormKind::Classical, 0.5);
         assert!(
             s.contains("POINTS 3 double")
                 && s.contains("VERTICES 3 6")
@@ -111,5 +147,34 @@ mod tests {
         assert_eq!(s.lines().filter(|l| l.starts_with("1 ")).count(), 3);
         let c = csv(&["t", "v"], [vec![0.0, 1.0], vec![1.0, 2.0]]);
         assert_eq!(c.lines().count(), 3);
+    }
+
+    /// A 2D lnl state with σ = diag(1, 2) + 3 (xy), τ = diag(5, 6) + 7 (xy) and c = 0.75:
+    /// the stress written is 0.25σ + 0.75τ = (4, 5, 6) by hand, then the parts.
+    #[test]
+    fn vtk_writes_the_mixed_total_and_its_parts() {
+        let z = State::<f64, 2> {
+            x: vec![[0.0, 0.0]],
+            v: vec![[0.0, 0.0]],
+            rho: vec![1.0],
+            sigma: vec![[[1.0, 3.0], [3.0, 2.0]]],
+            tau: vec![[[5.0, 7.0], [7.0, 6.0]]],
+            ..Default::default()
+        };
+        let s = vtk_state("t", &z, FormKind::Lnl, 0.75);
+        let field = |name: &str| {
+            let mut l = s.lines();
+            l.find(|l| *l == format!("SCALARS {name} double 1"));
+            l.nth(1).map(|v| v.parse::<f64>().unwrap())
+        };
+        for (name, want) in [
+            ("sigma_xx", 4.0),
+            ("sigma_yy", 5.0),
+            ("sigma_xy", 6.0),
+            ("sigma_xx_nonlocal", 1.0),
+            ("sigma_xy_local", 7.0),
+        ] {
+            assert_eq!(field(name), Some(want), "{name}");
+        }
     }
 }

@@ -220,12 +220,32 @@ pub struct SceneReport {
     pub max_velocity: f64,
     /// Wall-clock seconds.
     pub runtime_s: f64,
+    /// Partition coefficient c of the mixed forms (lnl, cll; absent for the others).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub c_partition: Option<f64>,
+    /// The final stress the form integrates ([`Scene1D::stress_profile`]; null for the forms
+    /// without a stress state, the Lagrangian ones).
+    pub stress: Option<StressSummary>,
     /// History: (t, max |v|, kinetic energy).
     #[serde(skip)]
     pub history: Vec<(f64, f64, f64)>,
     /// Final positions, velocities and (if carried) stresses.
     #[serde(skip)]
     pub final_state: Option<State<f64, 1>>,
+}
+
+/// The final stress of a scene run, the one its form integrates: σ, or (1 − c)σ + cτ for the
+/// mixed forms ([`Scene1D::stress_profile`]; the `stress` field of `final.vtk`), in Pa.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct StressSummary {
+    /// Smallest stress over every particle (end layers included).
+    pub min: f64,
+    /// Largest stress over every particle.
+    pub max: f64,
+    /// max |σ − σ_exact| over the free particles, divided by max |σ_exact| over them: the
+    /// scene's analytic stress ([`Scene1D::exact_profile`]); null without an analytic solution
+    /// or where σ_exact vanishes on every free particle.
+    pub error_max: Option<f64>,
 }
 
 /// A run is stopped as diverged when max |v| exceeds this multiple of c + max |v(0)|: a
@@ -480,6 +500,7 @@ impl Scene1D {
                 (num / cnt.max(1) as f64).sqrt() / scale.max(1e-300)
             }
         });
+        let stress = self.stress_summary(&run.z, run.t, &free);
         Ok(SceneReport {
             name: self.name.clone(),
             form: form.name(),
@@ -489,6 +510,8 @@ impl Scene1D {
             velocity_error_l2: error,
             max_velocity: vmax,
             runtime_s,
+            c_partition: matches!(form, FormKind::Lnl | FormKind::Cll).then_some(self.c_partition),
+            stress,
             history,
             final_state: Some(run.z),
         })
@@ -586,17 +609,35 @@ impl Scene1D {
 
     /// The stress the scene's form reports at each particle of state `z`: σ, or for the mixed
     /// forms (lnl, cll) (1 − c)σ + cτ, the partition the momentum equation uses (each of σ
-    /// and τ integrated from its own velocity gradient).
+    /// and τ integrated from its own velocity gradient; [`State::total_stress`]). Empty for
+    /// the forms without a stress state.
     pub fn stress_profile(&self, z: &State<f64, 1>) -> Vec<f64> {
-        if z.tau.is_empty() {
-            return z.sigma.iter().map(|[[s]]| *s).collect();
-        }
-        let c = self.c_partition;
-        z.sigma
+        z.total_stress(self.c_partition)
             .iter()
-            .zip(&z.tau)
-            .map(|([[s]], [[t]])| (1.0 - c) * s + c * t)
+            .map(|[[s]]| *s)
             .collect()
+    }
+
+    /// The [`StressSummary`] of the final state `z` at time `t` (`free`: the particles whose
+    /// velocity is not prescribed); None for a form without a stress state.
+    fn stress_summary(&self, z: &State<f64, 1>, t: f64, free: &[bool]) -> Option<StressSummary> {
+        let s = self.stress_profile(z);
+        if s.is_empty() {
+            return None;
+        }
+        let error_max = self.exact_profile(t).and_then(|(_, exact)| {
+            let (mut err, mut scale) = (0.0f64, 0.0f64);
+            for i in (0..s.len()).filter(|&i| free[i]) {
+                err = err.max((s[i] - exact[i]).abs());
+                scale = scale.max(exact[i].abs());
+            }
+            (scale > 0.0).then_some(err / scale)
+        });
+        Some(StressSummary {
+            min: s.iter().copied().fold(f64::INFINITY, f64::min),
+            max: s.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            error_max,
+        })
     }
 
     fn exact_velocity(&self, a: Analytic, xi: f64, v0: f64, ends: (f64, f64), ct: f64) -> f64 {

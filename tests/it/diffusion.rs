@@ -358,3 +358,248 @@ fn fluid_acoustic_damping_matches_the_diffusivity() {
         "X: {a} vs {b}"
     );
 }
+
+/// The 1D classical (sum-form) bar with δ-SPH, derived by hand (issue 24 item 7). Δx = 1,
+/// V = m = ρ0 = 1, C = 1 (c = 1), pre-stress σ0; a mode u, v, ρ − 1, σ − σ0 ∝ e^{iκj + st}
+/// with amplitudes U, V, R, S. The rate function of `classical`:
+///
+/// ```text
+/// a_I = Σ_J m (σ_I/ρ_I² + σ_J/ρ_J²) G(x_I − x_J),   G(x) = W'(|x|) sign x
+/// ρ̇_I = −ρ_I L_I + D_I,   σ̇_I = (C + σ_I) L_I,   L_I = Σ_J V (v_J − v_I) G(x_I − x_J)
+/// ```
+///
+/// linearised (Σ_J G = 0 kills the I terms; δ(σ/ρ²) = δσ − 2σ0 δρ):
+///
+/// ```text
+/// s U = V
+/// s V = iα (S − 2σ0 R) + 4σ0 B U     α = −2 Σ_{n>0} W'(n) sin κn,  B = Σ_{n>0} W''(n)(1 − cos κn)
+/// s R = −iα V − ν R                   ν = −(diffusion symbol) > 0, [`symbol`]: D_I is linear in
+/// s S = iα (1 + σ0) V                 ρ alone (ψ and ⟨∇ρ⟩ vanish in the base state)
+/// ```
+///
+/// Eliminating U, R, S: **s³ + ν s² + ω0² s + ν P = 0** with P = α²(1 + σ0) − 4σ0 B and
+/// ω0² = P + 2σ0 α² (ν = 0: s² = −ω0², the classical dispersion). Routh–Hurwitz (ν > 0): stable
+/// iff **P > 0** and ν ω0² > ν P, i.e. **2σ0 α² > 0**: under compression (σ0 < 0) every κ
+/// with α ≠ 0 grows for any δ > 0 (for small ν the acoustic pair gets Re s = −ν σ0 α²/ω0²); in
+/// tension the κ where the inviscid chain is stable only because of the density term
+/// (ω0² > 0 > P) grow too: the tensile band widens. The density enters the sum form's
+/// acceleration through σ0/ρ², and the diffusion takes that support away.
+/// (The difference forms have no σ0/ρ² term: there δ-SPH only damps the density.)
+fn classical_bar_growth(
+    form: DiffusionForm,
+    h: f64,
+    delta: f64,
+    s0: f64,
+    kappa: f64,
+) -> (f64, C, f64) {
+    let k = kernel::by_name("m4").unwrap();
+    let reach = (k.zeta() * h).ceil() as i64 + 1;
+    let (mut alpha, mut b) = (0.0, 0.0);
+    for n in 1..=reach {
+        let r = n as f64;
+        alpha -= 2.0 * kernel::dw(k, 1, r, h) * (kappa * r).sin();
+        b += kernel::d2w(k, 1, r, h) * (1.0 - (kappa * r).cos());
+    }
+    let nu = -symbol("m4", h, delta, form, kappa);
+    let p = alpha * alpha * (1.0 + s0) - 4.0 * s0 * b;
+    let w2 = p + 2.0 * s0 * alpha * alpha;
+    // roots of s³ + ν s² + ω0² s + ν P (Durand–Kerner, then Newton)
+    let f = |s: C| ((s + nu) * s + w2) * s + nu * p;
+    let df = |s: C| (s * 3.0 + 2.0 * nu) * s + w2;
+    let mut z = [
+        C::new(0.4, 0.9),
+        C::new(0.4, 0.9).powi(2),
+        C::new(0.4, 0.9).powi(3),
+    ];
+    for _ in 0..500 {
+        for i in 0..3 {
+            let den = (0..3)
+                .filter(|&j| j != i)
+                .fold(C::new(1.0, 0.0), |a, j| a * (z[i] - z[j]));
+            z[i] -= f(z[i]) / den;
+        }
+    }
+    for r in z.iter_mut() {
+        for _ in 0..3 {
+            *r -= f(*r) / df(*r);
+        }
+    }
+    let top = *z.iter().max_by(|a, b| a.re.total_cmp(&b.re)).unwrap();
+    (top.re.max(0.0), top, p)
+}
+
+/// δ-SPH destabilises 1D classical SPH under compression (issue 24 item 7; the README said it
+/// does not). Three routes against the closed form of [`classical_bar_growth`]:
+/// - the engine's eigenvalues (largest Re s) at 64 κ in (0, π], both δ-SPH forms, σ̄ = ±0.1,
+///   ±0.01, δ = 0.01 and 0.1, to 1e-10;
+/// - `sphstab query --form classical --h 1.3 --stress -0.1 --delta 0.1 --delta-form
+///   molteni-colagrossi`: growth 0.020058 c/Δx at κΔx = 0.5625π, the issue author's independent
+///   value, equal to the closed form's maximum over the same 512 κ;
+/// - the time-domain solver: a periodic chain of 64 particles at κΔx = 2π·18/64 = 0.5625π,
+///   seeded with the closed form's growing eigenvector (amplitude 1e-8) and stepped by `rk4`
+///   (Δt = 0.05 Δx/c) to t = 150: the velocity's Fourier amplitude grows at the closed-form
+///   rate to 1e-5 (measured 0.020058442 against 0.020058440).
+///
+/// Also from the closed form: under compression every κ in [0.05π, 0.95π] grows (Routh–
+/// Hurwitz); in tension, of the κ where the inviscid chain is stable exactly those with P < 0
+/// grow (σ̄ = 0.1: the band κΔx/π ∈ [0.787, 1] widens to [0.762, 1]), and in the tensile band
+/// (ω0² < 0) the growth speeds up (up to 1.5× at some κ); at κΔx = π itself (α = 0: the mode
+/// carries no density) the tensile maximum is unchanged.
+#[test]
+fn delta_sph_destabilises_classical_sph_in_compression() {
+    use sphstab::integrator::Integrator;
+    use sphstab::vonneumann::linearise::Lattice1D;
+    let (mc, an) = (DiffusionForm::MolteniColagrossi, DiffusionForm::Antuono);
+    let h = 1.3;
+    let classical = |delta: f64, form| {
+        let mut p = params("m4", h, delta, form);
+        p.form = FormKind::Classical;
+        p
+    };
+    // 1. the engine
+    let mut worst: f64 = 0.0;
+    let mut tensile_band_faster: f64 = 1.0;
+    for form in [mc, an] {
+        for s0 in [-0.1, -0.01, 0.01, 0.1] {
+            for delta in [0.01, 0.1] {
+                let lin =
+                    Linearisation::new(classical(delta, form), s0, Lattice1D::default()).unwrap();
+                for i in 1..=64 {
+                    let kap = PI * i as f64 / 64.0;
+                    let ev = lin.eigenvalues(kap).unwrap();
+                    let got = ev.iter().map(|z| z.re).fold(0.0, f64::max);
+                    let (want, _, p) = classical_bar_growth(form, h, delta, s0, kap);
+                    let scale = ev.iter().map(|z| z.norm()).fold(0.0, f64::max);
+                    let d = (got - want).abs() / scale;
+                    assert!(
+                        d < 1e-10,
+                        "{form:?} σ̄ {s0} δ {delta} κ {kap}: engine {got} vs closed form {want}"
+                    );
+                    worst = worst.max(d);
+                    if s0 < 0.0 && (0.05 * PI..=0.95 * PI).contains(&kap) {
+                        assert!(want > 0.0, "compression, κ {kap}: no growth");
+                    }
+                    let (inviscid, _, _) = classical_bar_growth(form, h, 0.0, s0, kap);
+                    if s0 > 0.0 && inviscid == 0.0 {
+                        assert_eq!(want > 0.0, p < 0.0, "tension, κ {kap}: {want}, P = {p}");
+                    }
+                    if s0 > 0.0 && inviscid > 0.0 && want > inviscid {
+                        tensile_band_faster = tensile_band_faster.max(want / inviscid);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "classical + δ-SPH: engine vs closed form, worst {worst:.1e} of the largest |s|; in the \
+         tensile band below κΔx = π growth up to {tensile_band_faster:.4}× the inviscid"
+    );
+
+    // 2. the CLI, the issue's case
+    let v = common::json(&[
+        "query",
+        "--form",
+        "classical",
+        "--h",
+        "1.3",
+        "--stress",
+        "-0.1",
+        "--delta",
+        "0.1",
+        "--delta-form",
+        "molteni-colagrossi",
+        "--json",
+    ]);
+    let (want, at) = (1..=512)
+        .map(|i| {
+            let kap = PI * i as f64 / 512.0;
+            (classical_bar_growth(mc, h, 0.1, -0.1, kap).0, kap)
+        })
+        .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+    let got = v["max_growth_rate"].as_f64().unwrap();
+    eprintln!(
+        "query: growth {got:.9} c/Δx, closed form {want:.9} at κΔx = {:.4}π",
+        at / PI
+    );
+    assert!((got - want).abs() <= 1e-9 * want, "{got} vs {want}");
+    assert!((want - 0.020058).abs() < 5e-7 && (at / PI - 0.5625).abs() < 1e-12);
+    assert_eq!(v["instabilities"][0]["kind"], "compressive");
+
+    // 3. the solver
+    let (n, m, s0, delta) = (64usize, 18usize, -0.1, 0.1);
+    let kap = 2.0 * PI * m as f64 / n as f64;
+    let (gamma, s, _) = classical_bar_growth(mc, h, delta, s0, kap);
+    let k = kernel::by_name("m4").unwrap();
+    let alpha: f64 = (1..=4)
+        .map(|j| -2.0 * kernel::dw(k, 1, j as f64, h) * (kap * j as f64).sin())
+        .sum();
+    let nu = -symbol("m4", h, delta, mc, kap);
+    let i = C::new(0.0, 1.0);
+    // the eigenvector of s: V = 1, U = V/s, R = −iαV/(s + ν), S = iα(1 + σ0)V/s
+    let (eu, er, es) = (1.0 / s, -i * alpha / (s + nu), i * alpha * (1.0 + s0) / s);
+    let model = Model::new(
+        classical(delta, mc),
+        (0..n).map(|j| [j as f64]).collect(),
+        vec![1.0; n],
+        1.0,
+        s0,
+        Some([[n as f64]]),
+    )
+    .unwrap();
+    let mut z = model.rest_state(1.0);
+    let eps = 1e-8;
+    for j in 0..n {
+        let ph = C::from_polar(1.0, kap * j as f64);
+        z.x[j][0] += eps * (eu * ph).re;
+        z.v[j][0] += eps * ph.re;
+        z.rho[j] += eps * (er * ph).re;
+        z.sigma[j][0][0] += eps * (es * ph).re;
+    }
+    let amp = |v: &[[f64; 1]]| -> f64 {
+        (0..n)
+            .map(|j| C::from_polar(v[j][0], -kap * j as f64))
+            .sum::<C>()
+            .norm()
+    };
+    let a0 = amp(&z.v);
+    let mut run = Run::with_prescribed(model, z, &vec![None; n]).unwrap();
+    run.set_integrator(Integrator::from_name("rk4", 40).unwrap());
+    let (dt, steps) = (0.05, 3000);
+    for _ in 0..steps {
+        run.step(dt).unwrap();
+    }
+    let meas = (amp(&run.z.v) / a0).ln() / (dt * steps as f64);
+    eprintln!(
+        "solver: growth {meas:.9} c/Δx at κΔx = {:.4}π, closed form {gamma:.9}",
+        kap / PI
+    );
+    assert!((meas / gamma - 1.0).abs() < 1e-5, "{meas} vs {gamma}");
+
+    // 4. 2D, the README's statements (16² zone grid): an elastic lattice carries its stress
+    // as a state, so the sum form's σ/ρ² term is the 1D mechanism and δ-SPH adds growth under
+    // compression; in a fluid the stress is the density, which the diffusion damps
+    let grows_2d = |material: &str, delta: bool| {
+        let mut args = vec![
+            "query",
+            "--dim",
+            "2",
+            "--material",
+            material,
+            "--form",
+            "classical",
+            "--h",
+            "1.2",
+            "--stress",
+            "-0.1",
+            "--grid",
+            "16",
+            "--json",
+        ];
+        if delta {
+            args.extend(["--delta", "0.1", "--delta-form", "molteni-colagrossi"]);
+        }
+        common::json(&args)["max_growth_rate"].as_f64().unwrap() > 0.0
+    };
+    assert!(!grows_2d("elastic", false) && grows_2d("elastic", true));
+    assert!(!grows_2d("hydro", false) && !grows_2d("hydro", true));
+}

@@ -234,6 +234,220 @@ fn study_rows_agree_with_the_closed_form_dynamical_matrix() {
     assert_eq!(pairs[3].2, 0.0, "{pairs:?}");
 }
 
+/// First-order change of the nearest-neighbour distances in the standing Bloch pattern
+/// u_j = ê cos(k·x_j) of the simple-cubic lattice at a wave vector with k_a ∈ {0, π} (X, M, R:
+/// every phase cos(k·x_j) is ±1): for the particle at `site`, the neighbours `site + r`
+/// (r = ±x̂, ±ŷ, ±ẑ) it approaches, δ|r| = r̂·ê (cos k·(site + r) − cos k·site) < 0.
+fn approached_neighbours(k: [f64; 3], e: [f64; 3], site: [i32; 3]) -> Vec<[i32; 3]> {
+    let phase = |p: [i32; 3]| {
+        (k[0] * f64::from(p[0]) + k[1] * f64::from(p[1]) + k[2] * f64::from(p[2])).cos()
+    };
+    let mut out = Vec::new();
+    for a in 0..3 {
+        for sign in [1, -1] {
+            let mut r = [0; 3];
+            r[a] = sign;
+            let nb = [site[0] + r[0], site[1] + r[1], site[2] + r[2]];
+            let delta = f64::from(sign) * e[a] * (phase(nb) - phase(site));
+            if delta < -1e-12 {
+                out.push(r);
+            }
+        }
+    }
+    out
+}
+
+/// Issue 24 item 6: the pairing study labels the growth at R = (π,π,π) (m4, h = 1.4Δx) and at
+/// M = (π,π,0) (m4, h = 1.8Δx) of the simple-cubic lattice as pairing; reproduced with
+/// `sphstab pairing --kernels m4 --lattices sc --h-min 1.4 --h-max 1.8 --h-step 0.4
+/// --stresses -0.1 --grid 2` (L-frac 1.000 at |κ|Δx/π = 1.7321 and 1.4142), while `sphstab query
+/// --dim 3 --lattice sc --material hydro --stress -0.1 --h 1.4 --grid 2` prints the same R mode
+/// with "longitudinal fraction 0.333". The label is right; this test says why, from routes
+/// independent of the engine (the closed-form D of [`closed_form_d`], the B-spline transform
+/// [`bspline_ft3`], the phase pattern):
+///
+/// 1. The eigenspace is degenerate by symmetry: at R, D = λI (every polarisation, so query's
+///    (0, 0, 1) with |ê·k̂|² = 1/3 is one arbitrary member of it), at M, D = diag(λ, λ, λ_z).
+///    The study's longitudinal fraction is that of the eigenspace, |P k̂|² = 1 (the largest over
+///    it), and it does not depend on the image of k (k and k − G, e.g. (π,π,π) and (−π,π,π),
+///    are the same lattice pattern; each one's k̂ lies in the eigenspace).
+/// 2. The growth there is the limit of longitudinal modes with a unique k̂: inside the zone at
+///    k = (1 − ε)R and (1 − ε)M the eigenvector along k̂ grows at a rate that tends to the
+///    eigenspace's as ε → 0. R and M are where the longitudinal branches along [111] (R) and
+///    [110], [1−10] (M) meet their transverse partners, so the largest longitudinal growth over
+///    the zone is at least the R or M rate whatever label R and M get; the study counts them for
+///    both, as documented.
+/// 3. It is the pairing mechanism: its sign is that of the kernel's 3D transform at |k|
+///    (Dehnen & Aly's criterion, W* < 0 under pressure), as for the X point's longitudinal mode:
+///    m4 at R grows for h = 1.2 and 1.4 (W*(√3π h) < 0) and not at 1.8, at M (x, y) grows for
+///    h = 1.8 only (W*(√2π h) < 0); Wendland C2 (W* > 0, Wendland 1995) never grows there. The
+///    transverse modes whose growth is a lattice effect (ẑ at M, ŷ at X) grow against the sign
+///    of W* (m4 h = 1.2 at M: W* > 0, ẑ grows) and change no neighbour distance.
+/// 4. The eigenspace holds a mode that pairs neighbours: ê = x̂ moves every particle head-on
+///    towards exactly one nearest neighbour, which moves towards it (the x-chains dimerise, the
+///    1D κΔx = π pattern), at R and M as at X. Its longitudinal member along [111] at R moves
+///    each particle towards three neighbours at once — that member alone would not be pairing,
+///    but it is not the whole eigenspace.
+#[test]
+fn pairing_at_the_symmetric_points_r_and_m_of_sc() {
+    use nalgebra::Vector3;
+    let sc = Lattice::<3>::sc();
+    let s = -0.1;
+    let (xp, mp, rp) = ([PI, 0.0, 0.0], [PI, PI, 0.0], [PI, PI, PI]);
+    let (ex, ey, ez) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
+    // the growth of polarisation e at k, checking that e is an eigenvector of the closed form
+    let growth = |name: &str, h: f64, k: [f64; 3], e: [f64; 3]| -> (f64, f64) {
+        let d = closed_form_d(kernel::by_name(name).unwrap(), &sc, h, s, k);
+        let v = Vector3::from(e).normalize();
+        let lam = v.dot(&(d * v));
+        assert!(
+            (d * v - v * lam).norm() <= 1e-12 * d.norm(),
+            "{name} h = {h}: {e:?} is not an eigenvector at {k:?}"
+        );
+        (lam, (-lam).max(0.0).sqrt())
+    };
+    let grows = |g: f64| g > 1e-6;
+
+    // 1. degeneracy: R isotropic, M (x, y) degenerate
+    for h in [1.2, 1.4, 1.8] {
+        let r: Vec<f64> = [ex, ey, ez, [1.0, 1.0, 1.0], [1.0, -2.0, 0.5]]
+            .iter()
+            .map(|&e| growth("m4", h, rp, e).0)
+            .collect();
+        assert!(
+            r.iter().all(|l| (l - r[0]).abs() <= 1e-12 * r[0].abs()),
+            "R, h = {h}: {r:?}"
+        );
+        let (mx, my, mxy) = (
+            growth("m4", h, mp, ex).0,
+            growth("m4", h, mp, ey).0,
+            growth("m4", h, mp, [1.0, 1.0, 0.0]).0,
+        );
+        assert!((mx - my).abs() <= 1e-12 * mx.abs() && (mx - mxy).abs() <= 1e-12 * mx.abs());
+    }
+
+    // 3. the sign follows W*(|k|h) of the closed-form m4 transform
+    let w4 = |k: f64, h: f64| bspline_ft3(4, k * h);
+    let (kr, km) = (3f64.sqrt() * PI, 2f64.sqrt() * PI);
+    for h in [1.2, 1.4, 1.8] {
+        let (gr, gm) = (growth("m4", h, rp, ex).1, growth("m4", h, mp, ex).1);
+        eprintln!(
+            "m4 h = {h}: R growth {gr:.6} (W*(√3π h) = {:+.3e}), M (x, y) growth {gm:.6} (W*(√2π h) = {:+.3e})",
+            w4(kr, h),
+            w4(km, h)
+        );
+        assert_eq!(grows(gr), w4(kr, h) < 0.0, "R, h = {h}");
+        assert_eq!(grows(gm), w4(km, h) < 0.0, "M, h = {h}");
+    }
+    assert!(grows(growth("m4", 1.2, mp, ez).1) && w4(km, 1.2) > 0.0);
+    for h in [0.8, 1.2, 1.6, 2.0] {
+        assert!(
+            !grows(growth("wendland-c2", h, rp, ex).1),
+            "wendland-c2 R, h = {h}"
+        );
+        assert!(
+            !grows(growth("wendland-c2", h, mp, ex).1),
+            "wendland-c2 M, h = {h}"
+        );
+    }
+
+    // 4. x̂ pairs nearest neighbours at X, M and R; [111] at R, ẑ at M and ŷ at X do not
+    for k in [xp, mp, rp] {
+        assert_eq!(
+            approached_neighbours(k, ex, [0, 0, 0]),
+            vec![[1, 0, 0]],
+            "{k:?}"
+        );
+        assert_eq!(
+            approached_neighbours(k, ex, [1, 0, 0]),
+            vec![[-1, 0, 0]],
+            "{k:?}"
+        );
+    }
+    assert_eq!(
+        approached_neighbours(rp, [1.0, 1.0, 1.0], [0, 0, 0]).len(),
+        3
+    );
+    assert!(approached_neighbours(mp, ez, [0, 0, 0]).is_empty());
+    assert!(approached_neighbours(xp, ey, [0, 0, 0]).is_empty());
+
+    // 2. continuity: inside the zone along [111] and [110] the longitudinal eigenvector's
+    // growth tends to the R and M rate (linearly in ε)
+    for (h, p) in [(1.4, rp), (1.8, mp)] {
+        let g0 = growth("m4", h, p, ex).1;
+        let mut gaps = Vec::new();
+        for eps in [1e-3, 1e-4] {
+            let k = p.map(|c| (1.0 - eps) * c);
+            let kn = (k[0] * k[0] + k[1] * k[1] + k[2] * k[2]).sqrt();
+            let e = nalgebra::SymmetricEigen::new(closed_form_d(
+                kernel::by_name("m4").unwrap(),
+                &sc,
+                h,
+                s,
+                k,
+            ));
+            let (lf, lam) = (0..3)
+                .map(|i| {
+                    let v = e.eigenvectors.column(i);
+                    (
+                        ((v[0] * k[0] + v[1] * k[1] + v[2] * k[2]) / kn).powi(2),
+                        e.eigenvalues[i],
+                    )
+                })
+                .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+            assert!(
+                lf > 1.0 - 1e-9,
+                "h = {h}, ε = {eps}: no mode along k̂ ({lf})"
+            );
+            let gl = (-lam).max(0.0).sqrt();
+            gaps.push((gl - g0).abs());
+            eprintln!("h = {h}, k = (1 − {eps:e})·{p:?}: longitudinal growth {gl:.6} vs {g0:.6}");
+        }
+        assert!(
+            gaps[1] < 1e-4 * g0 && gaps[1] < 0.2 * gaps[0],
+            "h = {h}: {gaps:?}"
+        );
+    }
+
+    // the study on the grid 2³, which samples X, M and R only: pairing is the growth of the
+    // x̂ mode (the neighbour-pairing one) at the fastest of them; the degenerate eigenspaces
+    // (R; M's (x, y)) count as transverse too, next to ŷ at X and ẑ at M
+    for (h, at) in [(1.2, rp), (1.4, rp), (1.8, mp)] {
+        let row = evaluate_row(
+            kernel::by_name("m4").unwrap(),
+            ("sc", sc),
+            h,
+            s,
+            2,
+            None,
+            &Default::default(),
+        )
+        .unwrap();
+        let pairing = [xp, mp, rp].map(|k| growth("m4", h, k, ex).1);
+        let transverse = [
+            growth("m4", h, xp, ey).1,
+            growth("m4", h, mp, ez).1,
+            growth("m4", h, mp, ex).1,
+            growth("m4", h, rp, ex).1,
+        ];
+        let want = pairing.iter().copied().fold(0.0, f64::max);
+        let want_t = transverse.iter().copied().fold(0.0, f64::max);
+        let got = row.pairing_growth_rate.unwrap();
+        assert!(
+            (got - want).abs() <= 1e-9 * want,
+            "h = {h}: pairing {got} vs {want}"
+        );
+        let got_t = row.transverse_growth_rate.unwrap();
+        assert!(
+            (got_t - want_t).abs() <= 1e-9 * want_t,
+            "h = {h}: transverse {got_t} vs {want_t}"
+        );
+        let pk = row.pairing_kappa.unwrap();
+        let count = |k: [f64; 3]| k.iter().filter(|c| (c.abs() - PI).abs() < 1e-12).count();
+        assert_eq!(count(pk), count(at), "h = {h}: pairing at {pk:?}");
+    }
+}
+
 #[test]
 fn neighbour_numbers_count_the_shells_of_the_lattice() {
     // sc shells: 1 + 6 (r = 1) + 12 (√2) + 8 (√3) + 6 (2) + 24 (√5) = 57 inside r < 2.4

@@ -141,9 +141,15 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         std::fs::write(dir.join("history.csv"), h)
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
         if let Some(z) = &r.final_state {
+            let form = sphstab::forms::FormKind::by_name(r.form)?;
             std::fs::write(
                 dir.join("final.vtk"),
-                vtk_state(&format!("{} {} t={:e}", r.name, r.form, r.t), z),
+                vtk_state(
+                    &format!("{} {} t={:e}", r.name, r.form, r.t),
+                    z,
+                    form,
+                    scene.c_partition,
+                ),
             )
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
         }
@@ -164,6 +170,20 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             .map(|e| format!("{e:.4e}"))
             .unwrap_or("n/a".into()),
     );
+    if let Some(s) = r.stress {
+        let c = r
+            .c_partition
+            .map(|c| format!(" ((1 − c)σ + cτ, c = {c})"))
+            .unwrap_or_default();
+        println!(
+            "final stress{c} in [{:.4e}, {:.4e}] Pa; max stress error vs analytic: {}",
+            s.min,
+            s.max,
+            s.error_max
+                .map(|e| format!("{e:.4e} of max |σ_exact|"))
+                .unwrap_or("n/a".into()),
+        );
+    }
     Ok(())
 }
 

@@ -162,8 +162,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
                 r.density_ratio,
                 r.dt * r.steps as f64
             );
-            std::fs::write(dir.join("final.vtk"), z.vtk(&title))
-                .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
+            std::fs::write(
+                dir.join("final.vtk"),
+                z.vtk(&title, cfg.form, cfg.c_partition),
+            )
+            .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
         }
     }
     if let Some(path) = &a.plot {

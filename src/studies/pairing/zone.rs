@@ -68,8 +68,19 @@ pub const DEGENERACY_TOL: f64 = 1e-9;
 /// grouped into eigenspaces: an eigenspace with ω² < 0 is longitudinal when it holds a mode with
 /// |ê·k̂|² ≥ [`LONGITUDINAL`] (its longitudinal fraction = |P k̂|², P the projector onto it) and
 /// transverse when it holds one with |ê·k̂|² < ½ (dimension ≥ 2, or a single mode with
-/// |ê·k̂|² < ½). A degenerate longitudinal + transverse pair (e.g. at the M point of sc by
-/// symmetry) counts for both.
+/// |ê·k̂|² < ½). A degenerate longitudinal + transverse pair counts for both.
+///
+/// At the symmetric points of the zone the eigenspace is degenerate by symmetry (sc: all of R³
+/// at R = (π,π,π), the (x, y) plane at M = (π,π,0)), so |P k̂|² = 1 there for every image of k
+/// (k and k − G are one lattice pattern; each image's k̂ lies in P), and the growth is counted
+/// as pairing and as transverse. That is the label the zone's interior gives it: R and M are
+/// where the longitudinal branches along [111] (R) and [110], [1−10] (M) meet their transverse
+/// partners, so modes along a unique k̂ grow arbitrarily close to the R or M rate. The growth
+/// there has the sign of the kernel's W*(|k|) (the pairing mechanism), and the eigenspace holds
+/// ê = x̂, which moves every particle head-on towards one nearest neighbour, as the
+/// longitudinal mode at X does (tests/it/pairing.rs,
+/// `pairing_at_the_symmetric_points_r_and_m_of_sc`). A single member of the eigenspace, such as
+/// the polarisation `query` prints at R (|ê·k̂|² = 1/3), says nothing about the eigenspace.
 pub(super) fn scan_k<const D: usize>(lin: &Bloch<D>, k: [f64; D]) -> Result<Scan> {
     let d = lin.dynamical(k);
     let big = d.iter().flatten().map(|c| c.norm()).fold(0.0f64, f64::max);

@@ -1,6 +1,6 @@
 //! The Swegle report: the measured and predicted growth rates, the history and the final state.
 
-use crate::forms::State;
+use crate::forms::{FormKind, State};
 use crate::solver::diagnostics::GrowthFit;
 use crate::solver::run::BoundaryDensity;
 use serde::Serialize;
@@ -15,11 +15,13 @@ pub enum FinalState {
 }
 
 impl FinalState {
-    /// Legacy VTK of the particles ([`crate::solver::output::vtk_state`]; 3D points in both cases).
-    pub fn vtk(&self, title: &str) -> String {
+    /// Legacy VTK of the particles of a run of `form` with partition coefficient
+    /// `c_partition` ([`crate::solver::output::vtk_state`]; 3D points in both cases).
+    pub fn vtk(&self, title: &str, form: FormKind, c_partition: f64) -> String {
+        use crate::solver::output::vtk_state;
         match self {
-            FinalState::Two(z) => crate::solver::output::vtk_state(title, z),
-            FinalState::Three(z) => crate::solver::output::vtk_state(title, z),
+            FinalState::Two(z) => vtk_state(title, z, form, c_partition),
+            FinalState::Three(z) => vtk_state(title, z, form, c_partition),
         }
     }
 }
