@@ -30,7 +30,7 @@ const TOL: f64 = 1e-12;
 
 /// Fields schema version 1 adds to some reports (the header in every dimension, the 1D
 /// polarisation and zone fraction, the path of a 1D dispersion, the 2D/3D `timestep` header).
-const ADDED: [&str; 18] = [
+const ADDED: [&str; 19] = [
     // issue 24 (item 2 and 3): `timestep` reports the physical growth apart from the time-step
     // limit, names the added growth and gives the decay rate its own field
     "physical_growth_rate",
@@ -38,6 +38,8 @@ const ADDED: [&str; 18] = [
     "added_growth_kind",
     "decay_rate_max",
     "critical_dt_inviscid",
+    // issue 24 (item 8): `simulate` reports the stress each form integrates (min, max, error)
+    "stress",
     "schema_version",
     "dim",
     "shape",
