@@ -47,6 +47,21 @@ pub fn dispersion<const D: usize>(q: &Query<D>, points: usize) -> Result<Dispers
     }
 }
 
+/// The critical Δt (Δx/c) of `q.integrator` at `tol` growth per step beyond the semi-discrete
+/// system ([`crate::vonneumann::amplification::step_stability_to`]; [`timestep`]'s
+/// `critical_dt` is the one at 1e-7): what a measurement that resolves `tol` per step can see.
+/// None for a weak instability.
+pub fn critical_dt_to<const D: usize>(q: &Query<D>, tol: f64) -> Result<Option<f64>> {
+    use crate::vonneumann::amplification::step_stability_to;
+    crate::error::check_range("tol", tol, 0.0, 1.0, false, true)?;
+    let st = if D == 1 {
+        step_stability_to(&q.chain()?, &q.kappas(), q.integrator, tol)?
+    } else {
+        step_stability_to(&q.linearise_at(q.stress)?, &q.kgrid(), q.integrator, tol)?
+    };
+    Ok(st.critical_dt)
+}
+
 /// The critical time step of `q.integrator` (with 2/ω_max and, for dissipative systems,
 /// \[B00\] eq 120) and its spurious growth at `q.dt` (default 1/ω_max).
 pub fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {

@@ -182,6 +182,40 @@ pub struct ArtificialViscosity {
     pub approaching_only: bool,
 }
 
+/// Which pairs Monaghan viscosity acts on.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ViscosityPairs {
+    /// Approaching pairs only (v_IJ·x_IJ < 0), as SPH codes apply it: the solver's default.
+    #[default]
+    OneSided,
+    /// Every pair, receding ones too: the linearisation of the analysis (\[V21 App. B\]).
+    TwoSided,
+}
+
+impl ViscosityPairs {
+    /// The names, as the CLI and the scene files spell them.
+    pub const ALL: [(ViscosityPairs, &'static str); 2] = [
+        (ViscosityPairs::OneSided, "one-sided"),
+        (ViscosityPairs::TwoSided, "two-sided"),
+    ];
+
+    /// The variant of a name (`what`: the flag or field in the error).
+    pub fn by_name(what: &'static str, name: &str) -> Result<Self> {
+        crate::error::lookup(what, &Self::ALL, name)
+    }
+
+    /// The name.
+    pub fn name(self) -> &'static str {
+        crate::error::name_in(&Self::ALL, self)
+    }
+
+    /// [`ArtificialViscosity::approaching_only`].
+    pub fn approaching_only(self) -> bool {
+        self == ViscosityPairs::OneSided
+    }
+}
+
 /// Parameters of a particle model (any dimension).
 #[derive(Clone, Copy, Debug)]
 pub struct ModelParams {

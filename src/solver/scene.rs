@@ -9,7 +9,9 @@
 use super::run::Run;
 use crate::budget::{Budget, fmt_count};
 use crate::error::{Error, Result, field, fields};
-use crate::forms::{ArtificialViscosity, FormKind, Material, Model, ModelParams, State};
+use crate::forms::{
+    ArtificialViscosity, FormKind, Material, Model, ModelParams, State, ViscosityPairs,
+};
 use crate::kernel;
 use crate::params::{ParamNames, check_common_named};
 use crate::progress::Progress;
@@ -103,9 +105,13 @@ pub struct Scene1D {
     /// Right end layer.
     #[serde(default)]
     pub right: Option<EndLayer>,
-    /// Monaghan viscosity (α, β), acting on approaching pairs.
+    /// Monaghan viscosity (α, β).
     #[serde(default)]
     pub artificial_viscosity: Option<(f64, f64)>,
+    /// Which pairs the viscosity acts on: `one-sided` (approaching pairs only, as SPH codes
+    /// apply it; default) or `two-sided` (every pair, as the analysis linearises it).
+    #[serde(default)]
+    pub artificial_viscosity_pairs: ViscosityPairs,
     /// End time (s).
     pub t_end: f64,
     /// Δt in Δx/c.
@@ -416,7 +422,7 @@ impl Scene1D {
                     alpha,
                     beta,
                     sound_speed: c,
-                    approaching_only: true,
+                    approaching_only: self.artificial_viscosity_pairs.approaching_only(),
                 }),
             art_stress: None,
             diffusion: None,

@@ -8,6 +8,7 @@ pub mod box_operator;
 pub mod config;
 pub mod kernel_guide;
 pub mod pairing;
+pub mod stable_dt;
 pub mod swegle;
 pub mod throughput;
 pub mod tradeoff;

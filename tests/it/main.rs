@@ -39,6 +39,7 @@ mod vonneumann3d;
 mod integrator;
 mod integrators;
 mod long_run;
+mod stable_dt;
 
 // the reference solver against the engine
 mod pair_reuse;

@@ -97,6 +97,27 @@ fn unknown_scene_fields_are_rejected_by_name() {
     assert!(e.to_string().contains("colour") && e.to_string().contains("s.json"));
 }
 
+/// `artificial_viscosity_pairs`: the scene chooses which pairs the viscosity acts on (the
+/// wall-impact wave's history changes: behind the front pairs recede as well as approach; the
+/// time-domain effect on stability is `stable_dt::`); an unknown value names the field.
+#[test]
+fn scene_viscosity_pairs() {
+    let one = builtin("compressive-wave").unwrap();
+    let mut v: serde_json::Value =
+        serde_json::from_str(&serde_json::to_string(&one).unwrap()).unwrap();
+    v["artificial_viscosity_pairs"] = serde_json::json!("two-sided");
+    let two = parse("s.json", &v.to_string()).unwrap();
+    let ke = |s: &sphstab::solver::scene::Scene1D| s.run(|_| {}).unwrap().history.last().unwrap().2;
+    let (k1, k2) = (ke(&one), ke(&two));
+    assert!(
+        (k2 - k1).abs() > 1e-6 * k1,
+        "two-sided {k2} vs one-sided {k1}"
+    );
+    v["artificial_viscosity_pairs"] = serde_json::json!("both");
+    let e = parse("s.json", &v.to_string()).unwrap_err().to_string();
+    assert!(e.contains("one-sided") && e.contains("s.json"), "{e}");
+}
+
 /// [T §4.6.3.6] reflection/transmission at a density interface: reflected and transmitted
 /// particle-velocity amplitudes (from pulse integrals, which dispersion leaves unchanged) against
 /// linear theory (−C_r and 2Z_A/(Z_A+Z_B), [T] eq 4.45–4.46), ρ_B/ρ_A = 0.25, 0.5, 2, 4.

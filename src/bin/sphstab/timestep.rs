@@ -4,6 +4,8 @@ use crate::common::{Config, IntegratorArgs};
 use anyhow::Result;
 use sphstab::analysis::IntegratorReport;
 use sphstab::budget::Budget;
+use sphstab::forms::ViscosityPairs;
+use sphstab::studies::stable_dt::{self, ProbeRun, StableDtReport};
 
 /// Flags of `timestep`.
 #[derive(clap::Args, Debug)]
@@ -15,6 +17,16 @@ pub struct Args {
     points: Option<usize>,
     #[command(flatten)]
     integ: IntegratorArgs,
+    /// Also measure the largest stable Δt in the time domain: the same solver on a periodic
+    /// body of the lattice (64 particles in 1D), Δt bisected to 1% (seconds in 1D, up to
+    /// minutes in 3D; budget --max-steps).
+    #[arg(long)]
+    verify: bool,
+    /// Which pairs the viscosity of the --verify runs acts on: one-sided (approaching pairs
+    /// only, as SPH codes apply it; default) or two-sided (every pair, as the analysis
+    /// linearises it). Needs --verify and --av-alpha.
+    #[arg(long)]
+    viscosity: Option<String>,
     /// Print one JSON document instead of text.
     #[arg(long)]
     json: bool,
@@ -94,9 +106,37 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     a.cfg.grid = crate::query::points_as_grid(D as u8, a.points, a.cfg.grid)?;
     let mut q = a.cfg.query::<D>(budget)?;
     q.integrator = a.integ.integrator()?;
+    let pairs = match &a.viscosity {
+        None => ViscosityPairs::OneSided,
+        Some(_) if !a.verify => {
+            return Err(crate::query::not_in(
+                "--viscosity",
+                "timestep without --verify (the analysis applies viscosity to every pair)",
+            ));
+        }
+        Some(_) if q.av.is_none() => {
+            return Err(crate::query::not_in(
+                "--viscosity",
+                "timestep without --av-alpha (no viscosity to switch)",
+            ));
+        }
+        Some(name) => ViscosityPairs::by_name("--viscosity", name)?,
+    };
     let r = sphstab::analysis::timestep(&q)?;
+    let verified = if a.verify {
+        let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
+        let v = sphstab::studies::stable_dt::stable_dt(&q, pairs, &pb)?;
+        pb.finish();
+        Some(v)
+    } else {
+        None
+    };
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        let mut doc = serde_json::to_value(&r)?;
+        if let (Some(v), Some(map)) = (&verified, doc.as_object_mut()) {
+            map.insert("verify".into(), serde_json::to_value(v)?);
+        }
+        println!("{}", serde_json::to_string_pretty(&doc)?);
         return Ok(());
     }
     println!("{}", r.header);
@@ -127,9 +167,70 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     print_step(&r.step);
     if let Some(d) = r.critical_dt_inviscid {
         println!(
-            "viscosity: the analysis applies it to every pair (two-sided); codes switch it off for receding pairs, and their measured limits lay between this Δt and the inviscid one, {} Δx/c",
+            "viscosity: the analysis applies it to every pair (two-sided); codes switch it off for receding pairs, which --verify measures (for schemes stable without viscosity that limit lies between this Δt and the inviscid one, {} Δx/c)",
             plain(d)
         );
     }
+    if let Some(v) = &verified {
+        print_verify(v);
+    }
     Ok(())
+}
+
+/// The time-domain part of the text output (`--verify`).
+fn print_verify(v: &StableDtReport) {
+    let size = v
+        .stable_run
+        .as_ref()
+        .or(v.unstable_run.as_ref())
+        .map_or(0, |p| p.particles);
+    println!(
+        "time domain ({}, viscosity {}, periodic body of {size} particles, {} steps per run, {} runs): growth allowed = physical rate within 1% + {} per step",
+        v.integrator,
+        v.viscosity.map_or("none", |p| p.name()),
+        stable_dt::STEPS,
+        v.runs,
+        plain(stable_dt::FLOOR_PER_STEP)
+    );
+    let rate = |p: &ProbeRun| {
+        p.growth_rate
+            .map_or("diverged".into(), |g| format!("{} c/Δx", plain(g)))
+    };
+    match (&v.measured_dt, &v.stable_run, &v.unstable_run) {
+        (Some(dt), Some(s), Some(u)) => {
+            println!(
+                "largest stable Δt (measured) = {} Δx/c: the run at Δt = {} grows at {} (allowed {}); at Δt = {} it grows at {}",
+                plain(*dt),
+                plain(s.dt),
+                rate(s),
+                plain(s.allowed_growth_rate),
+                plain(u.dt),
+                rate(u)
+            );
+            if let Some(p) = v.predicted_dt_at_resolution {
+                println!(
+                    "analysis at the runs' resolution ({}added growth ≤ {} per step): {} Δx/c; measured / analysis = {}",
+                    if v.viscosity.is_some() {
+                        "viscosity two-sided, "
+                    } else {
+                        ""
+                    },
+                    plain(stable_dt::FLOOR_PER_STEP),
+                    plain(p),
+                    plain(v.ratio.unwrap_or(f64::NAN))
+                );
+            }
+        }
+        (_, Some(s), None) => println!(
+            "no time-step limit found: stable up to Δt = {} Δx/c (growth {})",
+            plain(s.dt),
+            rate(s)
+        ),
+        (_, _, Some(u)) => println!(
+            "no stable Δt found: the run at Δt = {} Δx/c still grows at {}",
+            plain(u.dt),
+            rate(u)
+        ),
+        _ => {}
+    }
 }

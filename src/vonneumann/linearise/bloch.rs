@@ -73,10 +73,41 @@ fn patch<const D: usize>(
     budget: &Budget,
 ) -> Result<(Model<D>, Vec<[f64; D]>)> {
     let r = p.kp.support();
-    if D == 2 {
-        let range = (2.0 * r / (dx * lat.plane_spacing())).ceil() as usize + 2;
-        let n = 2 * range + 1;
-        check_patch_budget(&p, lat, dx, n.pow(D as u32), budget)?;
+    let cells = if D == 2 {
+        2 * ((2.0 * r / (dx * lat.plane_spacing())).ceil() as usize + 2) + 1
+    } else {
+        let reach = if p.form == FormKind::TotalLagrangian {
+            2.0 * r
+        } else {
+            r
+        };
+        (2.0 * reach / (dx * cube_side(lat))).ceil() as usize + 2
+    };
+    check_patch_budget(&p, lat, dx, lattice_particles(lat, cells), budget)?;
+    periodic_lattice(p, lat, dx, rho, s0, cells)
+}
+
+/// Particles of [`periodic_lattice`] with `cells` cells per side.
+pub fn lattice_particles<const D: usize>(lat: &Lattice<D>, cells: usize) -> usize {
+    cells.pow(D as u32) * if D == 3 { cube_basis(lat).len() } else { 1 }
+}
+
+/// The uniformly pre-stressed periodic lattice `lat` (spacing `dx`) at rest, density `rho` and
+/// isotropic stress `s0` ([`base_state`]), `cells` cells per side: 1D, `cells` particles; 2D,
+/// `cells` × `cells` primitive cells; 3D, `cells`³ conventional cubes (orthogonal, so the
+/// cell list applies). With the relative position of every particle from particle 0 (units
+/// of `dx`, minimum image). The Bloch linearisation's patch, and the periodic body of a
+/// time-domain check of the same lattice.
+pub fn periodic_lattice<const D: usize>(
+    p: ModelParams,
+    lat: &Lattice<D>,
+    dx: f64,
+    rho: f64,
+    s0: f64,
+    cells: usize,
+) -> Result<(Model<D>, Vec<[f64; D]>)> {
+    let n = cells;
+    if D <= 2 {
         let mut nn = [0; D];
         nn.fill(n);
         let model = Model::periodic_patch(p, lat, dx, nn, rho, s0)?;
@@ -86,27 +117,25 @@ fn patch<const D: usize>(
             if a <= n as i64 / 2 { a } else { a - n as i64 }
         };
         let a = lat.a;
-        let offs = (0..n * n)
+        let offs = (0..n.pow(D as u32))
             .map(|idx| {
-                let (o0, o1) = (w(idx / n) as f64, w(idx % n) as f64);
+                let (o0, o1) = if D == 1 {
+                    (w(idx) as f64, 0.0)
+                } else {
+                    (w(idx / n) as f64, w(idx % n) as f64)
+                };
                 let mut r = [0.0; D];
                 for c in 0..D {
-                    r[c] = o0 * a[0][c] + o1 * a[1][c];
+                    r[c] = o0 * a[0][c] + if D == 2 { o1 * a[1][c] } else { 0.0 };
                 }
                 r
             })
             .collect();
         return Ok((model, offs));
     }
-    let reach = if p.form == FormKind::TotalLagrangian {
-        2.0 * r
-    } else {
-        r
-    };
     let side = cube_side(lat);
-    let m = (2.0 * reach / (dx * side)).ceil() as usize + 2;
+    let m = n;
     let basis = cube_basis(lat);
-    check_patch_budget(&p, lat, dx, m.pow(D as u32) * basis.len(), budget)?;
     let mut x = Vec::with_capacity(m.pow(D as u32) * basis.len());
     for idx in 0..m.pow(D as u32) {
         let c = grid_index::<D>(idx, m);
