@@ -40,8 +40,11 @@ pub struct LinePlot {
     pub y_desc: String,
     /// Curves, styled by index ([`curve_style`]).
     pub curves: Vec<Curve>,
-    /// Fixed vertical range (None: [`auto_range`]); curves leaving it are marked as clipped.
+    /// Fixed vertical range (None: [`auto_range`] over the points within the horizontal
+    /// range); curves leaving it are marked as clipped.
     pub y_range: Option<(f64, f64)>,
+    /// Fixed horizontal range (None: the data's); curves are clipped to it.
+    pub x_range: Option<(f64, f64)>,
     /// Draw the line y = 0 and keep 0 inside the automatic range.
     pub zero_line: bool,
     /// Named abscissae (e.g. Γ, X, M of a dispersion path): tick labels instead of numbers,
@@ -149,7 +152,18 @@ impl LinePlot {
         if let Some(r) = self.y_range {
             return r;
         }
-        let ys: Vec<&[f64]> = self.curves.iter().map(|c| c.y.as_slice()).collect();
+        let inside: Vec<Vec<f64>> = self
+            .curves
+            .iter()
+            .map(|c| {
+                c.x.iter()
+                    .zip(&c.y)
+                    .filter(|(x, _)| self.x_range.is_none_or(|(a, b)| (a..=b).contains(*x)))
+                    .map(|(_, y)| *y)
+                    .collect()
+            })
+            .collect();
+        let ys: Vec<&[f64]> = inside.iter().map(Vec::as_slice).collect();
         let r = auto_range(&ys, self.zero_line);
         let pad = 0.04 * (r.hi - r.lo);
         (r.lo - pad, r.hi + pad)
@@ -178,6 +192,7 @@ impl LinePlot {
         } else {
             x0
         };
+        let (x0, x1) = self.x_range.unwrap_or((x0, x1));
         let (lo, hi) = self.y_limits();
         let entries = legend_entries(&self.curves, lo, hi);
         // legend column width from its longest label (wrapped beyond 46 characters)
@@ -447,50 +462,18 @@ pub const KAPPA_DESC: &str = "wave number κΔx/π (dimensionless; 1 is the cut-
 /// Ordinate description of every dispersion plot.
 pub const OMEGA2_DESC: &str = "ω²Δx²/c² (squared frequency in units of c²/Δx²; < 0: growth)";
 
-/// ω²Δx²/c² of a form (`form`: its name in the legend) against κΔx/π, with the continuum
-/// `omega2_continuum` overlaid (every curve whole: the range comes from the data); the abscissa
-/// is the κΔx grid `kappa_dx`.
-pub fn dispersion_svg(
-    title: &str,
-    form: &str,
-    kappa_dx: &[f64],
-    omega2: &[f64],
-    omega2_continuum: &[f64],
-) -> Result<String> {
-    let xs: Vec<f64> = kappa_dx.iter().map(|k| k / std::f64::consts::PI).collect();
-    let curves = vec![
-        Curve {
-            label: format!("{form} (numeric engine)"),
-            x: xs.clone(),
-            y: omega2.to_vec(),
-            dashed: false,
-        },
-        Curve {
-            label: "continuum (1 + σ̄)(κΔx)²  [B00 eq 32]".into(),
-            x: xs,
-            y: omega2_continuum.to_vec(),
-            dashed: true,
-        },
-    ];
-    LinePlot {
-        zero_line: true,
-        ..LinePlot::new(title, KAPPA_DESC, OMEGA2_DESC, curves)
-    }
-    .svg()
-}
-
 /// Axis description of every damping plot.
 pub const DAMPING_DESC: &str = "Re s Δx/c (damping rate in units of c/Δx; < 0: damped)";
 
-/// Damping curves Re s(x) of branches with labels; a null (ambiguous matching) leaves a gap.
-/// `x_ticks` names abscissae (symmetry points of a path).
-pub fn damping_curves_svg(
+/// The plot of damping curves Re s(x) of branches with labels (a null, an ambiguous
+/// matching, leaves a gap); `x_ticks` names abscissae (symmetry points of a path).
+pub fn damping_plot(
     title: &str,
     x_desc: &str,
     x: &[f64],
     branches: &[(String, Vec<Option<f64>>)],
     x_ticks: Option<Vec<(f64, String)>>,
-) -> Result<String> {
+) -> LinePlot {
     let curves: Vec<Curve> = branches
         .iter()
         .map(|(label, y)| Curve {
@@ -509,25 +492,6 @@ pub fn damping_curves_svg(
         ],
         ..LinePlot::new(title, x_desc, DAMPING_DESC, curves)
     }
-    .svg()
-}
-
-/// Damping rate Re s(κ) of a form's mechanical branch (`form`: its name in the legend)
-/// against κΔx/π; a null `rate` leaves a gap. The title is `title` — damping.
-pub fn damping_svg(
-    title: &str,
-    form: &str,
-    kappa_dx: &[f64],
-    rate: &[Option<f64>],
-) -> Result<String> {
-    let xs: Vec<f64> = kappa_dx.iter().map(|k| k / std::f64::consts::PI).collect();
-    damping_curves_svg(
-        &format!("{title} — damping"),
-        KAPPA_DESC,
-        &xs,
-        &[(format!("{form} (eigenvalues of J(κ))"), rate.to_vec())],
-        None,
-    )
 }
 
 #[cfg(test)]

@@ -13,8 +13,7 @@ pub mod style;
 pub use heatmap::{heatmap_svg, ramp};
 pub use lines::{
     COINCIDE_TOL, Curve, DAMPING_DESC, KAPPA_DESC, LegendEntry, LinePlot, MARKERS_PER_CURVE,
-    OMEGA2_DESC, curve_style, damping_curves_svg, damping_svg, dispersion_svg, legend_entries,
-    lines_svg,
+    OMEGA2_DESC, curve_style, damping_plot, legend_entries, lines_svg,
 };
 pub use scatter::{
     COINCIDE_PX, FRONT_STYLE, Panel, PanelCurve, ScatterPanel, coinciding_groups, group_style,

@@ -69,6 +69,7 @@ mod tradeoff;
 mod cli;
 mod cli2d;
 mod cli_throughput;
+mod compare;
 mod fuzz_cli;
 mod limits;
 mod throughput3d;

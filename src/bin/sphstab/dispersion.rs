@@ -18,9 +18,39 @@ pub struct Args {
     #[arg(long)]
     json: bool,
     /// Write an SVG plot of ω²Δx²/c² against κΔx/π to this file; for a dissipative system also
-    /// the damping rate Re s to FILE-damping.svg (same directory).
+    /// the damping rate Re s to FILE-damping.svg (same directory). With --vary or a list in
+    /// --form/--kernel, every series on one figure.
     #[arg(long)]
     plot: Option<std::path::PathBuf>,
+    /// Only this range of the abscissa, LO,HI: 1D κΔx/π in [0, 1]; 2D/3D the path coordinate
+    /// s of the table's first column (the plot's abscissa). Table rows and plot.
+    #[arg(long = "kappa-range", value_name = "LO,HI", allow_hyphen_values = true)]
+    kappa_range: Option<String>,
+    /// Vertical range of the plot, LO,HI in ω²Δx²/c² (default: the data's within the
+    /// abscissa range). Needs --plot.
+    #[arg(long = "y-range", value_name = "LO,HI", allow_hyphen_values = true)]
+    y_range: Option<String>,
+    #[command(flatten)]
+    vary: crate::vary::VaryArgs,
+}
+
+/// A `LO,HI` flag: two finite numbers, LO < HI.
+fn range(flag: &str, v: &Option<String>) -> Result<Option<(f64, f64)>> {
+    let Some(v) = v else { return Ok(None) };
+    let bad = || {
+        anyhow::Error::from(sphstab::error::Error::Incompatible(
+            format!("{flag} {v}: expected LO,HI, two finite numbers with LO < HI").into(),
+        ))
+    };
+    let (lo, hi) = v.split_once(',').ok_or_else(bad)?;
+    let (lo, hi): (f64, f64) = (
+        lo.trim().parse().map_err(|_| bad())?,
+        hi.trim().parse().map_err(|_| bad())?,
+    );
+    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        return Err(bad());
+    }
+    Ok(Some((lo, hi)))
 }
 
 /// The second figure of `--plot FILE.svg`: FILE-damping.svg next to it.
@@ -53,6 +83,12 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             "dispersion (it samples the high-symmetry path: use --points)",
         ));
     }
+    if a.y_range.is_some() && a.plot.is_none() {
+        return Err(crate::query::not_in(
+            "--y-range",
+            "no --plot (it sets the plot's vertical range)",
+        ));
+    }
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }
@@ -75,95 +111,212 @@ fn branch_names(d: usize) -> Vec<&'static str> {
 }
 
 /// `--plot`: ω² against κΔx/π with the continuum in 1D, along the high-symmetry path with both
-/// continuum branches for D ≥ 2; the damping rate to FILE-damping.svg for dissipative systems.
-fn plot<const D: usize>(path: &std::path::Path, r: &DispersionReport) -> Result<()> {
+/// continuum branches for D ≥ 2, every series on one figure (named by its label; a single
+/// question by its form); the damping rate to FILE-damping.svg for dissipative systems.
+fn plot<const D: usize>(
+    path: &std::path::Path,
+    title: &str,
+    series: &[(String, DispersionReport)],
+    x_range: Option<(f64, f64)>,
+    y_range: Option<(f64, f64)>,
+) -> Result<()> {
     use sphstab::plot::{Curve, LinePlot};
-    let title = r.header.to_string();
-    let form = r.header.setup.form;
-    if D == 1 {
-        let k = r.path.clone();
-        let svg = sphstab::plot::dispersion_svg(
-            &title,
-            form,
-            &k,
-            &r.omega2_branch(0),
-            &r.continuum_branch(0),
-        )?;
-        write_svg(path, svg)?;
-        if let Some(rate) = r.damping_rate_branch(0) {
-            let svg = sphstab::plot::damping_svg(&title, form, &k, &rate)?;
-            write_svg(&damping_path(path), svg)?;
+    let pi = std::f64::consts::PI;
+    let single = series.len() == 1;
+    let name = |label: &str, r: &DispersionReport| {
+        if single {
+            r.header.setup.form.to_string()
+        } else {
+            label.to_string()
         }
-        return Ok(());
-    }
+    };
+    let xs = |r: &DispersionReport| -> Vec<f64> {
+        if D == 1 {
+            r.path.iter().map(|k| k / pi).collect()
+        } else {
+            r.path.clone()
+        }
+    };
     let names = branch_names(D);
-    let mut curves: Vec<Curve> = (0..D)
-        .map(|b| Curve {
-            label: format!("{form}: {}", names[b]),
-            x: r.path.clone(),
-            y: r.omega2_branch(b),
-            dashed: false,
-        })
-        .collect();
-    curves.push(Curve {
-        label: "continuum S (transverse)".into(),
-        x: r.path.clone(),
-        y: r.continuum_branch(0),
-        dashed: true,
-    });
-    curves.push(Curve {
-        label: "continuum P (longitudinal)".into(),
-        x: r.path.clone(),
-        y: r.continuum_branch(D - 1),
-        dashed: true,
-    });
-    let ticks: Vec<(f64, String)> = r.labels.iter().map(|(l, s)| (*s, l.clone())).collect();
-    let names_path: Vec<&str> = r.labels.iter().map(|(l, _)| l.as_str()).collect();
-    let x_desc = format!(
-        "wave vector along the path {} (arc length |Δκ|Δx, dimensionless)",
-        names_path.join("–")
-    );
+    let mut curves: Vec<Curve> = Vec::new();
+    for (label, r) in series {
+        for (b, bname) in names.iter().enumerate() {
+            curves.push(Curve {
+                label: if D == 1 {
+                    format!("{} (numeric engine)", name(label, r))
+                } else {
+                    format!("{}: {bname}", name(label, r))
+                },
+                x: xs(r),
+                y: r.omega2_branch(b),
+                dashed: false,
+            });
+        }
+    }
+    // the continuum once per distinct one (it depends on the stress and the material only)
+    let mut continua: Vec<(usize, &str, &DispersionReport)> = Vec::new();
+    for (i, (label, r)) in series.iter().enumerate() {
+        if !continua
+            .iter()
+            .any(|(_, _, c)| c.path == r.path && c.omega2_continuum == r.omega2_continuum)
+        {
+            continua.push((i, label, r));
+        }
+    }
+    let own = continua.len() > 1;
+    for (_, label, r) in &continua {
+        let of = if own {
+            format!(" of {label}")
+        } else {
+            String::new()
+        };
+        if D == 1 {
+            curves.push(Curve {
+                label: format!("continuum (1 + σ̄)(κΔx)²  [B00 eq 32]{of}"),
+                x: xs(r),
+                y: r.continuum_branch(0),
+                dashed: true,
+            });
+        } else {
+            for (b, what) in [(0, "S (transverse)"), (D - 1, "P (longitudinal)")] {
+                curves.push(Curve {
+                    label: format!("continuum {what}{of}"),
+                    x: xs(r),
+                    y: r.continuum_branch(b),
+                    dashed: true,
+                });
+            }
+        }
+    }
+    let first = &series[0].1;
+    let ticks: Option<Vec<(f64, String)>> =
+        (D > 1).then(|| first.labels.iter().map(|(l, s)| (*s, l.clone())).collect());
+    let x_desc = if D == 1 {
+        sphstab::plot::KAPPA_DESC.to_string()
+    } else {
+        let names_path: Vec<&str> = first.labels.iter().map(|(l, _)| l.as_str()).collect();
+        format!(
+            "wave vector along the path {} (arc length |Δκ|Δx, dimensionless)",
+            names_path.join("–")
+        )
+    };
     let svg = LinePlot {
         zero_line: true,
-        x_ticks: Some(ticks.clone()),
-        notes: vec![
-            "Branches are sorted by ω² at each wave vector and named after the continuum's order (shear below longitudinal).".into(),
-        ],
-        ..LinePlot::new(&title, &x_desc, sphstab::plot::OMEGA2_DESC, curves)
+        x_ticks: ticks.clone(),
+        x_range,
+        y_range,
+        notes: if D > 1 {
+            vec!["Branches are sorted by ω² at each wave vector and named after the continuum's order (shear below longitudinal).".into()]
+        } else {
+            Vec::new()
+        },
+        ..LinePlot::new(title, &x_desc, sphstab::plot::OMEGA2_DESC, curves)
     }
     .svg()?;
     write_svg(path, svg)?;
-    if r.damping_rate.is_some() {
-        let branches: Vec<(String, Vec<Option<f64>>)> = (0..D)
-            .map(|b| {
-                (
-                    format!("{form}: {}", names[b]),
-                    r.damping_rate_branch(b).unwrap_or_default(),
-                )
-            })
-            .collect();
-        let svg = sphstab::plot::damping_curves_svg(
-            &format!("{title} — damping"),
-            &x_desc,
-            &r.path,
-            &branches,
-            Some(ticks),
-        )?;
+    if series.iter().any(|(_, r)| r.damping_rate.is_some()) {
+        if series.iter().any(|(_, r)| r.path != first.path) {
+            eprintln!(
+                "note: no damping plot: the series sample different wave vectors (a varied lattice)"
+            );
+            return Ok(());
+        }
+        let mut branches: Vec<(String, Vec<Option<f64>>)> = Vec::new();
+        for (label, r) in series {
+            for (b, bname) in names.iter().enumerate() {
+                if let Some(rate) = r.damping_rate_branch(b) {
+                    branches.push((
+                        if D == 1 {
+                            format!("{} (eigenvalues of J(κ))", name(label, r))
+                        } else {
+                            format!("{}: {bname}", name(label, r))
+                        },
+                        rate,
+                    ));
+                }
+            }
+        }
+        let svg = LinePlot {
+            x_range,
+            ..sphstab::plot::damping_plot(
+                &format!("{title} — damping"),
+                &x_desc,
+                &xs(first),
+                &branches,
+                ticks,
+            )
+        }
+        .svg()?;
         write_svg(&damping_path(path), svg)?;
     }
     Ok(())
 }
 
 fn run_in<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
-    let q = a.cfg.query::<D>(budget)?;
-    let r = sphstab::analysis::dispersion(&q, a.points)?;
+    let x_range = range("--kappa-range", &a.kappa_range)?;
+    let y_range = range("--y-range", &a.y_range)?;
+    if D == 1
+        && let Some((lo, hi)) = x_range
+        && !(lo >= 0.0 && hi <= 1.0)
+    {
+        return Err(sphstab::error::Error::OutOfRange {
+            field: "kappa-range",
+            value: if lo < 0.0 { lo } else { hi },
+            range: "1D: κΔx/π within [0, 1]".into(),
+        }
+        .into());
+    }
+    let compare = crate::vary::active(&a.cfg, &a.vary);
+    let list = crate::vary::series(&a.cfg, &a.vary, false)?;
+    // every question is checked before the first is answered
+    let questions = list
+        .iter()
+        .map(|s| s.cfg.query::<D>(budget))
+        .collect::<Result<Vec<_>>>()?;
+    let mut reports = Vec::with_capacity(list.len());
+    for (s, q) in list.iter().zip(&questions) {
+        reports.push((s.label.clone(), sphstab::analysis::dispersion(q, a.points)?));
+    }
     if let Some(path) = &a.plot {
-        plot::<D>(path, &r)?;
+        let title = if compare {
+            format!("dispersion: {}", vary_title(&reports))
+        } else {
+            reports[0].1.header.to_string()
+        };
+        plot::<D>(path, &title, &reports, x_range, y_range)?;
     }
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        if compare {
+            let series: Vec<serde_json::Value> = reports
+                .iter()
+                .map(|(label, r)| serde_json::json!({"label": label, "dispersion": r}))
+                .collect();
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&serde_json::json!({ "series": series }))?
+            );
+        } else {
+            println!("{}", serde_json::to_string_pretty(&reports[0].1)?);
+        }
         return Ok(());
     }
+    for (label, r) in &reports {
+        if compare {
+            println!("## {label}");
+        }
+        print_table::<D>(r, x_range);
+    }
+    Ok(())
+}
+
+/// The title of a comparison: the labels.
+fn vary_title(reports: &[(String, DispersionReport)]) -> String {
+    let labels: Vec<&str> = reports.iter().map(|(l, _)| l.as_str()).collect();
+    labels.join(" | ")
+}
+
+/// The text table of one dispersion (rows within `x_range`, when given).
+fn print_table<const D: usize>(r: &DispersionReport, x_range: Option<(f64, f64)>) {
     let path: Vec<String> = r
         .labels
         .iter()
@@ -199,6 +352,14 @@ fn run_in<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
     }
     println!("{head}");
     for i in 0..r.path.len() {
+        let x = if D == 1 {
+            r.path[i] / std::f64::consts::PI
+        } else {
+            r.path[i]
+        };
+        if x_range.is_some_and(|(lo, hi)| !(lo..=hi).contains(&x)) {
+            continue;
+        }
         let mut line = String::new();
         if D > 1 {
             line += &format!("{:>8.4} ", r.path[i]);
@@ -228,5 +389,4 @@ fn run_in<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
         }
         println!("{line}");
     }
-    Ok(())
 }

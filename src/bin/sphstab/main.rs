@@ -20,6 +20,7 @@ mod swegle;
 mod throughput;
 mod timestep;
 mod tradeoff;
+mod vary;
 
 use clap::{Parser, Subcommand};
 use sphstab::budget::Budget;

@@ -21,6 +21,8 @@ pub struct Args {
     /// show (standing modes k = (m_1, …, m_D)π/(N+1)), N in [1, 1000] (3D: [1, 100]).
     #[arg(long = "box")]
     box_free: Option<usize>,
+    #[command(flatten)]
+    vary: crate::vary::VaryArgs,
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
@@ -64,6 +66,15 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     a.cfg.grid = points_as_grid(D as u8, a.points, a.cfg.grid)?;
     if D == 1 && a.box_free.is_some() {
         return Err(not_in("--box", "--dim 1 (it predicts a 2D or 3D box)"));
+    }
+    if crate::vary::active(&a.cfg, &a.vary) {
+        if a.box_free.is_some() {
+            return Err(not_in(
+                "--box",
+                "--vary or a list (compare the infinite lattice; ask for one box at a time)",
+            ));
+        }
+        return compare::<D>(&a, budget);
     }
     let mut q = a.cfg.query::<D>(budget)?;
     q.integrator = a.integ.integrator()?;
@@ -162,6 +173,68 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     }
     if let (Some(dt), Some(m)) = (r.dt, r.max_amplification) {
         println!("at Δt = {dt} Δx/c: max |λ| = {m:.9}");
+    }
+    Ok(())
+}
+
+/// `--vary` / lists: every question checked first, then answered; a table (or JSON
+/// `{"series": [{"label", "query"}]}`).
+fn compare<const D: usize>(a: &Args, budget: &Budget) -> Result<()> {
+    let list = crate::vary::series(&a.cfg, &a.vary, true)?;
+    let mut questions = Vec::with_capacity(list.len());
+    for s in &list {
+        let mut q = s.cfg.query::<D>(budget)?;
+        q.integrator = match &s.integrator {
+            Some(name) => sphstab::integrator::Integrator::from_name(name, a.integ.euler_every)?,
+            None => a.integ.integrator()?,
+        };
+        questions.push(q);
+    }
+    let reports = questions
+        .iter()
+        .map(sphstab::analysis::query)
+        .collect::<sphstab::error::Result<Vec<_>>>()?;
+    if a.json {
+        let series: Vec<serde_json::Value> = list
+            .iter()
+            .zip(&reports)
+            .map(|(s, r)| serde_json::json!({"label": s.label, "query": r}))
+            .collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&serde_json::json!({ "series": series }))?
+        );
+        return Ok(());
+    }
+    println!(
+        "{} questions side by side; the first: {}",
+        list.len(),
+        reports[0].header
+    );
+    let width = list
+        .iter()
+        .map(|s| s.label.chars().count())
+        .max()
+        .unwrap_or(6)
+        .max(6);
+    println!(
+        "{:<width$}  {:<8}  {:>16}  {:<28}  {:>18}",
+        "series", "verdict", "growth c/Δx", "kinds", "critical Δt Δx/c"
+    );
+    for (s, r) in list.iter().zip(&reports) {
+        let kinds: Vec<String> = r.growth_kinds().into_iter().map(kind_name).collect();
+        println!(
+            "{:<width$}  {:<8}  {:>16}  {:<28}  {:>18}",
+            s.label,
+            if r.stable { "stable" } else { "UNSTABLE" },
+            crate::vary::cell(Some(r.max_growth_rate)),
+            if kinds.is_empty() {
+                "—".to_string()
+            } else {
+                kinds.join(", ")
+            },
+            crate::vary::cell(r.critical_dt)
+        );
     }
     Ok(())
 }

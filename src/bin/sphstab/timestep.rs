@@ -30,6 +30,8 @@ pub struct Args {
     /// Print one JSON document instead of text.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    vary: crate::vary::VaryArgs,
 }
 
 /// A number as people read it: plain notation from 1e-4 to 1e6 with 6 significant digits
@@ -104,6 +106,15 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
 
 fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     a.cfg.grid = crate::query::points_as_grid(D as u8, a.points, a.cfg.grid)?;
+    if crate::vary::active(&a.cfg, &a.vary) {
+        if a.verify {
+            return Err(crate::query::not_in(
+                "--verify",
+                "--vary or a list (measure one configuration at a time)",
+            ));
+        }
+        return compare::<D>(&a, budget);
+    }
     let mut q = a.cfg.query::<D>(budget)?;
     q.integrator = a.integ.integrator()?;
     let pairs = match &a.viscosity {
@@ -173,6 +184,89 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     }
     if let Some(v) = &verified {
         print_verify(v);
+    }
+    Ok(())
+}
+
+/// `--vary` / lists: every question checked first, then answered; a table (or JSON
+/// `{"series": [{"label", "timestep"}]}`).
+fn compare<const D: usize>(a: &Args, budget: &Budget) -> Result<()> {
+    if a.viscosity.is_some() {
+        return Err(crate::query::not_in(
+            "--viscosity",
+            "timestep without --verify",
+        ));
+    }
+    let list = crate::vary::series(&a.cfg, &a.vary, true)?;
+    let mut questions = Vec::with_capacity(list.len());
+    for s in &list {
+        let mut q = s.cfg.query::<D>(budget)?;
+        q.integrator = match &s.integrator {
+            Some(name) => sphstab::integrator::Integrator::from_name(name, a.integ.euler_every)?,
+            None => a.integ.integrator()?,
+        };
+        questions.push(q);
+    }
+    let reports = questions
+        .iter()
+        .map(sphstab::analysis::timestep)
+        .collect::<sphstab::error::Result<Vec<_>>>()?;
+    if a.json {
+        let series: Vec<serde_json::Value> = list
+            .iter()
+            .zip(&reports)
+            .map(|(s, r)| serde_json::json!({"label": s.label, "timestep": r}))
+            .collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&serde_json::json!({ "series": series }))?
+        );
+        return Ok(());
+    }
+    println!(
+        "{} questions side by side; the first: {}",
+        list.len(),
+        reports[0].header
+    );
+    let width = list
+        .iter()
+        .map(|s| s.label.chars().count())
+        .max()
+        .unwrap_or(6)
+        .max(6);
+    println!(
+        "{:<width$}  {:<20}  {:>18}  {:>14}  {:>22}  {:>18}",
+        "series",
+        "integrator",
+        "critical Δt Δx/c",
+        "ω_max c/Δx",
+        "physical growth c/Δx",
+        "inviscid Δt Δx/c"
+    );
+    for (s, r) in list.iter().zip(&reports) {
+        let st = &r.step;
+        let dt = match st.critical_dt {
+            Some(d) => plain(d),
+            None => "none (weak)".into(),
+        };
+        let growth = match (st.physical_growth_rate > 0.0, r.physical_growth_kind) {
+            (false, _) => "0".to_string(),
+            (true, k) => format!(
+                "{} ({})",
+                plain(st.physical_growth_rate),
+                k.map(crate::query::kind_name)
+                    .unwrap_or_else(|| "growth".into())
+            ),
+        };
+        println!(
+            "{:<width$}  {:<20}  {:>18}  {:>14}  {:>22}  {:>18}",
+            s.label,
+            st.integrator,
+            dt,
+            plain(st.omega_max),
+            growth,
+            crate::vary::cell(r.critical_dt_inviscid)
+        );
     }
     Ok(())
 }
