@@ -4,10 +4,13 @@
 
 use crate::common::{assert_bad_inputs, json, sphstab};
 
+/// (report key, comparison arguments, the single questions it stands for).
+type Case<'a> = (&'a str, &'a [&'a str], Vec<Vec<&'a str>>);
+
 /// Each series of a comparison equals the single question it stands for.
 #[test]
 fn every_series_is_the_single_answer() {
-    let cases: [(&str, &[&str], Vec<Vec<&str>>); 3] = [
+    let cases: [Case; 3] = [
         (
             "query",
             &[
