@@ -143,6 +143,16 @@ pub enum Error {
         /// What is wrong (names the field).
         msg: String,
     },
+    /// Shard files that do not make up one study ([`crate::studies::shard::merge`]), naming the
+    /// file and the cell at fault: "merge: {file}: cell {cell}: {problem}".
+    Merge {
+        /// The file at fault (None: the set of files, e.g. one missing from it).
+        file: Option<String>,
+        /// The cell at fault (its index in the study).
+        cell: Option<usize>,
+        /// What is wrong.
+        problem: Text,
+    },
     /// A numerical result that is not finite.
     NonFinite(&'static str),
     /// A run whose estimated memory or time steps exceed the resource budget
@@ -198,6 +208,20 @@ impl Error {
                 "singular {what} at x = {x} (determinant {det:e}): the support covers too few neighbours"
             ),
             Error::Config { file, msg } => format!("{file}: {msg}"),
+            Error::Merge {
+                file,
+                cell,
+                problem,
+            } => {
+                let mut s = String::from("merge: ");
+                if let Some(f) = file {
+                    s += &format!("{f}: ");
+                }
+                if let Some(c) = cell {
+                    s += &format!("cell {c}: ");
+                }
+                s + &problem.render(names)
+            }
             Error::NonFinite(what) => format!("non-finite result in {what}"),
             Error::Budget {
                 fields,

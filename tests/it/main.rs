@@ -63,6 +63,7 @@ mod kernel_guide;
 mod pairing;
 mod readme;
 mod reproduction;
+mod shard;
 mod tradeoff;
 
 // the command line

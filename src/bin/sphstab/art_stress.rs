@@ -8,7 +8,9 @@ use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
 use sphstab::solver::BoundaryDensity;
-use sphstab::studies::art_stress::{ArtStressConfig, ArtStressReport};
+use sphstab::studies::art_stress::{
+    ArtStressConfig, ArtStressReport, ArtStressSetup, ArtStressStudy,
+};
 use std::path::{Path, PathBuf};
 
 /// Flags of `art-stress`.
@@ -58,6 +60,15 @@ pub struct Args {
     /// Write the figure (SVG: growth rate against ε, one panel per h and f) here.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Compute only shard i of n (0 ≤ i < n): the cells c with c mod n = i (per h and f, one
+    /// per ε of the grid, then one per run), written to --out for `sphstab merge`, which gives
+    /// the table, JSON and figure of all the shards. For job arrays:
+    /// analysis/cluster/study_array.sh.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Write the JSON report here (the bytes --json prints); with --shard, the shard.
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 /// `--boundary-density`.
@@ -92,7 +103,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     }
     let flags = a.study_flags();
     if let Some(from) = &a.from {
-        let others = a.config.is_some() || !flags.is_empty() || a.json;
+        let others = a.config.is_some()
+            || !flags.is_empty()
+            || a.json
+            || a.shard.is_some()
+            || a.out.is_some();
         return study::redraw::<ArtStressReport>(
             from,
             a.plot.as_ref(),
@@ -100,6 +115,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             sphstab::studies::art_stress::figure_svg,
         );
     }
+    let shard = crate::shard::flags(
+        a.shard.as_deref(),
+        a.out.as_ref(),
+        &[(a.json, "--json"), (a.plot.is_some(), "--plot")],
+    )?;
     let cfg = match &a.config {
         Some(p) => {
             if !flags.is_empty() {
@@ -154,7 +174,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         ..cfg
     };
     cfg.validate()?;
-    if let Some(name) = &cfg.output {
+    if let (None, Some(name)) = (&shard, &cfg.output) {
         crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
     }
     let compare = match &cfg.compare {
@@ -172,19 +192,42 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
         None => None,
     };
+    if let Some((shard, out)) = shard {
+        // the comparison goes into every shard, so the merge reads nothing but the shards; a
+        // config's `output` (figure and data) is written by the merge
+        let setup = ArtStressSetup {
+            config: cfg,
+            compare,
+        };
+        return crate::shard::run(&ArtStressStudy, &setup, shard, &out);
+    }
     let pb = progress::Bar::new(progress::wanted(a.json));
     let rep = sphstab::studies::art_stress::run(&cfg, compare.as_ref(), pb.clone())?;
     pb.finish();
-    if let Some(path) = &a.plot {
-        study::write_plot(sphstab::studies::art_stress::figure_svg(&rep), path)?;
+    output(&rep, a.out.as_deref(), a.json, a.plot.as_deref())
+}
+
+/// Writes and prints a report (shared with `merge`): `--out` (JSON), `--plot`, its config's
+/// `output` (the figure and its data in figures/), then the JSON (`--json`) or the table.
+pub fn output(
+    rep: &ArtStressReport,
+    out: Option<&Path>,
+    json: bool,
+    plot: Option<&Path>,
+) -> Result<()> {
+    if let Some(path) = out {
+        crate::shard::write_json(path, rep)?;
     }
-    if let Some(name) = &cfg.output {
-        study::write_figure_and_data(&rep, name, sphstab::studies::art_stress::figure_svg)?;
+    if let Some(path) = plot {
+        study::write_plot(sphstab::studies::art_stress::figure_svg(rep), path)?;
     }
-    if a.json {
-        println!("{}", serde_json::to_string(&rep)?);
+    if let Some(name) = &rep.config.output {
+        study::write_figure_and_data(rep, name, sphstab::studies::art_stress::figure_svg)?;
+    }
+    if json {
+        println!("{}", serde_json::to_string(rep)?);
     } else {
-        print!("{}", sphstab::studies::art_stress::table(&rep));
+        print!("{}", sphstab::studies::art_stress::table(rep));
     }
     Ok(())
 }

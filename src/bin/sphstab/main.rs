@@ -13,6 +13,7 @@ mod merge;
 mod pairing;
 mod progress;
 mod query;
+mod shard;
 mod simulate;
 mod stiffness;
 mod study;
@@ -104,7 +105,7 @@ pub(crate) enum Cmd {
     Tradeoff(tradeoff::Args),
     /// 1D stability atlas: every form × kernel × h × σ̄ (parallel, shardable).
     Atlas(atlas::Args),
-    /// Merge the shards of an atlas.
+    /// Merge the shards of a study (atlas, pairing, tradeoff, art-stress; `--shard i/n`).
     Merge(merge::Args),
     /// Speed and memory of the solver on a 2D or 3D block (and its scaling with N).
     Throughput(throughput::Args),

@@ -1,4 +1,5 @@
-//! `sphstab merge`: join the shards of an atlas computed with `atlas --shard i/n --out f`.
+//! `sphstab merge`: join the shards of an atlas computed with `atlas --shard i/n --out f`, or
+//! of another study computed with `<study> --shard i/n --out f` ([`crate::shard::merge`]).
 
 use anyhow::{Context, Result};
 use sphstab::budget::Budget;
@@ -8,7 +9,8 @@ use std::path::PathBuf;
 /// Flags of `merge`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// The shard files (JSON written by `atlas --shard i/n --out FILE`), all n of them.
+    /// The shard files (JSON written by `atlas`, `pairing`, `tradeoff` or `art-stress` with
+    /// `--shard i/n --out FILE`), all n of them.
     #[arg(required = true)]
     files: Vec<PathBuf>,
     /// Write the merged atlas (JSON) here.
@@ -20,6 +22,9 @@ pub struct Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    if crate::shard::merge(&a.files, a.out.as_ref(), a.json, budget)? {
+        return Ok(());
+    }
     if let Some(p) = &a.out {
         crate::common::check_writable("--out", p)?;
     }

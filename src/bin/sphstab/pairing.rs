@@ -6,7 +6,7 @@
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
-use sphstab::studies::pairing::{PairingConfig, PairingReport};
+use sphstab::studies::pairing::{PairingConfig, PairingReport, PairingStudy};
 use std::path::{Path, PathBuf};
 
 /// Flags of `pairing`.
@@ -49,6 +49,14 @@ pub struct Args {
     /// Write the figure (SVG: growth against N_H, one panel per lattice and σ̄) here.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Compute only shard i of n (0 ≤ i < n): the rows r with r mod n = i, written to --out
+    /// for `sphstab merge`, which gives the table, JSON and figure of all the shards. For job
+    /// arrays: analysis/cluster/study_array.sh.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Write the JSON report here (the bytes --json prints); with --shard, the shard.
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 impl Args {
@@ -88,7 +96,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     }
     let flags = a.study_flags();
     if let Some(from) = &a.from {
-        let others = a.config.is_some() || !flags.is_empty() || a.json;
+        let others = a.config.is_some()
+            || !flags.is_empty()
+            || a.json
+            || a.shard.is_some()
+            || a.out.is_some();
         return study::redraw::<PairingReport>(
             from,
             a.plot.as_ref(),
@@ -96,6 +108,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             sphstab::studies::pairing::figure_svg,
         );
     }
+    let shard = crate::shard::flags(
+        a.shard.as_deref(),
+        a.out.as_ref(),
+        &[(a.json, "--json"), (a.plot.is_some(), "--plot")],
+    )?;
     let (cfg, config_out) = match &a.config {
         Some(p) => {
             if !flags.is_empty() {
@@ -143,39 +160,65 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     };
     // validate everything before the first row is computed
     sphstab::studies::pairing::plan(&cfg)?;
+    if let Some((shard, out)) = shard {
+        // a config's `output` (figure and data) is written by the merge
+        return crate::shard::run(&PairingStudy, &cfg, shard, &out);
+    }
     if let Some(name) = &config_out {
         crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
     }
     let pb = progress::Bar::new(progress::wanted(a.json));
     let rep = sphstab::studies::pairing::run(&cfg, pb.clone())?;
     pb.finish();
-    if let Some(path) = &a.plot {
-        study::write_plot(sphstab::studies::pairing::figure_svg(&rep), path)?;
+    output(
+        &rep,
+        a.out.as_deref(),
+        a.json,
+        a.plot.as_deref(),
+        config_out.as_deref(),
+    )?;
+    if !a.json && a.config.is_none() {
+        println!(
+            "{}\nthe full study (every kernel × sc, bcc, fcc × h/Δx = 0.8…3 step 0.1 × σ̄ = −0.01, −0.1 at 16³ wave vectors; ~47 min): cargo run --release -- pairing --config {}",
+            if flags.is_empty() {
+                sphstab::studies::pairing::QUICK_DESCRIPTION
+            } else {
+                "a subset of the pairing study"
+            },
+            sphstab::studies::pairing::FULL_STUDY_CONFIG
+        );
+    }
+    Ok(())
+}
+
+/// Writes and prints a report (shared with `merge`): `--out` (JSON), `--plot`, a config's
+/// `output` (the figure and its data in figures/), then the JSON (`--json`) or the table.
+pub fn output(
+    rep: &PairingReport,
+    out: Option<&Path>,
+    json: bool,
+    plot: Option<&Path>,
+    config_out: Option<&str>,
+) -> Result<()> {
+    if let Some(path) = out {
+        crate::shard::write_json(path, rep)?;
+    }
+    if let Some(path) = plot {
+        study::write_plot(sphstab::studies::pairing::figure_svg(rep), path)?;
     }
     if let Some(name) = config_out {
-        study::write_figure_and_data(&rep, &name, sphstab::studies::pairing::figure_svg)?;
+        study::write_figure_and_data(rep, name, sphstab::studies::pairing::figure_svg)?;
     }
-    if a.json {
-        println!("{}", serde_json::to_string(&rep)?);
+    if json {
+        println!("{}", serde_json::to_string(rep)?);
     } else {
-        print!("{}", sphstab::studies::pairing::table(&rep));
+        print!("{}", sphstab::studies::pairing::table(rep));
         println!(
             "{} rows in {:.1} s ({} threads)",
             rep.rows.len(),
             rep.runtime_s,
             rep.threads
         );
-        if a.config.is_none() {
-            println!(
-                "{}\nthe full study (every kernel × sc, bcc, fcc × h/Δx = 0.8…3 step 0.1 × σ̄ = −0.01, −0.1 at 16³ wave vectors; ~47 min): cargo run --release -- pairing --config {}",
-                if flags.is_empty() {
-                    sphstab::studies::pairing::QUICK_DESCRIPTION
-                } else {
-                    "a subset of the pairing study"
-                },
-                sphstab::studies::pairing::FULL_STUDY_CONFIG
-            );
-        }
     }
     Ok(())
 }

@@ -4,8 +4,8 @@
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
-use sphstab::studies::tradeoff::{TradeoffConfig, TradeoffReport};
-use std::path::PathBuf;
+use sphstab::studies::tradeoff::{TradeoffConfig, TradeoffReport, TradeoffStudy};
+use std::path::{Path, PathBuf};
 
 /// Flags of `tradeoff`.
 #[derive(clap::Args, Debug)]
@@ -52,6 +52,15 @@ pub struct Args {
     /// Write the Pareto figure (SVG) here.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Compute only shard i of n (0 ≤ i < n): the configurations c with c mod n = i, written
+    /// to --out for `sphstab merge`, which gives the table, JSON and figure of all the shards.
+    /// The costs are timed on the machine that runs each shard. For job arrays:
+    /// analysis/cluster/study_array.sh.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Write the JSON report here (the bytes --json prints); with --shard, the shard.
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 /// Title of the figure (the Pareto figure, or the integrator figure when the report has
@@ -75,6 +84,9 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         crate::common::check_writable("--plot", p)?;
     }
     if a.cfl_table {
+        if a.shard.is_some() || a.out.is_some() {
+            anyhow::bail!("--cfl-table prints its table: not combined with --shard or --out");
+        }
         let t = sphstab::studies::tradeoff::cfl::cfl_table()?;
         if a.json {
             println!("{}", serde_json::to_string(&t)?);
@@ -84,12 +96,20 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         return Ok(());
     }
     if let Some(from) = &a.from {
+        if a.shard.is_some() || a.out.is_some() {
+            anyhow::bail!("--from redraws stored data: not combined with --shard or --out");
+        }
         let rep: TradeoffReport = study::read_report(from)?;
         return study::write_plot(
             sphstab::studies::tradeoff::figure_svg(&rep, &title(&rep)),
             study::plot_path(a.plot.as_ref())?,
         );
     }
+    let shard = crate::shard::flags(
+        a.shard.as_deref(),
+        a.out.as_ref(),
+        &[(a.json, "--json"), (a.plot.is_some(), "--plot")],
+    )?;
     let (cfg, config_out) = match &a.config {
         Some(p) => {
             let cfg = study::read_config(p, sphstab::studies::tradeoff::parse_config)?;
@@ -114,33 +134,62 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         budget: *budget,
         ..cfg
     };
-    let total = sphstab::studies::tradeoff::grid(&cfg)?.len()
-        * (1 + sphstab::studies::tradeoff::integrator_list(&cfg)?.len());
+    let study = TradeoffStudy {
+        probe: Some(&crate::alloc::Probe),
+    };
+    if let Some((shard, out)) = shard {
+        // a config's `output` (figure and data) is written by the merge
+        return crate::shard::run(&study, &cfg, shard, &out);
+    }
     let pb = progress::Bar::new(progress::wanted(a.json));
-    let rep = sphstab::studies::tradeoff::run(&cfg, Some(&crate::alloc::Probe), pb.clone())?;
+    let rep = sphstab::studies::shard::run_whole(&study, &cfg, pb.clone())?;
     pb.finish();
-    if let Some(path) = &a.plot {
+    output(
+        &rep,
+        a.out.as_deref(),
+        a.json,
+        a.plot.as_deref(),
+        config_out.as_deref(),
+    )
+}
+
+/// Writes and prints a report (shared with `merge`): `--out` (JSON), `--plot`, a config's
+/// `output` (the figure and its data in figures/), then the JSON (`--json`) or the tables.
+pub fn output(
+    rep: &TradeoffReport,
+    out: Option<&Path>,
+    json: bool,
+    plot: Option<&Path>,
+    config_out: Option<&str>,
+) -> Result<()> {
+    if let Some(path) = out {
+        crate::shard::write_json(path, rep)?;
+    }
+    if let Some(path) = plot {
         study::write_plot(
-            sphstab::studies::tradeoff::figure_svg(&rep, &title(&rep)),
+            sphstab::studies::tradeoff::figure_svg(rep, &title(rep)),
             path,
         )?;
     }
     if let Some(name) = config_out {
-        study::write_figure_and_data(&rep, &name, |r| {
+        study::write_figure_and_data(rep, name, |r| {
             sphstab::studies::tradeoff::figure_svg(r, &title(r))
         })?;
     }
-    if a.json {
-        println!("{}", serde_json::to_string(&rep)?);
+    if json {
+        println!("{}", serde_json::to_string(rep)?);
     } else {
-        print!("{}", sphstab::studies::tradeoff::table(&rep));
+        print!("{}", sphstab::studies::tradeoff::table(rep));
         if !rep.integrator_rows.is_empty() {
             println!();
-            print!("{}", sphstab::studies::tradeoff::integrator_table(&rep));
+            print!("{}", sphstab::studies::tradeoff::integrator_table(rep));
         }
         println!(
             "{} configurations in {:.1} s ({} threads); scene: {}",
-            total, rep.runtime_s, rep.threads, rep.scene
+            rep.rows.len() + rep.integrator_rows.len(),
+            rep.runtime_s,
+            rep.threads,
+            rep.scene
         );
     }
     Ok(())

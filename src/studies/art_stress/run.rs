@@ -3,94 +3,180 @@
 
 use super::config::ArtStressConfig;
 use super::report::{ArtStressReport, Case, ComparePoint, Comparison, Point, RunPoint};
+use super::shard::{ArtStressCell, ArtStressSetup};
 use crate::error::{Error, Result};
 use crate::progress::{Counter, Progress};
+use crate::studies::shard::Shard;
 use crate::studies::swegle::{predict_swegle, run_swegle};
 use rayon::prelude::*;
 
-/// Runs the study, telling `progress` the fraction of predictions and runs done.
+/// Runs the whole study, telling `progress` the fraction of predictions and runs done; `compare`
+/// is another code's stored runs. Sharded: [`ArtStressStudy`](super::ArtStressStudy).
 pub fn run(
     cfg: &ArtStressConfig,
     compare: Option<&Comparison>,
     progress: impl Progress,
 ) -> Result<ArtStressReport> {
+    let setup = ArtStressSetup {
+        config: cfg.clone(),
+        compare: compare.cloned(),
+    };
+    crate::studies::shard::run_whole(&super::ArtStressStudy, &setup, progress)
+}
+
+/// Cells per (h, f) case: the prediction grid, then the runs.
+pub(super) fn cells_per_case(cfg: &ArtStressConfig) -> usize {
+    cfg.eps.len() + cfg.runs.len()
+}
+
+/// The (h, f) of case `i` (h-major).
+fn case(cfg: &ArtStressConfig, i: usize) -> (f64, f64) {
+    let nf = cfg.density_ratio.len();
+    (cfg.h[i / nf], cfg.density_ratio[i % nf])
+}
+
+/// Computes the cells of `shard` (ascending, with their indices): cell c is, in case
+/// c / (predictions + runs), the prediction at the grid ε or the Swegle run it names. The
+/// predictions are independent: in parallel (the dense box eigenproblem dominates); the runs
+/// one after the other.
+pub(super) fn compute_cells(
+    setup: &ArtStressSetup,
+    shard: Shard,
+    progress: &dyn Progress,
+) -> Result<Vec<(usize, ArtStressCell)>> {
+    let cfg = &setup.config;
     cfg.validate()?;
-    let total = cfg.h.len() * cfg.density_ratio.len() * (cfg.eps.len() + cfg.runs.len());
-    let done = Counter::new(&progress, total, 1);
-    let mut cases = Vec::new();
-    for &h in &cfg.h {
-        for &f in &cfg.density_ratio {
-            // the grid points are independent: in parallel (the dense box eigenproblem dominates)
-            let points = cfg
-                .eps
-                .par_iter()
-                .map(|&eps| {
-                    let p = predict_swegle(&cfg.swegle(h, f, eps)?)?;
-                    Ok(Point {
-                        eps,
-                        infinite: p.infinite_rate,
-                        infinite_kappa: p.infinite_kappa,
-                        longitudinal: p.infinite_longitudinal,
-                        in_box: p.box_rate,
-                    })
-                })
-                .collect::<Result<Vec<Point>>>()?;
-            done.add(points.len())?;
-            let mut runs = Vec::with_capacity(cfg.runs.len());
-            for &eps in &cfg.runs {
-                let r = run_swegle(&cfg.swegle(h, f, eps)?, ())?;
-                runs.push(RunPoint {
+    let per = cells_per_case(cfg);
+    let total = cfg.h.len() * cfg.density_ratio.len() * per;
+    let (predictions, runs): (Vec<usize>, Vec<usize>) = (0..total)
+        .filter(|&c| shard.owns(c))
+        .partition(|&c| c % per < cfg.eps.len());
+    let done = Counter::new(progress, predictions.len() + runs.len(), 1);
+    let mut out = predictions
+        .par_iter()
+        .map(|&c| {
+            let (h, f) = case(cfg, c / per);
+            let eps = cfg.eps[c % per];
+            let p = predict_swegle(&cfg.swegle(h, f, eps)?)?;
+            done.add(1)?;
+            Ok((
+                c,
+                ArtStressCell::Prediction(Point {
                     eps,
-                    measured: r.measured_growth_rate,
-                    predicted_box: r.predicted_growth_rate_box,
-                    ratio_box: r.ratio_box,
-                    dominant_kappa: r.dominant_kappa,
-                    steps: r.steps,
-                });
-                done.add(1)?;
+                    infinite: p.infinite_rate,
+                    infinite_kappa: p.infinite_kappa,
+                    longitudinal: p.infinite_longitudinal,
+                    in_box: p.box_rate,
+                }),
+            ))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    for c in runs {
+        let (h, f) = case(cfg, c / per);
+        let eps = cfg.runs[c % per - cfg.eps.len()];
+        let r = run_swegle(&cfg.swegle(h, f, eps)?, ())?;
+        out.push((
+            c,
+            ArtStressCell::Run(RunPoint {
+                eps,
+                measured: r.measured_growth_rate,
+                predicted_box: r.predicted_growth_rate_box,
+                ratio_box: r.ratio_box,
+                dominant_kappa: r.dominant_kappa,
+                steps: r.steps,
+            }),
+        ));
+        done.add(1)?;
+    }
+    out.sort_by_key(|c| c.0);
+    Ok(out)
+}
+
+/// The report from every cell of the study, in index order (a cell of the wrong kind for its
+/// place is an error).
+pub(super) fn assemble(
+    setup: &ArtStressSetup,
+    cells: Vec<ArtStressCell>,
+) -> Result<ArtStressReport> {
+    let cfg = &setup.config;
+    let per = cells_per_case(cfg).max(1);
+    let mut cases = Vec::new();
+    for (i, chunk) in cells.chunks(per).enumerate() {
+        let (h, f) = case(cfg, i);
+        let mut points = Vec::with_capacity(cfg.eps.len());
+        let mut runs = Vec::with_capacity(cfg.runs.len());
+        for (j, c) in chunk.iter().enumerate() {
+            match (c, j < cfg.eps.len()) {
+                (ArtStressCell::Prediction(p), true) => points.push(p.clone()),
+                (ArtStressCell::Run(r), false) => runs.push(r.clone()),
+                _ => {
+                    return Err(Error::Incompatible(
+                        format!(
+                            "art-stress cell {}: a {} where the study has a {}",
+                            i * per + j,
+                            if j < cfg.eps.len() {
+                                "run"
+                            } else {
+                                "prediction"
+                            },
+                            if j < cfg.eps.len() {
+                                "prediction"
+                            } else {
+                                "run"
+                            }
+                        )
+                        .into(),
+                    ));
+                }
             }
-            let argmin = |g: &dyn Fn(&Point) -> f64| {
-                points
-                    .iter()
-                    .map(|p| (p.eps, g(p)))
-                    .fold(
-                        (f64::NAN, f64::INFINITY),
-                        |a, b| if b.1 < a.1 { b } else { a },
-                    )
-            };
-            let transverse_from = points
-                .iter()
-                .rposition(|p| p.longitudinal >= 0.5 || p.infinite <= 0.0)
-                .map_or(Some(0), |i| (i + 1 < points.len()).then_some(i + 1))
-                .map(|i| points[i].eps);
-            let compare = compare
-                .map(|c| {
-                    c.points
-                        .iter()
-                        .filter(|p| close(p.0, h) && close(p.1, f))
-                        .map(|p| ComparePoint {
-                            eps: p.2,
-                            measured: p.3,
-                        })
-                        .collect()
-                })
-                .unwrap_or_default();
-            cases.push(Case {
-                h,
-                density_ratio: f,
-                sigma_bar: 1.0 - f,
-                min_infinite: argmin(&|p| p.infinite),
-                min_box: argmin(&|p| p.in_box),
-                transverse_from,
-                points,
-                runs,
-                compare,
-            });
         }
+        let argmin = |g: &dyn Fn(&Point) -> f64| {
+            points
+                .iter()
+                .map(|p| (p.eps, g(p)))
+                .fold(
+                    (f64::NAN, f64::INFINITY),
+                    |a, b| if b.1 < a.1 { b } else { a },
+                )
+        };
+        let transverse_from = points
+            .iter()
+            .rposition(|p| p.longitudinal >= 0.5 || p.infinite <= 0.0)
+            .map_or(Some(0), |i| (i + 1 < points.len()).then_some(i + 1))
+            .map(|i| points[i].eps);
+        let compare = setup
+            .compare
+            .as_ref()
+            .map(|c| {
+                c.points
+                    .iter()
+                    .filter(|p| close(p.0, h) && close(p.1, f))
+                    .map(|p| ComparePoint {
+                        eps: p.2,
+                        measured: p.3,
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        cases.push(Case {
+            h,
+            density_ratio: f,
+            sigma_bar: 1.0 - f,
+            min_infinite: argmin(&|p| p.infinite),
+            min_box: argmin(&|p| p.in_box),
+            transverse_from,
+            points,
+            runs,
+            compare,
+        });
     }
     Ok(ArtStressReport {
         config: cfg.clone(),
-        compare_label: compare.map(|c| c.label.clone()).unwrap_or_default(),
+        compare_label: setup
+            .compare
+            .as_ref()
+            .map(|c| c.label.clone())
+            .unwrap_or_default(),
         cases,
     })
 }

@@ -18,10 +18,14 @@
 //! Rows whose linearisation would exceed the memory budget ([`crate::budget`]; large supports of
 //! the ζ = 3 kernels) and rows whose support holds no neighbour are reported as skipped, with the
 //! reason, not as errors.
+//!
+//! The full study runs ~47 min: [`PairingStudy`] splits its rows into shards for a job array
+//! ([`crate::studies::shard`]), merged bit for bit into the report of one run.
 
 mod config;
 pub mod report;
 mod run;
+mod shard;
 pub mod wstar;
 mod zone;
 
@@ -31,4 +35,5 @@ pub use config::{
 };
 pub use report::{Onset, PairingReport, PairingRow, figure_svg, figure_title, table};
 pub use run::{evaluate_row, neighbour_count, onsets, row_query, run};
+pub use shard::PairingStudy;
 pub use zone::{DEGENERACY_TOL, LONGITUDINAL, ZoneGrowth, zone_growth};

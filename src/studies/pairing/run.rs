@@ -14,6 +14,7 @@ use crate::kernel::Kernel;
 use crate::lattice::Lattice;
 use crate::progress::{Counter, Progress};
 use crate::shape::ShapeFamily;
+use crate::studies::shard::{Shard, Timing};
 use crate::vonneumann::classify::GROWTH_TOL;
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -161,38 +162,63 @@ pub fn onsets(rows: &[PairingRow]) -> Vec<Onset> {
     out
 }
 
-/// Runs the study. Rows one after the other (each linearisation and wave-vector scan uses the
-/// rayon pool, so memory stays within one row's budget check); `progress` is told the fraction
-/// of rows done after each row.
-pub fn run(cfg: &PairingConfig, progress: impl Progress) -> Result<PairingReport> {
-    let t0 = std::time::Instant::now();
+/// Computes the rows of `shard` (ascending, with their indices): one after the other, each
+/// linearisation and wave-vector scan using the rayon pool, so memory stays within one row's
+/// budget check; `progress` is told the fraction of the shard's rows done after each row.
+pub(super) fn compute_rows(
+    cfg: &PairingConfig,
+    shard: Shard,
+    progress: &dyn Progress,
+) -> Result<Vec<(usize, PairingRow)>> {
+    let plan = plan(cfg)?;
+    let per_kernel = plan.lattices.len() * plan.h.len() * plan.stresses.len();
+    let mine: Vec<usize> = (0..plan.rows()).filter(|&c| shard.owns(c)).collect();
+    // the W* criterion of the kernels this shard has rows of
+    let signs: Vec<Option<WStarSign>> = plan
+        .kernels
+        .par_iter()
+        .enumerate()
+        .map(|(ki, &k)| {
+            mine.iter()
+                .any(|&c| c / per_kernel == ki)
+                .then(|| wstar::sign_criterion(k))
+        })
+        .collect();
+    let done = Counter::new(progress, mine.len(), 1);
+    let (nl, nh, ns) = (plan.lattices.len(), plan.h.len(), plan.stresses.len());
+    let mut rows = Vec::with_capacity(mine.len());
+    for c in mine {
+        // c = ((kernel · lattices + lattice) · h values + h) · stresses + stress
+        let (ki, li, hi, si) = (c / per_kernel, c / (nh * ns) % nl, c / ns % nh, c % ns);
+        rows.push((
+            c,
+            evaluate_row(
+                plan.kernels[ki],
+                plan.lattices[li],
+                plan.h[hi],
+                plan.stresses[si],
+                plan.grid,
+                signs[ki].as_ref().and_then(|s| s.first_negative_k),
+                &cfg.budget,
+            )?,
+        ));
+        done.add(1)?;
+    }
+    Ok(rows)
+}
+
+/// The report from every row of the study (kernel × lattice × h × σ̄ order).
+pub(super) fn assemble(
+    cfg: &PairingConfig,
+    rows: Vec<PairingRow>,
+    timing: Timing,
+) -> Result<PairingReport> {
     let plan = plan(cfg)?;
     let signs: Vec<WStarSign> = plan
         .kernels
         .par_iter()
         .map(|&k| wstar::sign_criterion(k))
         .collect();
-    let total = plan.rows();
-    let done = Counter::new(&progress, total, 1);
-    let mut rows = Vec::with_capacity(total);
-    for (ki, &k) in plan.kernels.iter().enumerate() {
-        for &lat in &plan.lattices {
-            for &h in &plan.h {
-                for &s in &plan.stresses {
-                    rows.push(evaluate_row(
-                        k,
-                        lat,
-                        h,
-                        s,
-                        plan.grid,
-                        signs[ki].first_negative_k,
-                        &cfg.budget,
-                    )?);
-                    done.add(1)?;
-                }
-            }
-        }
-    }
     Ok(PairingReport {
         form: FormKind::Classical.name().into(),
         shape: ShapeFamily::Sph.name().into(),
@@ -205,7 +231,14 @@ pub fn run(cfg: &PairingConfig, progress: impl Progress) -> Result<PairingReport
         onsets: onsets(&rows),
         kernels: signs,
         rows,
-        runtime_s: t0.elapsed().as_secs_f64(),
-        threads: rayon::current_num_threads(),
+        runtime_s: timing.runtime_s,
+        threads: timing.threads,
     })
+}
+
+/// Runs the whole study ([`compute_rows`] of every row, then the W* criteria and the onsets);
+/// `progress` is told the fraction of rows done after each row. Sharded:
+/// [`PairingStudy`](super::PairingStudy).
+pub fn run(cfg: &PairingConfig, progress: impl Progress) -> Result<PairingReport> {
+    crate::studies::shard::run_whole(&super::PairingStudy, cfg, progress)
 }

@@ -10,7 +10,7 @@ use crate::kernel::{self, Kernel};
 use serde::{Deserialize, Serialize};
 
 /// What to sweep.
-#[derive(Clone, Debug, Deserialize, Serialize)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct TradeoffConfig {
     /// 1 or 2.

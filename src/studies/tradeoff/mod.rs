@@ -15,7 +15,9 @@
 //!
 //! With `integrators` (1D only) the report gains `integrator_rows`: the integrator as a
 //! dimension of the study, one row per configuration × integrator ([`integrators`]).
-//! `sphstab tradeoff --cfl-table` prints the critical CFL table ([`cfl`]).
+//! `sphstab tradeoff --cfl-table` prints the critical CFL table ([`cfl`]). [`TradeoffStudy`]
+//! splits the configurations into shards for a job array ([`crate::studies::shard`]; the 2D
+//! study takes ~5 min of CPU).
 //!
 //! The 1D grid covers the ten 1D forms, the 2D grid the six 2D forms (square lattice, hydro
 //! material p = K(ρ/ρ0 − 1), as in the Swegle test). A configuration the engine rejects (e.g. an
@@ -27,6 +29,7 @@ pub mod integrators;
 mod report;
 mod run;
 mod scenes;
+mod shard;
 
 pub use config::{TradeoffConfig, grid, integrator_list, parse_config};
 pub use integrators::IntegratorRow;
@@ -36,3 +39,4 @@ pub use report::{
 pub use run::run;
 pub(crate) use run::tension_limit;
 pub use scenes::scene_description;
+pub use shard::{TradeoffCell, TradeoffStudy};

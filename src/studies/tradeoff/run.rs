@@ -8,6 +8,7 @@ use super::report::{Row, TradeoffReport};
 use super::scenes::{
     SCENE_1D_N, SCENE_DT, median, scene_1d, scene_1d_with, scene_2d, scene_description,
 };
+use super::shard::TradeoffCell;
 use crate::analysis::{MaterialSpec, Query};
 use crate::budget::Budget;
 use crate::error::Result;
@@ -15,6 +16,7 @@ use crate::forms::{FormKind, Model};
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
 use crate::progress::{Counter, Progress};
+use crate::studies::shard::{Shard, Timing};
 use crate::studies::throughput::MemoryProbe;
 use crate::vonneumann::amplification::{critical_dt, critical_dt_bisection};
 use crate::vonneumann::classify::GROWTH_TOL;
@@ -167,17 +169,54 @@ fn analyse(
     Ok(())
 }
 
-/// Runs the study, telling `progress` the fraction of configurations finished. The engine part
-/// runs in parallel (rayon); the timed scene runs one at a time so they do not compete.
+/// Runs the whole study, telling `progress` the fraction of configurations finished. Sharded:
+/// [`TradeoffStudy`](super::TradeoffStudy).
 pub fn run(
     cfg: &TradeoffConfig,
     probe: Option<&dyn MemoryProbe>,
     progress: impl Progress,
 ) -> Result<TradeoffReport> {
-    let configs = grid(cfg)?;
+    crate::studies::shard::run_whole(&super::TradeoffStudy { probe }, cfg, progress)
+}
+
+/// The report from every configuration's cell, in the grid's order.
+pub(super) fn assemble(
+    cfg: &TradeoffConfig,
+    cells: Vec<TradeoffCell>,
+    timing: Timing,
+) -> TradeoffReport {
+    let mut rows = Vec::with_capacity(cells.len());
+    let mut integrator_rows = Vec::new();
+    for c in cells {
+        rows.push(c.row);
+        integrator_rows.extend(c.integrator_rows);
+    }
+    TradeoffReport {
+        dim: cfg.dim,
+        threads: timing.threads,
+        runtime_s: timing.runtime_s,
+        scene: scene_description(cfg.dim),
+        rows,
+        integrator_rows,
+    }
+}
+
+/// Computes the configurations of `shard` (ascending, with their indices in the grid), telling
+/// `progress` the fraction done. The engine part runs in parallel (rayon); the timed scenes run
+/// one at a time so they do not compete.
+pub(super) fn compute_cells(
+    cfg: &TradeoffConfig,
+    shard: Shard,
+    probe: Option<&dyn MemoryProbe>,
+    progress: &dyn Progress,
+) -> Result<Vec<(usize, TradeoffCell)>> {
+    let (index, configs): (Vec<usize>, Vec<_>) = grid(cfg)?
+        .into_iter()
+        .enumerate()
+        .filter(|(c, _)| shard.owns(*c))
+        .unzip();
     let integs = integrator_list(cfg)?;
-    let start = std::time::Instant::now();
-    let done = Counter::new(&progress, 2 * configs.len() * (1 + integs.len()), 1);
+    let done = Counter::new(progress, 2 * configs.len() * (1 + integs.len()), 1);
     let mut rows: Vec<Row> = configs
         .par_iter()
         .map(|&(form, k, h)| -> Result<Row> {
@@ -242,15 +281,18 @@ pub fn run(
         }
         done.add(1)?;
     }
-    let integrator_rows = integrator_rows(cfg, &configs, &integs, &done)?;
-    Ok(TradeoffReport {
-        dim: cfg.dim,
-        threads: rayon::current_num_threads(),
-        runtime_s: start.elapsed().as_secs_f64(),
-        scene: scene_description(cfg.dim),
-        rows,
-        integrator_rows,
-    })
+    let mut integrator_rows = integrator_rows(cfg, &configs, &integs, &done)?.into_iter();
+    Ok(index
+        .into_iter()
+        .zip(rows)
+        .map(|(c, row)| {
+            let cell = TradeoffCell {
+                row,
+                integrator_rows: integrator_rows.by_ref().take(integs.len()).collect(),
+            };
+            (c, cell)
+        })
+        .collect())
 }
 
 /// The integrator dimension ([`integrators`]): the engine part in parallel, then the timed
