@@ -8,6 +8,7 @@
 //! same error with [`Error::render`] and its one table of field → flag, so that its messages
 //! name the flag the user typed (`h_over_dx` → `--h`).
 
+use crate::display::{num, num_sig};
 use std::fmt;
 use std::ops::Add;
 
@@ -190,12 +191,14 @@ impl Error {
             } => format!(
                 "{} = {} is out of range: {}",
                 names(field),
-                fmt_num(*value),
+                num(*value),
                 range.render(names)
             ),
             Error::Incompatible(t) => t.render(names),
             Error::SingularMoment { what, x, det } => format!(
-                "singular {what} at x = {x} (determinant {det:e}): the support covers too few neighbours"
+                "singular {what} at x = {} (determinant {}): the support covers too few neighbours",
+                num(*x),
+                num_sig(*det, 3)
             ),
             Error::Config { file, msg } => format!("{file}: {msg}"),
             Error::NonFinite(what) => format!("non-finite result in {what}"),
@@ -250,7 +253,7 @@ pub fn check_range(
     } else {
         let l = if lo_inclusive { "[" } else { "(" };
         let r = if hi_inclusive { "]" } else { ")" };
-        let fmt = fmt_num;
+        let fmt = num;
         Err(Error::OutOfRange {
             field,
             value,
@@ -284,18 +287,4 @@ pub fn name_in<T: Copy + PartialEq>(table: &[(T, &'static str)], v: T) -> &'stat
         .find(|(x, _)| *x == v)
         .map(|(_, n)| *n)
         .unwrap_or("?")
-}
-
-/// A number as a user reads it in a message: the shortest round-trip form for ordinary
-/// magnitudes, scientific notation (`1e308`, `2.5e-7`) for very large or small ones.
-pub fn fmt_num(v: f64) -> String {
-    if v.is_nan() {
-        "NaN".into()
-    } else if v.is_infinite() {
-        if v > 0.0 { "inf".into() } else { "-inf".into() }
-    } else if v != 0.0 && (v.abs() >= 1e6 || v.abs() < 1e-4) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
 }

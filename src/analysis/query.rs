@@ -9,6 +9,7 @@
 
 use super::common::{Setup, density_diffusion, linearised_av};
 use crate::budget::Budget;
+use crate::display::num;
 use crate::error::{Error, Result, Text, check_range, field};
 use crate::forms::{DiffusionForm, FormKind, Material, ModelParams, ObjectiveRate};
 use crate::integrator::Integrator;
@@ -49,13 +50,13 @@ impl std::fmt::Display for MaterialSpec {
         match self {
             MaterialSpec::Bar => write!(f, "elastic bar"),
             MaterialSpec::Hydro => write!(f, "hydro"),
-            MaterialSpec::NeoHookean { poisson } => write!(f, "neo-hookean ν = {poisson}"),
+            MaterialSpec::NeoHookean { poisson } => write!(f, "neo-hookean ν = {}", num(*poisson)),
             MaterialSpec::Elastic { poisson, rate } => {
                 let r = match rate {
                     ObjectiveRate::Jaumann => "jaumann",
                     ObjectiveRate::Truesdell => "truesdell",
                 };
-                write!(f, "elastic ν = {poisson}, {r} rate")
+                write!(f, "elastic ν = {}, {r} rate", num(*poisson))
             }
         }
     }

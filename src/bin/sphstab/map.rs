@@ -4,6 +4,7 @@
 use crate::common::Config;
 use anyhow::{Context, Result};
 use sphstab::budget::Budget;
+use sphstab::display::num;
 
 /// Flags of `map`.
 #[derive(clap::Args, Debug)]
@@ -78,8 +79,8 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) 
                 "growth rate over the zone: {} / {} h = {}Δx, σ̄ = {}, {}, {} ({}D, {}×{} wave vectors)",
                 q.form.name(),
                 q.kernel.name(),
-                q.h_over_dx,
-                q.stress,
+                num(q.h_over_dx),
+                num(q.stress),
                 q.material,
                 q.lattice.kind,
                 D,

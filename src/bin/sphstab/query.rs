@@ -161,7 +161,10 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
         _ => println!("{}", no_critical(r.integrator)),
     }
     if let (Some(dt), Some(m)) = (r.dt, r.max_amplification) {
-        println!("at Δt = {dt} Δx/c: max |λ| = {m:.9}");
+        println!(
+            "at Δt = {} Δx/c: max |λ| = {m:.9}",
+            sphstab::display::num(dt)
+        );
     }
     Ok(())
 }

@@ -145,7 +145,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             std::fs::write(
                 dir.join("final.vtk"),
                 vtk_state(
-                    &format!("{} {} t={:e}", r.name, r.form, r.t),
+                    &format!("{} {} t={}", r.name, r.form, sphstab::display::num(r.t)),
                     z,
                     form,
                     scene.c_partition,
@@ -173,7 +173,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(s) = r.stress {
         let c = r
             .c_partition
-            .map(|c| format!(" ((1 − c)σ + cτ, c = {c})"))
+            .map(|c| format!(" ((1 − c)σ + cτ, c = {})", sphstab::display::num(c)))
             .unwrap_or_default();
         println!(
             "final stress{c} in [{:.4e}, {:.4e}] Pa; max stress error vs analytic: {}",

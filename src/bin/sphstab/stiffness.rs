@@ -151,7 +151,7 @@ pub fn run(a: Args) -> Result<()> {
             q.name(),
             a.shape,
             a.kernel,
-            a.support,
+            sphstab::display::num(a.support),
             a.lattice
         );
         for (j, kk, v) in ap.stiffness_table()? {

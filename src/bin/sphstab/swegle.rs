@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result};
 use sphstab::budget::Budget;
+use sphstab::display::num;
 use sphstab::forms::FormKind;
 use sphstab::solver::BoundaryDensity;
 use sphstab::studies::swegle::{SwegleConfig, default_size, run_swegle};
@@ -155,12 +156,12 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
         if let Some(z) = &r.final_state {
             let title = format!(
-                "swegle {} {} h={} f={} t={:e}",
+                "swegle {} {} h={} f={} t={}",
                 r.form,
                 r.kernel,
-                r.h_over_dx,
-                r.density_ratio,
-                r.dt * r.steps as f64
+                num(r.h_over_dx),
+                num(r.density_ratio),
+                num(r.dt * r.steps as f64)
             );
             std::fs::write(
                 dir.join("final.vtk"),
@@ -232,8 +233,8 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
                     "Swegle test: {} / {} h = {}Δx, f = ρ/ρ0 = {}, {}",
                     r.form,
                     r.kernel,
-                    r.h_over_dx,
-                    r.density_ratio,
+                    num(r.h_over_dx),
+                    num(r.density_ratio),
                     cfg.shape_label().replace(' ', "")
                 ),
                 "time t (units of Δx/c)",
@@ -259,8 +260,8 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         r.dim,
         r.form,
         r.kernel,
-        r.h_over_dx,
-        r.density_ratio
+        num(r.h_over_dx),
+        num(r.density_ratio)
     );
     match r.measured_growth_rate {
         Some(m) if r.ratio_box.is_some() => println!(

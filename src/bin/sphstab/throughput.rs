@@ -2,6 +2,7 @@
 
 use anyhow::Result;
 use sphstab::budget::Budget;
+use sphstab::display::num;
 use sphstab::error::Error;
 use sphstab::forms::{FormKind, ObjectiveRate};
 use sphstab::studies::throughput::{BlockMaterial, Domain, ThroughputConfig, run_throughput};
@@ -180,15 +181,15 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         return Ok(());
     }
     let material = match r.poisson {
-        Some(nu) => format!("{} ν = {nu}", r.material),
+        Some(nu) => format!("{} ν = {}", r.material, num(nu)),
         None => r.material.clone(),
     };
     let av = match r.av {
-        Some([al, be]) => format!("AV α = {al}, β = {be}"),
+        Some([al, be]) => format!("AV α = {}, β = {}", num(al), num(be)),
         None => "no AV".into(),
     };
     let art = match (r.art_eps, r.art_n) {
-        (Some(e), Some(n)) => format!("artificial stress ε = {e}, n = {n}"),
+        (Some(e), Some(n)) => format!("artificial stress ε = {}, n = {n}", num(e)),
         _ => "no artificial stress".into(),
     };
     println!(
@@ -203,11 +204,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         r.form,
         r.shape,
         r.kernel,
-        r.h_over_dx
+        num(r.h_over_dx)
     );
     println!(
         "Δt = {} Δx/c; {} timed steps × {} repeats (median) after 1 warm-up step; {} thread{}",
-        r.dt,
+        num(r.dt),
         r.steps,
         r.repeats,
         r.threads,
@@ -225,14 +226,16 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     );
     for b in &r.blocks {
         println!(
-            "{:>6} {:>10} {:>16.1} {:>18.4e} {:>11.2} {:>15.0} {:>12.2}",
+            "{:>6} {:>10} {:>16.1} {:>18.4e} {:>11.2} {:>15} {:>12}",
             b.size,
             b.particles,
             b.ns_per_particle_step,
             b.particle_steps_per_second,
             b.neighbours_per_particle,
-            b.bytes_per_particle.unwrap_or(f64::NAN),
-            b.allocations_per_step.unwrap_or(f64::NAN),
+            b.bytes_per_particle
+                .map_or("-".into(), |x| format!("{x:.0}")),
+            b.allocations_per_step
+                .map_or("-".into(), |x| format!("{x:.2}")),
         );
     }
     for b in &r.blocks {
