@@ -24,6 +24,14 @@ pub struct Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    crate::common::refuse(
+        "query",
+        &[(
+            "--av-beta",
+            a.cfg.av_beta.is_some(),
+            crate::common::AV_BETA_WHY,
+        )],
+    )?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }
@@ -70,7 +78,9 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     if let Some(n) = a.box_free {
         sphstab::params::check_count("box", n, 1, sphstab::analysis::max_box(D))?;
     }
-    let r = sphstab::analysis::query(&q)?;
+    // in 1D the κ points are --points or --grid: the budget names the one given
+    let r = sphstab::analysis::query(&q)
+        .map_err(|e| crate::flags::alias(e, "grid", "--points", a.points.is_some()))?;
     let boxp = match a.box_free {
         Some(n) => Some(sphstab::analysis::box_prediction(
             &q.linearise_at(q.stress)?,

@@ -80,6 +80,14 @@ fn print_eq120(v: Option<f64>) {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    crate::common::refuse(
+        "timestep without --verify",
+        &[(
+            "--av-beta",
+            a.cfg.av_beta.is_some() && !a.verify,
+            crate::common::AV_BETA_WHY,
+        )],
+    )?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }
@@ -104,7 +112,9 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
         }
         Some(name) => ViscosityPairs::by_name("--viscosity", name)?,
     };
-    let r = sphstab::analysis::timestep(&q)?;
+    // in 1D the κ points are --points or --grid: the budget names the one given
+    let r = sphstab::analysis::timestep(&q)
+        .map_err(|e| crate::flags::alias(e, "grid", "--points", a.points.is_some()))?;
     let verified = if a.verify {
         let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
         let v = sphstab::studies::stable_dt::stable_dt(&q, pairs, &pb)?;
