@@ -9,7 +9,7 @@ use anyhow::Result;
 use sphstab::budget::Budget;
 use sphstab::solver::BoundaryDensity;
 use sphstab::studies::art_stress::{ArtStressConfig, ArtStressReport};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Flags of `art-stress`.
 #[derive(clap::Args, Debug)]
@@ -87,9 +87,11 @@ impl Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    if let Some(p) = &a.plot {
-        crate::common::check_writable("--plot", p)?;
+    let mut files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref());
+    if let Some(p) = &a.compare {
+        files = files.input("--compare", p);
     }
+    files.check()?;
     let flags = a.study_flags();
     if let Some(from) = &a.from {
         let others = a.config.is_some() || !flags.is_empty() || a.json;
@@ -154,9 +156,13 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         ..cfg
     };
     cfg.validate()?;
-    if let Some(name) = &cfg.output {
-        crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
+    if let Some(p) = &cfg.compare {
+        files = files.input("--config (its `compare`)", p);
     }
+    if let Some(name) = &cfg.output {
+        files = study::with_config_output(files, name);
+    }
+    files.check()?;
     let compare = match &cfg.compare {
         Some(p) => {
             let flag = if a.config.is_some() {

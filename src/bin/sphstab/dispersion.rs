@@ -45,7 +45,7 @@ fn cell(v: Option<f64>, width: usize, prec: usize) -> String {
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
-        crate::common::check_writable("--plot", p)?;
+        crate::files::Files::new().output("--plot", p).check()?;
     }
     if a.cfg.grid.is_some() {
         return Err(crate::query::not_in(
@@ -53,6 +53,21 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             "dispersion (it samples the high-symmetry path: use --points)",
         ));
     }
+    crate::common::refuse(
+        "dispersion",
+        &[
+            (
+                "--dt",
+                a.cfg.dt.is_some(),
+                "ω² is semi-discrete; the check at a Δt is query --dt or timestep --dt",
+            ),
+            (
+                "--av-beta",
+                a.cfg.av_beta.is_some(),
+                crate::common::AV_BETA_WHY,
+            ),
+        ],
+    )?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }
@@ -78,6 +93,13 @@ fn branch_names(d: usize) -> Vec<&'static str> {
 /// continuum branches for D ≥ 2; the damping rate to FILE-damping.svg for dissipative systems.
 fn plot<const D: usize>(path: &std::path::Path, r: &DispersionReport) -> Result<()> {
     use sphstab::plot::{Curve, LinePlot};
+    if r.damping_rate.is_some() {
+        // the second figure of a dissipative system, checked before either is written
+        crate::files::Files::new()
+            .output("--plot", path)
+            .output("--plot (its damping figure)", damping_path(path))
+            .check()?;
+    }
     let title = r.header.to_string();
     let form = r.header.setup.form;
     if D == 1 {

@@ -7,7 +7,7 @@ use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
 use sphstab::studies::pairing::{PairingConfig, PairingReport};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Flags of `pairing`.
 #[derive(clap::Args, Debug)]
@@ -83,9 +83,8 @@ fn all_or(v: &[String]) -> Vec<String> {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    if let Some(p) = &a.plot {
-        crate::common::check_writable("--plot", p)?;
-    }
+    let files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref());
+    files.check()?;
     let flags = a.study_flags();
     if let Some(from) = &a.from {
         let others = a.config.is_some() || !flags.is_empty() || a.json;
@@ -144,7 +143,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     // validate everything before the first row is computed
     sphstab::studies::pairing::plan(&cfg)?;
     if let Some(name) = &config_out {
-        crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
+        study::with_config_output(files, name).check()?;
     }
     let pb = progress::Bar::new(progress::wanted(a.json));
     let rep = sphstab::studies::pairing::run(&cfg, pb.clone())?;
