@@ -8,6 +8,7 @@
 //! same error with [`Error::render`] and its one table of field → flag, so that its messages
 //! name the flag the user typed (`h_over_dx` → `--h`).
 
+use crate::display::{num, num_sig};
 use std::fmt;
 use std::ops::Add;
 
@@ -200,12 +201,14 @@ impl Error {
             } => format!(
                 "{} = {} is out of range: {}",
                 names(field),
-                fmt_num(*value),
+                num(*value),
                 range.render(names)
             ),
             Error::Incompatible(t) => t.render(names),
             Error::SingularMoment { what, x, det } => format!(
-                "singular {what} at x = {x} (determinant {det:e}): the support covers too few neighbours"
+                "singular {what} at x = {} (determinant {}): the support covers too few neighbours",
+                num(*x),
+                num_sig(*det, 3)
             ),
             Error::Config { file, msg } => format!("{file}: {msg}"),
             Error::Merge {
@@ -274,7 +277,7 @@ pub fn check_range(
     } else {
         let l = if lo_inclusive { "[" } else { "(" };
         let r = if hi_inclusive { "]" } else { ")" };
-        let fmt = fmt_num;
+        let fmt = num;
         Err(Error::OutOfRange {
             field,
             value,
@@ -310,16 +313,75 @@ pub fn name_in<T: Copy + PartialEq>(table: &[(T, &'static str)], v: T) -> &'stat
         .unwrap_or("?")
 }
 
-/// A number as a user reads it in a message: the shortest round-trip form for ordinary
-/// magnitudes, scientific notation (`1e308`, `2.5e-7`) for very large or small ones.
-pub fn fmt_num(v: f64) -> String {
-    if v.is_nan() {
-        "NaN".into()
-    } else if v.is_infinite() {
-        if v > 0.0 { "inf".into() } else { "-inf".into() }
-    } else if v != 0.0 && (v.abs() >= 1e6 || v.abs() < 1e-4) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
+/// Parses the JSON document `text` of `file`; an error names the file and, where serde's own
+/// message does not (a value of the wrong type: `invalid type: string "NaN", expected f64`), the
+/// key the value belongs to, found from the error's position in the text.
+pub fn parse_json<T: serde::de::DeserializeOwned>(file: &str, text: &str) -> Result<T> {
+    serde_json::from_str(text).map_err(|e| json_error(file, text, &e))
+}
+
+/// The [`Error::Config`] of a JSON error `e` in `text` ([`parse_json`]).
+pub fn json_error(file: &str, text: &str, e: &serde_json::Error) -> Error {
+    let msg = e.to_string();
+    let key = (e.classify() == serde_json::error::Category::Data && !msg.contains("field `"))
+        .then(|| key_before(text, e.line(), e.column()))
+        .flatten();
+    Error::Config {
+        file: file.into(),
+        msg: match key {
+            Some(k) => format!("field `{k}`: {msg}"),
+            None => msg,
+        },
+    }
+}
+
+/// The last `"key":` before line `line`, column `column` (1-based) of `text`.
+fn key_before(text: &str, line: usize, column: usize) -> Option<String> {
+    let start: usize = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum();
+    let mut end = (start + column).min(text.len());
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    let before = &text[..end];
+    let colon = before.rfind("\":")?;
+    let open = before[..colon].rfind('"')?;
+    Some(before[open + 1..colon].to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn json_type_errors_name_the_key() {
+        let text = "{\"a\": 1,\n  \"t_end\": \"NaN\", \"b\": 2}";
+        let e = parse_json::<std::collections::BTreeMap<String, f64>>("f.json", text)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("f.json: field `t_end`: invalid type"), "{e}");
+        // serde's own message names the field: kept as it is
+        #[derive(Debug, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        #[allow(dead_code)]
+        struct S {
+            a: f64,
+        }
+        let e = parse_json::<S>("f.json", "{\"a\": 1, \"colour\": 2}")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("f.json: unknown field `colour`"), "{e}");
+    }
+
+    #[test]
+    fn range_errors_print_numbers_short() {
+        let e = check_range("x", 5e-324, 1.0, 2.0, true, true).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "x = 5e-324 is out of range: must be a finite number in [1, 2]"
+        );
     }
 }

@@ -472,7 +472,9 @@ impl std::fmt::Display for LatticeKind {
         match self {
             LatticeKind::Chain => write!(f, "1D chain"),
             LatticeKind::Square { gamma } if *gamma == 1.0 => write!(f, "square lattice"),
-            LatticeKind::Square { gamma } => write!(f, "square lattice γ = {gamma}"),
+            LatticeKind::Square { gamma } => {
+                write!(f, "square lattice γ = {}", crate::display::num(*gamma))
+            }
             LatticeKind::Hexagonal => write!(f, "hexagonal lattice"),
             LatticeKind::Sc => write!(f, "simple cubic lattice"),
             LatticeKind::Bcc => write!(f, "body-centred cubic lattice"),

@@ -45,7 +45,7 @@
 //! | layer | module | contents |
 //! |---|---|---|
 //! | core | [`scalar`], [`kernel`], [`shape`], [`lattice`], [`neighbours`] | dual numbers; the eleven kernels of SPEC §2; `sph`, `shepard`, `mls`, `corrected`; lattices in 1D–3D; cell lists |
-//! | core | [`error`], [`params`], [`budget`], [`progress`] | errors naming fields; the shared parameter checks; the resource budget; progress reports |
+//! | core | [`error`], [`display`], [`params`], [`budget`], [`progress`] | errors naming fields; numbers as people read them; the shared parameter checks; the resource budget; progress reports |
 //! | integrator | [`integrator`] | twelve time integrators: one step for the solver, one amplification for the engine |
 //! | forms | [`forms`] | the rate functions (allocation-free evaluation with [`forms::RateWorkspace`]) |
 //! | engine | [`vonneumann`] | linearisation, amplification, classification, closed forms, kernel transforms |
@@ -59,6 +59,7 @@
 
 pub mod analysis;
 pub mod budget;
+pub mod display;
 pub mod error;
 pub mod figures;
 pub mod forms;

@@ -55,6 +55,13 @@ fn curve(lin: &Linearisation, kappas: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
 /// Answers a stability query.
 pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
     let lin = q.chain()?;
+    super::work::check(
+        q,
+        &lin,
+        q.kappa_sample(),
+        q.modes(),
+        super::work::Question::Query,
+    )?;
     let kappas = q.kappas();
     let (w2, g) = curve(&lin, &kappas)?;
     let growing: Vec<bool> = g.iter().map(|&x| x > GROWTH_TOL).collect();
@@ -217,6 +224,13 @@ pub(super) fn dispersion<const D: usize>(q: &Query<D>, points: usize) -> Result<
 pub(super) fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
     let (integ, dt) = (q.integrator, q.dt);
     let lin = q.chain()?;
+    super::work::check(
+        q,
+        &lin,
+        q.kappa_sample(),
+        q.modes(),
+        super::work::Question::Timestep,
+    )?;
     let kappas = q.kappas();
     let (w2, g) = curve(&lin, &kappas)?;
     let w2max = w2.iter().fold(0.0f64, |m, &x| m.max(x));

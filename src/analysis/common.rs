@@ -52,7 +52,12 @@ impl std::fmt::Display for Setup {
         write!(
             f,
             "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}",
-            self.form, self.kernel, self.shape, self.h_over_dx, self.support_over_dx, self.stress
+            self.form,
+            self.kernel,
+            self.shape,
+            self.h_over_dx,
+            self.support_over_dx,
+            crate::display::num(self.stress)
         )
     }
 }

@@ -13,6 +13,7 @@ pub mod common;
 pub mod maps;
 pub mod query;
 pub mod report;
+pub mod work;
 pub mod zone;
 
 pub use common::{IntegratorReport, Setup, linearised_av};
@@ -53,11 +54,16 @@ pub fn dispersion<const D: usize>(q: &Query<D>, points: usize) -> Result<Dispers
 /// None for a weak instability.
 pub fn critical_dt_to<const D: usize>(q: &Query<D>, tol: f64) -> Result<Option<f64>> {
     use crate::vonneumann::amplification::step_stability_to;
+    use work::{Question, check};
     crate::error::check_range("tol", tol, 0.0, 1.0, false, true)?;
     let st = if D == 1 {
-        step_stability_to(&q.chain()?, &q.kappas(), q.integrator, tol)?
+        let lin = q.chain()?;
+        check(q, &lin, q.kappa_sample(), q.modes(), Question::CriticalDt)?;
+        step_stability_to(&lin, &q.kappas(), q.integrator, tol)?
     } else {
-        step_stability_to(&q.linearise_at(q.stress)?, &q.kgrid(), q.integrator, tol)?
+        let lin = q.linearise_at(q.stress)?;
+        check(q, &lin, q.k_sample(), q.modes(), Question::CriticalDt)?;
+        step_stability_to(&lin, &q.kgrid(), q.integrator, tol)?
     };
     Ok(st.critical_dt)
 }

@@ -9,6 +9,7 @@
 
 use super::common::{Setup, density_diffusion, linearised_av};
 use crate::budget::Budget;
+use crate::display::num;
 use crate::error::{Error, Result, Text, check_range, field};
 use crate::forms::{DiffusionForm, FormKind, Material, ModelParams, ObjectiveRate};
 use crate::integrator::Integrator;
@@ -49,13 +50,13 @@ impl std::fmt::Display for MaterialSpec {
         match self {
             MaterialSpec::Bar => write!(f, "elastic bar"),
             MaterialSpec::Hydro => write!(f, "hydro"),
-            MaterialSpec::NeoHookean { poisson } => write!(f, "neo-hookean ν = {poisson}"),
+            MaterialSpec::NeoHookean { poisson } => write!(f, "neo-hookean ν = {}", num(*poisson)),
             MaterialSpec::Elastic { poisson, rate } => {
                 let r = match rate {
                     ObjectiveRate::Jaumann => "jaumann",
                     ObjectiveRate::Truesdell => "truesdell",
                 };
-                write!(f, "elastic ν = {poisson}, {r} rate")
+                write!(f, "elastic ν = {}, {r} rate", num(*poisson))
             }
         }
     }
@@ -212,6 +213,14 @@ impl<const D: usize> Query<D> {
             ));
         }
         check_art_stress_dim(D, self.art_stress.is_some())?;
+        if self.art_stress.is_some() && !matches!(self.form, FormKind::Classical | FormKind::Cll) {
+            return Err(Error::Incompatible(
+                field("art_eps")
+                    + " (artificial stress) applies to the classical and cll forms, not "
+                    + field("form")
+                    + format!(" {}", self.form.name()),
+            ));
+        }
         match (D, self.material) {
             (1, MaterialSpec::Bar) => {}
             (1, _) => {
@@ -360,6 +369,27 @@ impl<const D: usize> Query<D> {
             ));
         }
         Bloch::with_budget(self.params()?, &self.lattice, 1.0, s, &self.budget)
+    }
+
+    /// The number of modes the question samples: grid κ points in 1D, grid^D − 1 wave vectors
+    /// (Γ left out) for D ≥ 2.
+    pub fn modes(&self) -> usize {
+        if D == 1 {
+            self.grid
+        } else {
+            self.grid.saturating_pow(D as u32).saturating_sub(1)
+        }
+    }
+
+    /// 1D: one κΔx of the grid (the first), without listing them.
+    pub fn kappa_sample(&self) -> f64 {
+        PI / self.grid as f64
+    }
+
+    /// D ≥ 2: one wave vector of the zone, without listing them (a mode's matrices have the
+    /// same size at every wave vector).
+    pub fn k_sample(&self) -> [f64; D] {
+        [PI / self.grid as f64; D]
     }
 
     /// 1D: the κΔx grid π k / grid, k = 1..grid.

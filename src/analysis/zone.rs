@@ -74,6 +74,13 @@ fn nearest_neighbour<const D: usize>(lat: &Lattice<D>) -> f64 {
 /// Answers a stability question in D ≥ 2 dimensions.
 pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
     let lin = q.linearise_at(q.stress)?;
+    super::work::check(
+        q,
+        &lin,
+        q.k_sample(),
+        q.modes(),
+        super::work::Question::Query,
+    )?;
     let ks = q.kgrid();
     let (cp, cs) = q.continuum_moduli()?;
     // the continuum's own zero branches: the D − 1 transverse ones of a fluid
@@ -278,6 +285,13 @@ pub(super) fn dispersion<const D: usize>(q: &Query<D>, n: usize) -> Result<Dispe
 /// growth at `q.dt`, default 1/ω_max).
 pub(super) fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
     let lin = q.linearise_at(q.stress)?;
+    super::work::check(
+        q,
+        &lin,
+        q.k_sample(),
+        q.modes(),
+        super::work::Question::Timestep,
+    )?;
     let ks = q.kgrid();
     let modes: Vec<_> = ks
         .par_iter()

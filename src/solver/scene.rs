@@ -132,6 +132,11 @@ pub struct Scene1D {
     pub budget: Budget,
 }
 
+/// The physical scales of a scene (`length` in m, `modulus` in Pa, `rho0` in kg/m³) must lie
+/// in [SCALE_RANGE.0, SCALE_RANGE.1]: far beyond, squared distances and masses leave the range
+/// of f64 (a bar of 1e150 m stops moving, one of 1e-150 m diverges at the first step).
+pub const SCALE_RANGE: (f64, f64) = (1e-30, 1e30);
+
 fn half() -> f64 {
     0.5
 }
@@ -159,10 +164,7 @@ pub fn builtin(name: &str) -> Result<Scene1D> {
 
 /// Parses a scene; errors name the file and the field.
 pub fn parse(file: &str, text: &str) -> Result<Scene1D> {
-    serde_json::from_str(text).map_err(|e| Error::Config {
-        file: file.into(),
-        msg: e.to_string(),
-    })
+    crate::error::parse_json(file, text)
 }
 
 /// [V21 §7.1]: bar of length 1 centred at 0, 100 particles, v = 0.001 x (tension), the 3 particles
@@ -282,9 +284,11 @@ impl Scene1D {
         };
         form.check_shape(shape)?;
         crate::error::check_range("particles", self.particles as f64, 4.0, 1e7, true, true)?;
-        crate::error::check_range("length", self.length, 0.0, f64::INFINITY, false, false)?;
-        crate::error::check_range("modulus", self.modulus, 0.0, f64::INFINITY, false, false)?;
-        crate::error::check_range("rho0", self.rho0, 0.0, f64::INFINITY, false, false)?;
+        let (lo, hi) = SCALE_RANGE;
+        crate::error::check_range("length", self.length, lo, hi, true, true)?;
+        crate::error::check_range("modulus", self.modulus, lo, hi, true, true)?;
+        crate::error::check_range("rho0", self.rho0, lo, hi, true, true)?;
+        self.check_keys_apply(form)?;
         crate::error::check_range("t_end", self.t_end, 0.0, f64::INFINITY, false, false)?;
         crate::error::check_range("cfl", self.cfl, 0.0, 2.0, false, true)?;
         crate::error::check_range(
@@ -368,6 +372,63 @@ impl Scene1D {
             n * (neighbours * 32.0 * 3.0 + 480.0) + 24.0 * steps,
         )?;
         Ok((form, k, shape))
+    }
+
+    /// Refuses keys that cannot act: a `c_partition` other than its default 0.5 for a form
+    /// other than lnl and cll, `euler_every` with another integrator than verlet-euler,
+    /// `artificial_viscosity_pairs` other than its default without `artificial_viscosity`.
+    /// (A key at its default acts as much as an absent one: a scene written back by serde
+    /// holds every key.)
+    fn check_keys_apply(&self, form: FormKind) -> Result<()> {
+        if self.c_partition != half() && !matches!(form, FormKind::Lnl | FormKind::Cll) {
+            return Err(Error::Incompatible(
+                field("c_partition")
+                    + " applies to the forms lnl and cll, not "
+                    + field("form")
+                    + format!(" {}", form.name()),
+            ));
+        }
+        let integrator = self.integrator.as_deref().unwrap_or("kdk");
+        if self.euler_every.is_some() && integrator != "verlet-euler" {
+            return Err(Error::Incompatible(
+                field("euler_every")
+                    + " applies to "
+                    + field("integrator")
+                    + format!(" verlet-euler, not {integrator}"),
+            ));
+        }
+        if self.artificial_viscosity_pairs != ViscosityPairs::default()
+            && self.artificial_viscosity.is_none()
+        {
+            return Err(Error::Incompatible(
+                field("artificial_viscosity_pairs")
+                    + " applies with "
+                    + field("artificial_viscosity")
+                    + " (there is no viscosity to switch)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Replaces the form (`simulate --form`): a `c_partition` the file gave then applies only
+    /// if the new form is lnl or cll, and returns to its default otherwise (the override
+    /// replaces the scene's choice of form with what goes with it).
+    pub fn override_form(&mut self, form: &str) {
+        self.form = form.to_string();
+        if !matches!(FormKind::by_name(form), Ok(FormKind::Lnl | FormKind::Cll)) {
+            self.c_partition = half();
+        }
+    }
+
+    /// Replaces the integrator (`simulate --integrator`, `--euler-every`): an `euler_every` the
+    /// file gave is forgotten with another integrator than verlet-euler.
+    pub fn override_integrator(&mut self, name: String, euler_every: Option<usize>) {
+        self.euler_every = if name == "verlet-euler" {
+            euler_every
+        } else {
+            None
+        };
+        self.integrator = Some(name);
     }
 
     /// The largest initial speed of any particle.

@@ -10,10 +10,7 @@ use serde::de::DeserializeOwned;
 /// Parses a study config or a stored report (JSON); `file` names it in errors, which name the
 /// offending field (configs reject unknown fields with `#[serde(deny_unknown_fields)]`).
 pub fn parse_json<T: DeserializeOwned>(file: &str, text: &str) -> Result<T> {
-    serde_json::from_str(text).map_err(|e| Error::Config {
-        file: file.into(),
-        msg: e.to_string(),
-    })
+    crate::error::parse_json(file, text)
 }
 
 /// Checks a config's `output`: a plain file name ending in .svg (it goes into `figures/`, the

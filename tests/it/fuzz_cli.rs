@@ -408,3 +408,656 @@ fn campaign() {
         c[3]
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// The hostile-input table (issue 25): every subcommand, scene files and shard files, each case a
+// command that must exit 2 with one line on stderr naming the flag (or the file and the field)
+// and why, and nothing on stdout — or, where the right thing is to act, do it. The cases are
+// errors or tiny analyses: the whole table runs in a few seconds.
+// ---------------------------------------------------------------------------------------------
+
+/// Runs every case: exit status 2, nothing on stdout, one line on stderr holding every needle.
+fn refuse_all(cases: &[(Vec<String>, Vec<String>)]) {
+    for (args, needles) in cases {
+        let (code, out, err, _) = run_limited(args);
+        assert_eq!(code, Some(2), "{args:?}: exit {code:?}, stderr {err}");
+        assert!(out.is_empty(), "{args:?}: stdout {out}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        for n in needles {
+            assert!(err.contains(n.as_str()), "{args:?}: no `{n}` in: {err}");
+        }
+    }
+}
+
+/// A case from string slices.
+fn case(args: &[&str], needles: &[&str]) -> (Vec<String>, Vec<String>) {
+    (
+        args.iter().map(|s| s.to_string()).collect(),
+        needles.iter().map(|s| s.to_string()).collect(),
+    )
+}
+
+/// A fresh scratch directory of this process for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("sphstab-hostile-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Flags that cannot act are refused, each with the reason, in every command that has one.
+#[test]
+fn hostile_flags_that_cannot_act() {
+    let config = concat!(env!("CARGO_MANIFEST_DIR"), "/analysis/tradeoff.json");
+    refuse_all(&[
+        // query
+        case(&["query", "--c", "0.3"], &["--c", "lnl and cll"]),
+        case(
+            &["query", "--alpha-s", "1"],
+            &["--alpha-s", "least-squares"],
+        ),
+        case(
+            &["query", "--av-beta", "1"],
+            &["--av-beta", "linearisation"],
+        ),
+        case(
+            &["query", "--euler-every", "3"],
+            &["--euler-every", "verlet-euler"],
+        ),
+        case(
+            &[
+                "query",
+                "--dim",
+                "2",
+                "--form",
+                "nonlocal",
+                "--art-eps",
+                "0.3",
+                "--grid",
+                "4",
+            ],
+            &["--art-eps", "classical and cll", "--form nonlocal"],
+        ),
+        case(&["query", "--box", "5"], &["--box", "--dim 1"]),
+        // dispersion
+        case(&["dispersion", "--dt", "0.1"], &["--dt", "dispersion"]),
+        case(&["dispersion", "--av-beta", "1"], &["--av-beta"]),
+        case(&["dispersion", "--grid", "8"], &["--grid", "--points"]),
+        // timestep
+        case(
+            &["timestep", "--euler-every", "3"],
+            &["--euler-every", "kdk"],
+        ),
+        case(&["timestep", "--av-beta", "1"], &["--av-beta", "--verify"]),
+        case(&["timestep", "--viscosity", "two-sided"], &["--viscosity"]),
+        // map
+        case(&["map", "--grid", "8"], &["--grid", "--n"]),
+        case(&["map", "--dt", "0.5"], &["--dt", "map"]),
+        case(&["map", "--plane", "xz"], &["--plane", "3D"]),
+        // stiffness
+        case(&["stiffness", "--consistent"], &["--consistent", "--theta"]),
+        case(&["stiffness", "--points", "8"], &["--points", "--theta"]),
+        case(
+            &["stiffness", "--lattice", "hex", "--gamma", "2"],
+            &["--gamma"],
+        ),
+        // kernels
+        case(&["kernels", "--h-step", "0.1"], &["--h-step", "--table"]),
+        case(&["kernels", "--kernels", "m4"], &["--kernels", "--table"]),
+        // swegle
+        case(&["swegle", "--c", "0.3"], &["--c", "lnl and cll"]),
+        case(
+            &["swegle", "--euler-every", "3"],
+            &["--euler-every", "verlet-euler"],
+        ),
+        case(&["swegle", "--art-n", "3"], &["--art-n", "--art-eps"]),
+        case(
+            &["swegle", "--form", "nonlocal", "--art-eps", "0.3"],
+            &["--art-eps", "classical and cll"],
+        ),
+        // simulate
+        case(
+            &["simulate", "rod", "--euler-every", "3"],
+            &["--euler-every", "kdk"],
+        ),
+        case(
+            &["simulate", "thesis-wave", "--t-end", "1"],
+            &["--t-end", "thesis-wave"],
+        ),
+        // tradeoff
+        case(
+            &["tradeoff", "--cfl-table", "--dim", "2"],
+            &["--dim", "--cfl-table"],
+        ),
+        case(
+            &["tradeoff", "--cfl-table", "--forms", "classical"],
+            &["--forms", "--cfl-table"],
+        ),
+        case(
+            &["tradeoff", "--cfl-table", "--safety", "0.5"],
+            &["--safety", "--cfl-table"],
+        ),
+        case(
+            &["tradeoff", "--cfl-table", "--plot", "x.svg"],
+            &["--plot", "--cfl-table"],
+        ),
+        case(
+            &["tradeoff", "--config", config, "--forms", "classical"],
+            &["--config", "--forms"],
+        ),
+        case(
+            &["tradeoff", "--safety", "0.5"],
+            &["--safety", "--integrators"],
+        ),
+        case(
+            &["tradeoff", "--from", "x.json", "--json"],
+            &["--from", "--json"],
+        ),
+        case(
+            &["tradeoff", "--integrators", "all", "--dim", "2"],
+            &["--integrators", "--dim"],
+        ),
+        // throughput
+        case(
+            &["throughput", "--sizes", "10,20", "--size", "10"],
+            &["--size", "--sizes"],
+        ),
+        case(
+            &["throughput", "--material", "hydro", "--poisson", "0.2"],
+            &["--poisson", "hydro"],
+        ),
+        case(
+            &["throughput", "--material", "hydro", "--rate", "truesdell"],
+            &["--rate", "hydro"],
+        ),
+        case(
+            &["throughput", "--form", "nonlocal", "--art-n", "3"],
+            &["--art-n"],
+        ),
+        case(
+            &["throughput", "--dim", "3", "--art-n", "3"],
+            &["--art-n", "3D"],
+        ),
+        case(
+            &[
+                "throughput",
+                "--form",
+                "total-lagrangian",
+                "--no-pair-reuse",
+            ],
+            &["--no-pair-reuse", "total-lagrangian"],
+        ),
+        // pairing, art-stress, atlas, merge, figures: their own combinations
+        case(&["pairing", "--from", "x.json", "--grid", "4"], &["--from"]),
+        case(
+            &["art-stress", "--from", "x.json", "--eps", "0.1"],
+            &["--from"],
+        ),
+        case(&["atlas", "--shard", "2/2"], &["--shard"]),
+        case(&["atlas", "--shard", "0/0"], &["--shard"]),
+        case(&["merge"], &["<FILES>"]),
+        case(
+            &["figures", "--configs", "/nonexistent-sphstab"],
+            &["--configs"],
+        ),
+    ]);
+}
+
+/// Values out of range or nonsense, one per command (the fuzzer above covers the rest at
+/// random): each names its flag and the allowed range.
+#[test]
+fn hostile_values_name_their_range() {
+    refuse_all(&[
+        case(
+            &["query", "--stress", "1e308"],
+            &["--stress", "1e308", "[-10, 10]"],
+        ),
+        case(&["query", "--h", "NaN"], &["--h"]),
+        case(&["dispersion", "--points", "1"], &["--points"]),
+        case(&["timestep", "--dt", "-1"], &["--dt"]),
+        case(&["kernels", "--table", "--h-step", "5"], &["--h-step"]),
+        case(&["map", "--n", "1"], &["--n"]),
+        case(
+            &["stiffness", "--support", "1e-300", "--json"],
+            &["--support", "(1, 50]"],
+        ),
+        case(
+            &["stiffness", "--support", "1", "--shape", "sph"],
+            &["--support"],
+        ),
+        case(&["swegle", "--density-ratio", "inf"], &["--density-ratio"]),
+        case(&["simulate", "rod", "--t-end", "-1"], &["--t-end"]),
+        case(&["tradeoff", "--h-points", "0"], &["--h-points"]),
+        case(&["atlas", "--kappas", "1"], &["--kappas"]),
+        case(&["throughput", "--h", "1e308"], &["--h"]),
+        case(&["pairing", "--h-step", "0"], &["--h-step"]),
+        case(&["art-stress", "--eps", "NaN"], &["--eps"]),
+        case(&["--max-steps", "0", "query"], &["--max-steps"]),
+    ]);
+}
+
+/// "Hangs": the work of an analysis is estimated before it starts and refused over the
+/// budget, naming the flags; the defaults stay inside it.
+#[test]
+fn hostile_work_is_refused_before_it_starts() {
+    let t = Instant::now();
+    refuse_all(&[
+        case(
+            &["timestep", "--stress", "0", "--points", "10000000"],
+            &["--points", "--max-steps"],
+        ),
+        case(
+            &[
+                "timestep",
+                "--dim",
+                "3",
+                "--lattice",
+                "fcc",
+                "--grid",
+                "128",
+                "--stress",
+                "0",
+            ],
+            &["--grid", "--max-steps"],
+        ),
+        case(
+            &["query", "--integrator", "rk4", "--points", "10000000"],
+            &["--points", "--integrator", "--max-steps"],
+        ),
+        case(
+            &["--max-steps", "1000", "timestep", "--dim", "2"],
+            &["--grid", "--max-steps"],
+        ),
+    ]);
+    assert!(t.elapsed() < Duration::from_secs(10), "{:?}", t.elapsed());
+    for args in [
+        &["timestep"][..],
+        &["timestep", "--dim", "2", "--grid", "8"],
+    ] {
+        let (code, out, err, _) =
+            run_limited(&args.iter().map(|s| s.to_string()).collect::<Vec<_>>());
+        assert_eq!(code, Some(0), "{args:?}: {err}");
+        assert!(!out.contains("NaN"), "{out}");
+    }
+}
+
+/// Numbers print short at the extremes (a σ̄ or Δt of 5e-324 printed 324 digits).
+#[test]
+fn hostile_numbers_print_short() {
+    let run = |a: &[&str]| {
+        let (code, out, err, _) = run_limited(&a.iter().map(|s| s.to_string()).collect::<Vec<_>>());
+        assert_eq!(code, Some(0), "{a:?}: {err}");
+        out
+    };
+    let out = run(&["query", "--stress", "5e-324", "--points", "8"]);
+    assert!(out.contains("σ̄ = 5e-324"), "{out}");
+    let out = run(&["query", "--dt", "5e-324", "--points", "8"]);
+    assert!(out.contains("at Δt = 5e-324 Δx/c"), "{out}");
+    assert!(out.lines().all(|l| l.chars().count() < 300), "{out}");
+    let out = run(&["query", "--dim", "2", "--poisson", "-0", "--grid", "4"]);
+    assert!(out.contains("ν = 0,"), "{out}");
+}
+
+/// Outputs: an input is never overwritten; an existing file needs --force.
+#[test]
+fn hostile_outputs_keep_data() {
+    let d = scratch("outputs");
+    let p = |n: &str| d.join(n).display().to_string();
+    std::fs::write(d.join("old.svg"), "keep").unwrap();
+    std::fs::write(d.join("old.json"), "{}").unwrap();
+    std::fs::create_dir_all(d.join("run")).unwrap();
+    std::fs::write(d.join("run/history.csv"), "keep").unwrap();
+    refuse_all(&[
+        case(
+            &["dispersion", "--points", "8", "--plot", &p("old.svg")],
+            &["--plot", "--force"],
+        ),
+        case(
+            &["map", "--n", "4", "--plot", &p("old.svg")],
+            &["--plot", "--force"],
+        ),
+        case(&["swegle", "--plot", &p("old.svg")], &["--plot", "--force"]),
+        case(
+            &["swegle", "--out", &p("run")],
+            &["--out", "history.csv", "--force"],
+        ),
+        case(
+            &["simulate", "rod", "--out", &p("run")],
+            &["--out", "--force"],
+        ),
+        case(&["atlas", "--out", &p("old.json")], &["--out", "--force"]),
+        case(
+            &["tradeoff", "--plot", &p("old.svg")],
+            &["--plot", "--force"],
+        ),
+        case(
+            &["pairing", "--plot", &p("old.svg")],
+            &["--plot", "--force"],
+        ),
+        case(
+            &["art-stress", "--plot", &p("old.svg")],
+            &["--plot", "--force"],
+        ),
+        // an input is refused even with --force, however it is spelled
+        case(
+            &[
+                "--force",
+                "tradeoff",
+                "--from",
+                &p("old.json"),
+                "--plot",
+                &p("old.json"),
+            ],
+            &["--plot", "also an input", "--from"],
+        ),
+        case(
+            &[
+                "--force",
+                "pairing",
+                "--from",
+                &p("old.json"),
+                "--plot",
+                &p("old.json"),
+            ],
+            &["--plot", "also an input", "--from"],
+        ),
+        case(
+            &[
+                "--force",
+                "art-stress",
+                "--from",
+                &p("old.json"),
+                "--plot",
+                &p("run/../old.json"),
+            ],
+            &["--plot", "also an input"],
+        ),
+        case(
+            &["--force", "merge", &p("old.json"), "--out", &p("old.json")],
+            &["--out", "also an input"],
+        ),
+        case(
+            &["dispersion", "--plot", &p("run")],
+            &["--plot", "directory"],
+        ),
+    ]);
+    assert_eq!(std::fs::read_to_string(d.join("old.svg")).unwrap(), "keep");
+    assert_eq!(
+        std::fs::read_to_string(d.join("run/history.csv")).unwrap(),
+        "keep"
+    );
+    // with --force the file is replaced
+    let (code, _, err, _) = run_limited(
+        &[
+            "--force",
+            "dispersion",
+            "--points",
+            "8",
+            "--plot",
+            &p("old.svg"),
+        ]
+        .map(String::from),
+    );
+    assert_eq!(code, Some(0), "{err}");
+    assert!(
+        std::fs::read_to_string(d.join("old.svg"))
+            .unwrap()
+            .contains("<svg")
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Scene files: nonsense scales and keys that cannot act name the field.
+#[test]
+fn hostile_scene_files() {
+    let d = scratch("scenes");
+    let rod = serde_json::json!({
+        "name": "rod", "form": "total-lagrangian", "kernel": "efg-quartic", "h_over_dx": 1.5,
+        "shape": "mls", "modulus": 1e10, "rho0": 2450.0, "initial_stress": 1e9, "particles": 41,
+        "origin": 0.0, "length": 0.04,
+        "initial_velocity": {"kind": "point", "index": 20, "value": 40.0},
+        "left": {"layers": 3, "velocity": 0.0}, "right": {"layers": 3, "velocity": 0.0},
+        "t_end": 1e-4, "cfl": 0.2
+    });
+    let cases: &[(&str, serde_json::Value, &[&str])] = &[
+        (
+            "length",
+            serde_json::json!({"length": 1e308}),
+            &["length", "1e308", "[1e-30, 1e30]"],
+        ),
+        ("tiny", serde_json::json!({"length": 1e-300}), &["length"]),
+        (
+            "modulus",
+            serde_json::json!({"modulus": 1e-300}),
+            &["modulus"],
+        ),
+        ("rho0", serde_json::json!({"rho0": 1e308}), &["rho0"]),
+        (
+            "c",
+            serde_json::json!({"c_partition": 0.2}),
+            &["c_partition", "lnl and cll"],
+        ),
+        (
+            "every",
+            serde_json::json!({"euler_every": 3}),
+            &["euler_every", "verlet-euler"],
+        ),
+        (
+            "pairs",
+            serde_json::json!({"artificial_viscosity_pairs": "two-sided"}),
+            &["artificial_viscosity_pairs", "artificial_viscosity"],
+        ),
+        ("unknown", serde_json::json!({"colour": "red"}), &["colour"]),
+        (
+            "index",
+            serde_json::json!({"initial_velocity": {"kind": "point", "index": 99, "value": 1.0}}),
+            &["index"],
+        ),
+        ("nan", serde_json::json!({"t_end": "NaN"}), &["t_end"]),
+    ];
+    let mut table = Vec::new();
+    for (name, patch, needles) in cases {
+        let mut s = rod.clone();
+        for (k, v) in patch.as_object().unwrap() {
+            s[k] = v.clone();
+        }
+        let f = d.join(format!("{name}.json"));
+        std::fs::write(&f, s.to_string()).unwrap();
+        table.push(case(&["simulate", &f.display().to_string()], needles));
+    }
+    // not JSON, and the scene as its own output
+    let text = d.join("history.csv");
+    std::fs::write(&text, "t,v\n").unwrap();
+    table.push(case(
+        &["simulate", &text.display().to_string()],
+        &["history.csv"],
+    ));
+    let good = d.join("good.json");
+    std::fs::write(&good, rod.to_string()).unwrap();
+    std::fs::create_dir_all(d.join("out")).unwrap();
+    let moved = d.join("out/history.csv");
+    std::fs::copy(&good, &moved).unwrap();
+    table.push(case(
+        &[
+            "--force",
+            "simulate",
+            &moved.display().to_string(),
+            "--out",
+            &d.join("out").display().to_string(),
+        ],
+        &["--out", "also an input"],
+    ));
+    refuse_all(&table);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Shard files: every corruption is refused before the merge, naming the file and the cell (a
+/// shard of count 0 or an index out of range made `merge` panic).
+#[test]
+fn hostile_shard_files() {
+    let d = scratch("shards");
+    let shard = |i: usize| d.join(format!("s{i}.json"));
+    for i in 0..2 {
+        let a = [
+            "atlas",
+            "--forms",
+            "classical,nonlocal",
+            "--kernels",
+            "m4",
+            "--h-points",
+            "2",
+            "--stress-points",
+            "3",
+            "--stress-min",
+            "-0.2",
+            "--stress-max",
+            "0.3",
+            "--kappas",
+            "16",
+            "--shard",
+            &format!("{i}/2"),
+            "--out",
+            &shard(i).display().to_string(),
+        ]
+        .map(String::from);
+        let (code, _, err, _) = run_limited(&a);
+        assert_eq!(code, Some(0), "{err}");
+    }
+    let read = |p: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+    };
+    let s0 = read(&shard(0));
+    // the first growing cell and the first stable one of shard 0
+    let cells = s0["cells"].as_array().unwrap();
+    let grows = cells
+        .iter()
+        .position(|c| c["stable"] == false)
+        .expect("a growing cell");
+    let stable = cells
+        .iter()
+        .position(|c| c["stable"] == true)
+        .expect("a stable cell");
+    type Edit = fn(&mut serde_json::Value, usize, usize);
+    let edits: &[(&str, Edit, &[&str])] = &[
+        (
+            "count0",
+            |v, _, _| v["shard"] = serde_json::json!({"index": 0, "count": 0}),
+            &["shard 0/0"],
+        ),
+        (
+            "index9",
+            |v, _, _| v["shard"] = serde_json::json!({"index": 9, "count": 2}),
+            &["shard 9/2"],
+        ),
+        (
+            "huge",
+            |v, g, _| v["cells"][g]["max_growth_rate"] = serde_json::json!(1e308),
+            &["max_growth_rate = 1e308", "cells["],
+        ),
+        (
+            "negative",
+            |v, g, _| v["cells"][g]["max_growth_rate"] = serde_json::json!(-0.5),
+            &["max_growth_rate = -0.5"],
+        ),
+        (
+            "form",
+            |v, g, _| v["cells"][g]["form"] = serde_json::json!("nope"),
+            &["form `nope`"],
+        ),
+        (
+            "h",
+            |v, g, _| v["cells"][g]["h_over_dx"] = serde_json::json!(1.7),
+            &["h_over_dx = 1.7"],
+        ),
+        (
+            "stress",
+            |v, g, _| v["cells"][g]["stress"] = serde_json::json!(0.31),
+            &["stress = 0.31"],
+        ),
+        (
+            "kappa",
+            |v, g, _| v["cells"][g]["kappa_at_max"] = serde_json::json!(1.0),
+            &["kappa_at_max = 1"],
+        ),
+        (
+            "stable",
+            |v, g, _| v["cells"][g]["stable"] = serde_json::json!(true),
+            &["stable = true"],
+        ),
+        (
+            "grows",
+            |v, _, s| v["cells"][s]["max_growth_rate"] = serde_json::json!(0.25),
+            &["max_growth_rate = 0.25", "stable cell"],
+        ),
+        (
+            "index",
+            |v, g, _| v["cells"][g]["index"] = serde_json::json!(1),
+            &["not a cell of shard 0/2"],
+        ),
+        (
+            "dup",
+            |v, _, _| {
+                let c = v["cells"][0].clone();
+                v["cells"][1] = c;
+            },
+            &["increasing"],
+        ),
+        (
+            "total",
+            |v, _, _| v["total_cells"] = serde_json::json!(5),
+            &["total_cells = 5"],
+        ),
+        (
+            "runtime",
+            |v, _, _| v["runtime_s"] = serde_json::json!(1e308),
+            &["runtime_s = 1e308"],
+        ),
+        (
+            "threads",
+            |v, _, _| v["threads"] = serde_json::json!(0),
+            &["threads = 0"],
+        ),
+        (
+            "config",
+            |v, _, _| v["config"]["h_points"] = serde_json::json!(0),
+            &["config: h_points = 0"],
+        ),
+        (
+            "missing",
+            |v, _, _| {
+                v["cells"].as_array_mut().unwrap().pop();
+            },
+            &["cells, but shard 0/2"],
+        ),
+    ];
+    let mut table = Vec::new();
+    for (name, edit, needles) in edits {
+        let mut v = s0.clone();
+        edit(&mut v, grows, stable);
+        let f = d.join(format!("bad-{name}.json"));
+        std::fs::write(&f, v.to_string()).unwrap();
+        let f = f.display().to_string();
+        let mut needles: Vec<&str> = needles.to_vec();
+        needles.push(&f);
+        table.push(case(
+            &["merge", &f, &shard(1).display().to_string()],
+            &needles,
+        ));
+    }
+    let junk = d.join("junk.json");
+    std::fs::write(&junk, "[1, 2").unwrap();
+    let junk = junk.display().to_string();
+    table.push(case(&["merge", &junk], &[&junk]));
+    refuse_all(&table);
+    // the good shards still merge
+    let (code, _, err, _) = run_limited(
+        &[
+            "merge",
+            &shard(0).display().to_string(),
+            &shard(1).display().to_string(),
+        ]
+        .map(String::from),
+    );
+    assert_eq!(code, Some(0), "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}

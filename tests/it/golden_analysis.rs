@@ -218,6 +218,25 @@ fn accept_timestep_labels(args: &[&str], gold: &Value, new: &mut Value) {
     }
 }
 
+/// The recorded arguments without the flags that were accepted for nothing when the data was
+/// recorded and are refused since issue 25: `--av-beta B` of the analysis (β multiplies the
+/// squared velocity divergence, which vanishes in the linearisation; the output recorded with it
+/// is the output without it, which the replay checks to 1e-12).
+fn without_refused_flags<'a>(args: &[&'a str]) -> Vec<&'a str> {
+    let verify = args.contains(&"--verify");
+    let mut out = Vec::with_capacity(args.len());
+    let mut i = 0;
+    while i < args.len() {
+        if args[i] == "--av-beta" && !verify {
+            i += 2;
+            continue;
+        }
+        out.push(args[i]);
+        i += 1;
+    }
+    out
+}
+
 /// Runs every case of the golden file `file` (under tests/golden/) through the binary and
 /// compares its JSON with the recorded output; `count` cases are expected.
 fn replay(file: &str, count: usize) {
@@ -228,12 +247,13 @@ fn replay(file: &str, count: usize) {
     assert_eq!(cases.len(), count);
     let mut worst = (0.0, String::new());
     for c in cases {
-        let args: Vec<&str> = c["args"]
+        let recorded: Vec<&str> = c["args"]
             .as_array()
             .unwrap()
             .iter()
             .map(|a| a.as_str().unwrap())
             .collect();
+        let args = without_refused_flags(&recorded);
         let out = Command::new(env!("CARGO_BIN_EXE_sphstab"))
             .args(&args)
             .output()

@@ -6,7 +6,7 @@
 //! cannot pass by reading nothing.
 //!
 //! ```text
-//! core        scalar kernel shape lattice neighbours budget error params progress
+//! core        scalar kernel shape lattice neighbours budget error display params progress
 //! integrator  integrator
 //! forms       forms                      (core only: not the integrator, engine or solver)
 //! engine      vonneumann                 (core, integrator, forms)
@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 fn layer(top: &str) -> Option<&'static str> {
     Some(match top {
         "scalar" | "kernel" | "shape" | "lattice" | "neighbours" | "budget" | "error"
-        | "params" | "progress" => "core",
+        | "display" | "params" | "progress" => "core",
         "integrator" => "integrator",
         "forms" => "forms",
         "vonneumann" => "engine",

@@ -98,9 +98,11 @@ impl Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    if let Some(p) = &a.plot {
-        crate::common::check_writable("--plot", p)?;
+    let mut files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref());
+    if let Some(p) = &a.compare {
+        files = files.input("--compare", p);
     }
+    files.check()?;
     let flags = a.study_flags();
     if let Some(from) = &a.from {
         let others = a.config.is_some()
@@ -174,9 +176,16 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         ..cfg
     };
     cfg.validate()?;
-    if let (None, Some(name)) = (&shard, &cfg.output) {
-        crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
+    if let Some(p) = &cfg.compare {
+        files = files.input("--config (its `compare`)", p);
     }
+    if let (None, Some(name)) = (&shard, &cfg.output) {
+        files = study::with_config_output(files, name);
+    }
+    if let Some((_, out)) = &shard {
+        files = files.output("--out", out);
+    }
+    files.check()?;
     let compare = match &cfg.compare {
         Some(p) => {
             let flag = if a.config.is_some() {

@@ -45,7 +45,7 @@ pub struct Args {
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.out {
-        crate::common::check_writable("--out", p)?;
+        crate::files::Files::new().output("--out", p).check()?;
     }
     let d = AtlasConfig::default();
     let cfg = AtlasConfig {

@@ -32,19 +32,20 @@ pub struct Config {
     /// Pre-stress σ̄ = σ/C, positive in tension, in [-10, 10].
     #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
     pub stress: f64,
-    /// Partition coefficient c ∈ [0, 1] of lnl/cll (c = 1: fully local).
-    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
-    pub c: f64,
-    /// Least-squares stabilisation α_s ≥ 0 (β = α_s Δx²).
-    #[arg(long = "alpha-s", default_value_t = 0.0, allow_hyphen_values = true)]
-    pub alpha_s: f64,
+    /// Partition coefficient c ∈ [0, 1] of lnl/cll (c = 1: fully local; default 0.5).
+    #[arg(long, allow_hyphen_values = true)]
+    pub c: Option<f64>,
+    /// Least-squares stabilisation α_s ≥ 0 (β = α_s Δx²) of the least-squares form (default 0).
+    #[arg(long = "alpha-s", allow_hyphen_values = true)]
+    pub alpha_s: Option<f64>,
     /// Time step Δt in Δx/c (> 0) for the fully discrete (leapfrog) check.
     #[arg(long, allow_hyphen_values = true)]
     pub dt: Option<f64>,
     /// Monaghan artificial viscosity α (linearised), ≥ 0.
     #[arg(long = "av-alpha", allow_hyphen_values = true)]
     pub av_alpha: Option<f64>,
-    /// Monaghan artificial viscosity β (vanishes in the linearisation), ≥ 0.
+    /// Monaghan artificial viscosity β, ≥ 0: it multiplies the squared velocity divergence,
+    /// which vanishes in the linearisation, so only `timestep --verify` (the solver) uses it.
     #[arg(long = "av-beta", allow_hyphen_values = true)]
     pub av_beta: Option<f64>,
     /// Dimension: 1 (plane wave in a bar, default), 2 (in-plane Bloch analysis of a lattice) or
@@ -141,8 +142,27 @@ impl Config {
         if let Some(s) = &self.shape {
             q.shape = ShapeFamily::by_name(s)?;
         }
-        q.c_partition = self.c;
-        q.alpha_s = self.alpha_s;
+        let mixed = matches!(form, FormKind::Lnl | FormKind::Cll);
+        if self.c.is_some() && !mixed {
+            return Err(crate::query::not_in(
+                "--c",
+                &format!(
+                    "--form {} (the partition coefficient is of lnl and cll)",
+                    form.name()
+                ),
+            ));
+        }
+        if self.alpha_s.is_some() && form != FormKind::LeastSquares {
+            return Err(crate::query::not_in(
+                "--alpha-s",
+                &format!(
+                    "--form {} (α_s is the stabilisation of least-squares)",
+                    form.name()
+                ),
+            ));
+        }
+        q.c_partition = self.c.unwrap_or(0.5);
+        q.alpha_s = self.alpha_s.unwrap_or(0.0);
         q.dt = self.dt;
         if self.av_alpha.is_some() || self.av_beta.is_some() {
             q.av = Some((self.av_alpha.unwrap_or(0.0), self.av_beta.unwrap_or(0.0)));
@@ -243,6 +263,17 @@ impl Config {
     }
 }
 
+/// Errors for flags of [`Config`] that cannot act in `command`: each (flag, given, why).
+pub fn refuse(command: &str, flags: &[(&str, bool, &str)]) -> Result<()> {
+    match flags.iter().find(|f| f.1) {
+        Some((flag, _, why)) => Err(crate::query::not_in(flag, &format!("{command} ({why})"))),
+        None => Ok(()),
+    }
+}
+
+/// Why `--av-beta` cannot act in the analysis.
+pub const AV_BETA_WHY: &str = "β multiplies the squared velocity divergence, which vanishes in the linearisation; only timestep --verify runs the solver";
+
 /// Runs `f::<D>` for the dimension of `--dim`: the one place a command branches on it.
 #[macro_export]
 macro_rules! by_dim {
@@ -253,24 +284,6 @@ macro_rules! by_dim {
             _ => $f::<3>($($arg),*),
         }
     };
-}
-
-/// Fails early (before a long run) when `path` cannot be written: a directory, a missing
-/// parent directory or no permission. A file created only for the check is removed again.
-pub fn check_writable(flag: &str, path: &std::path::Path) -> Result<()> {
-    if path.is_dir() {
-        anyhow::bail!("{flag}: {} is a directory, not a file", path.display());
-    }
-    let existed = path.exists();
-    std::fs::OpenOptions::new()
-        .append(true)
-        .create(true)
-        .open(path)
-        .map_err(|e| anyhow::anyhow!("{flag}: cannot write {}: {e}", path.display()))?;
-    if !existed {
-        let _ = std::fs::remove_file(path);
-    }
-    Ok(())
 }
 
 /// `--art-eps` / `--art-n` (Monaghan–Gray artificial stress): ε ∈ [0, 10], n ∈ [1, 12]
@@ -298,23 +311,34 @@ pub struct IntegratorArgs {
     /// symplectic-euler-xv, pec, epec, verlet-euler, rk2-midpoint, rk2-heun, rk4, euler.
     #[arg(long, default_value = "kdk")]
     pub integrator: String,
-    /// N_s of verlet-euler: an Euler step every N_s steps, in [1, 1000].
-    #[arg(
-        long = "euler-every",
-        default_value_t = sphstab::integrator::DEFAULT_EULER_EVERY,
-        allow_hyphen_values = true
-    )]
-    pub euler_every: usize,
+    /// N_s of verlet-euler: an Euler step every N_s steps, in [1, 1000] (default 40;
+    /// verlet-euler only).
+    #[arg(long = "euler-every", allow_hyphen_values = true)]
+    pub euler_every: Option<usize>,
 }
 
 impl IntegratorArgs {
-    /// The integrator named by the flags.
+    /// The integrator named by the flags (`--euler-every` with another integrator than
+    /// verlet-euler is an error: it would not act).
     pub fn integrator(&self) -> anyhow::Result<sphstab::integrator::Integrator> {
-        Ok(sphstab::integrator::Integrator::from_name(
+        use sphstab::integrator::{DEFAULT_EULER_EVERY, Integrator};
+        let i = Integrator::from_name(
             &self.integrator,
-            self.euler_every,
-        )?)
+            self.euler_every.unwrap_or(DEFAULT_EULER_EVERY),
+        )?;
+        if self.euler_every.is_some() && !matches!(i, Integrator::VerletEuler { .. }) {
+            return Err(crate::query::not_in(
+                "--euler-every",
+                &euler_every_context(&self.integrator),
+            ));
+        }
+        Ok(i)
     }
+}
+
+/// Why `--euler-every` cannot act with the integrator `name`.
+pub fn euler_every_context(name: &str) -> String {
+    format!("--integrator {name} (N_s is the Euler period of verlet-euler)")
 }
 
 /// `--delta` / `--delta-form` (δ-SPH density diffusion), shared by `query`, `dispersion`,

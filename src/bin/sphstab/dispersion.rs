@@ -75,7 +75,7 @@ fn cell(v: Option<f64>, width: usize, prec: usize) -> String {
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(p) = &a.plot {
-        crate::common::check_writable("--plot", p)?;
+        crate::files::Files::new().output("--plot", p).check()?;
     }
     if a.cfg.grid.is_some() {
         return Err(crate::query::not_in(
@@ -89,6 +89,21 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             "no --plot (it sets the plot's vertical range)",
         ));
     }
+    crate::common::refuse(
+        "dispersion",
+        &[
+            (
+                "--dt",
+                a.cfg.dt.is_some(),
+                "ω² is semi-discrete; the check at a Δt is query --dt or timestep --dt",
+            ),
+            (
+                "--av-beta",
+                a.cfg.av_beta.is_some(),
+                crate::common::AV_BETA_WHY,
+            ),
+        ],
+    )?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }
@@ -121,6 +136,13 @@ fn plot<const D: usize>(
     y_range: Option<(f64, f64)>,
 ) -> Result<()> {
     use sphstab::plot::{Curve, LinePlot};
+    if series.iter().any(|(_, r)| r.damping_rate.is_some()) {
+        // the second figure of a dissipative system, checked before either is written
+        crate::files::Files::new()
+            .output("--plot", path)
+            .output("--plot (its damping figure)", damping_path(path))
+            .check()?;
+    }
     let pi = std::f64::consts::PI;
     let single = series.len() == 1;
     let name = |label: &str, r: &DispersionReport| {

@@ -10,7 +10,8 @@ pub struct Args {
     /// Directory of figure configs (*.json).
     #[arg(long, default_value = "analysis/configs")]
     configs: PathBuf,
-    /// Output directory for the SVG files.
+    /// Output directory for the SVG files. The figures are regenerated: an SVG of the same name
+    /// there is replaced (no --force needed; never a config file).
     #[arg(long, default_value = "figures")]
     out: PathBuf,
 }
@@ -24,6 +25,12 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     files.sort();
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("--out: cannot create {}", a.out.display()))?;
+    // every config read and every output checked before the first figure is drawn
+    let mut configs = Vec::with_capacity(files.len());
+    let mut check = crate::files::Files::new();
+    for f in &files {
+        check = check.input("--configs", f);
+    }
     for f in files {
         let name = f.display().to_string();
         let text = std::fs::read_to_string(&f).with_context(|| format!("cannot read {name}"))?;
@@ -31,6 +38,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             budget: *budget,
             ..sphstab::figures::parse(&name, &text)?
         };
+        check = check.regenerated("--out", a.out.join(&cfg.output));
+        configs.push((name, cfg));
+    }
+    check.check()?;
+    for (name, cfg) in configs {
         let svg = sphstab::figures::render(&cfg).with_context(|| name.clone())?;
         let out = a.out.join(&cfg.output);
         std::fs::write(&out, svg).with_context(|| format!("cannot write {}", out.display()))?;

@@ -34,6 +34,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("h_over_dx", "--h"),
     ("h_points", "--h-points"),
     ("h_step", "--h-step"),
+    ("integrator", "--integrator"),
     ("integrators", "--integrators"),
     ("kappas", "--kappas"),
     ("kernels", "--kernels"),
@@ -93,10 +94,47 @@ impl std::fmt::Display for InFile {
 
 impl std::error::Error for InFile {}
 
+/// A library error in which one field was given by another flag than its own (`grid` as
+/// `--points` in 1D): printed with that flag.
+#[derive(Debug)]
+pub struct Alias {
+    /// The error.
+    pub error: Error,
+    /// The field …
+    pub field: &'static str,
+    /// … and the flag the user gave it by.
+    pub flag: &'static str,
+}
+
+impl std::fmt::Display for Alias {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.error.render(&|x| {
+            if x == self.field { self.flag } else { flag(x) }
+        }))
+    }
+}
+
+impl std::error::Error for Alias {}
+
+/// `e` naming `field` as `flag` when the user gave it so (`given`), else as usual.
+pub fn alias(e: Error, field: &'static str, flag: &'static str, given: bool) -> anyhow::Error {
+    if given {
+        Alias {
+            error: e,
+            field,
+            flag,
+        }
+        .into()
+    } else {
+        e.into()
+    }
+}
+
 /// The library error in `e`'s chain, if any.
 fn library_error<'a>(e: &'a (dyn std::error::Error + 'static)) -> Option<&'a Error> {
     e.downcast_ref::<Error>()
         .or_else(|| e.downcast_ref::<InFile>().map(|i| &i.0))
+        .or_else(|| e.downcast_ref::<Alias>().map(|a| &a.error))
 }
 
 /// The one-line message of `e` and its causes (`outer: inner`), library errors naming flags.

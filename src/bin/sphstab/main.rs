@@ -6,6 +6,7 @@ mod atlas;
 mod common;
 mod dispersion;
 mod figures;
+mod files;
 mod flags;
 mod kernels;
 mod map;
@@ -46,6 +47,11 @@ pub(crate) struct Cli {
     /// (about a minute here).
     #[arg(long = "max-steps", global = true, value_parser = parse_steps)]
     max_steps: Option<f64>,
+    /// Let --out and --plot overwrite existing files (without it a command that would write
+    /// over a file stops before it starts). An output that is also an input of the command is
+    /// refused even so. (`figures` and a study's --config regenerate their figures in place.)
+    #[arg(long, global = true)]
+    force: bool,
 }
 
 /// Parses a byte count with an optional binary suffix: `512M`, `2G`, `1.5GiB`, `3000000`.
@@ -170,6 +176,7 @@ fn main() {
             std::process::exit(2);
         }
     };
+    files::set_force(cli.force);
     let mut budget = Budget::for_machine();
     if let Some(m) = cli.max_memory {
         budget.max_memory = m;

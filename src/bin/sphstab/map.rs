@@ -4,6 +4,7 @@
 use crate::common::Config;
 use anyhow::{Context, Result};
 use sphstab::budget::Budget;
+use sphstab::display::num;
 
 /// Flags of `map`.
 #[derive(clap::Args, Debug)]
@@ -26,6 +27,26 @@ pub struct Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    crate::common::refuse(
+        "map",
+        &[
+            (
+                "--grid",
+                a.cfg.grid.is_some(),
+                "it samples n × n wave vectors: use --n",
+            ),
+            (
+                "--dt",
+                a.cfg.dt.is_some(),
+                "the map is the semi-discrete growth rate; the check at a Δt is query --dt",
+            ),
+            (
+                "--av-beta",
+                a.cfg.av_beta.is_some(),
+                crate::common::AV_BETA_WHY,
+            ),
+        ],
+    )?;
     if a.cfg.dim.is_some_and(|d| d == 1) {
         return Err(crate::query::not_in(
             "--dim 1",
@@ -47,7 +68,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
 fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) -> Result<()> {
     use sphstab::analysis::Plane;
     if let Some(p) = &a.plot {
-        crate::common::check_writable("--plot", p)?;
+        crate::files::Files::new().output("--plot", p).check()?;
     }
     let plane = match &a.plane {
         Some(p) => Plane::by_name(p)?,
@@ -78,8 +99,8 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) 
                 "growth rate over the zone: {} / {} h = {}Δx, σ̄ = {}, {}, {} ({}D, {}×{} wave vectors)",
                 q.form.name(),
                 q.kernel.name(),
-                q.h_over_dx,
-                q.stress,
+                num(q.h_over_dx),
+                num(q.stress),
                 q.material,
                 q.lattice.kind,
                 D,

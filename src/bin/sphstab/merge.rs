@@ -26,7 +26,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         return Ok(());
     }
     if let Some(p) = &a.out {
-        crate::common::check_writable("--out", p)?;
+        a.files
+            .iter()
+            .fold(crate::files::Files::new(), |f, p| f.input("<FILES>", p))
+            .output("--out", p)
+            .check()?;
     }
     // every shard is held in memory as text and parsed (~3× its size), before the merge
     let total: u64 = a
@@ -57,13 +61,9 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             anyhow::bail!("{name}: larger than a quarter of --max-memory, not an atlas shard");
         }
         let text = String::from_utf8(buf).map_err(|_| anyhow::anyhow!("{name}: not UTF-8 text"))?;
-        let r: AtlasReport =
-            serde_json::from_str(&text).map_err(|e| sphstab::error::Error::Config {
-                file: name.clone(),
-                msg: e.to_string(),
-            })?;
+        let r: AtlasReport = sphstab::error::parse_json(&name, &text)?;
         parts.push((name, r));
     }
-    let rep = sphstab::studies::atlas::merge(&parts)?;
+    let rep = sphstab::studies::atlas::merge(&parts, budget)?;
     crate::atlas::output(&rep, a.out.as_ref(), a.json)
 }

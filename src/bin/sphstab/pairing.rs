@@ -91,9 +91,8 @@ fn all_or(v: &[String]) -> Vec<String> {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    if let Some(p) = &a.plot {
-        crate::common::check_writable("--plot", p)?;
-    }
+    let files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref());
+    files.check()?;
     let flags = a.study_flags();
     if let Some(from) = &a.from {
         let others = a.config.is_some()
@@ -165,7 +164,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         return crate::shard::run(&PairingStudy, &cfg, shard, &out);
     }
     if let Some(name) = &config_out {
-        crate::common::check_writable("--config (its `output`)", &Path::new("figures").join(name))?;
+        study::with_config_output(files, name).check()?;
     }
     let pb = progress::Bar::new(progress::wanted(a.json));
     let rep = sphstab::studies::pairing::run(&cfg, pb.clone())?;

@@ -26,6 +26,14 @@ pub struct Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    crate::common::refuse(
+        "query",
+        &[(
+            "--av-beta",
+            a.cfg.av_beta.is_some(),
+            crate::common::AV_BETA_WHY,
+        )],
+    )?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }
@@ -81,7 +89,9 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     if let Some(n) = a.box_free {
         sphstab::params::check_count("box", n, 1, sphstab::analysis::max_box(D))?;
     }
-    let r = sphstab::analysis::query(&q)?;
+    // in 1D the κ points are --points or --grid: the budget names the one given
+    let r = sphstab::analysis::query(&q)
+        .map_err(|e| crate::flags::alias(e, "grid", "--points", a.points.is_some()))?;
     let boxp = match a.box_free {
         Some(n) => Some(sphstab::analysis::box_prediction(
             &q.linearise_at(q.stress)?,
@@ -172,7 +182,10 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
         _ => println!("{}", no_critical(r.integrator)),
     }
     if let (Some(dt), Some(m)) = (r.dt, r.max_amplification) {
-        println!("at Δt = {dt} Δx/c: max |λ| = {m:.9}");
+        println!(
+            "at Δt = {} Δx/c: max |λ| = {m:.9}",
+            sphstab::display::num(dt)
+        );
     }
     Ok(())
 }
@@ -185,7 +198,12 @@ fn compare<const D: usize>(a: &Args, budget: &Budget) -> Result<()> {
     for s in &list {
         let mut q = s.cfg.query::<D>(budget)?;
         q.integrator = match &s.integrator {
-            Some(name) => sphstab::integrator::Integrator::from_name(name, a.integ.euler_every)?,
+            Some(name) => sphstab::integrator::Integrator::from_name(
+                name,
+                a.integ
+                    .euler_every
+                    .unwrap_or(sphstab::integrator::DEFAULT_EULER_EVERY),
+            )?,
             None => a.integ.integrator()?,
         };
         questions.push(q);

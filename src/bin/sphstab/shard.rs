@@ -25,7 +25,7 @@ pub fn flags(
 ) -> Result<Option<(Shard, PathBuf)>> {
     let Some(s) = shard else {
         if let Some(p) = out {
-            crate::common::check_writable("--out", p)?;
+            crate::files::Files::new().output("--out", p).check()?;
         }
         return Ok(None);
     };
@@ -38,7 +38,7 @@ pub fn flags(
     let Some(p) = out else {
         bail!("--shard needs --out FILE (where the shard is written, for `sphstab merge`)");
     };
-    crate::common::check_writable("--out", p)?;
+    crate::files::Files::new().output("--out", p).check()?;
     Ok(Some((shard, p.clone())))
 }
 
@@ -117,7 +117,7 @@ pub fn merge(
         return Ok(false);
     };
     if let Some(p) = out {
-        crate::common::check_writable("--out", p)?;
+        crate::files::Files::new().output("--out", p).check()?;
     }
     // every shard is held in memory as text and parsed (~3× its size), before the merge
     let total: u64 = files

@@ -24,7 +24,8 @@ pub struct Args {
     /// rk4, euler.
     #[arg(long)]
     integrator: Option<String>,
-    /// N_s of verlet-euler (overrides the scene's `euler_every`; default 40), in [1, 1000].
+    /// N_s of verlet-euler (overrides the scene's `euler_every`; default 40), in [1, 1000];
+    /// verlet-euler only.
     #[arg(long = "euler-every", allow_hyphen_values = true)]
     euler_every: Option<usize>,
     /// JSON summary on stdout.
@@ -106,10 +107,17 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--out: cannot create {}", dir.display()))?;
-        crate::common::check_writable("--out", &dir.join("history.csv"))?;
+        let mut files = crate::files::Files::new();
+        if std::path::Path::new(&a.scene).is_file() {
+            files = files.input("<SCENE>", &a.scene);
+        }
+        files
+            .output("--out", dir.join("history.csv"))
+            .output("--out", dir.join("final.vtk"))
+            .check()?;
     }
-    if let Some(f) = a.form {
-        scene.form = f;
+    if let Some(f) = &a.form {
+        scene.override_form(f);
     }
     if let Some(t) = a.t_end {
         sphstab::error::check_range("--t-end", t, 0.0, f64::INFINITY, false, false)?;
@@ -119,12 +127,18 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         // validate the flags under their own names before they reach the scene
         let name = a.integrator.clone().or(scene.integrator.clone());
         let every = a.euler_every.or(scene.euler_every);
+        let resolved = name.as_deref().unwrap_or("kdk");
+        if a.euler_every.is_some() && resolved != "verlet-euler" {
+            return Err(crate::query::not_in(
+                "--euler-every",
+                &crate::common::euler_every_context(resolved),
+            ));
+        }
         sphstab::integrator::Integrator::from_name(
-            name.as_deref().unwrap_or("kdk"),
+            resolved,
             every.unwrap_or(sphstab::integrator::DEFAULT_EULER_EVERY),
         )?;
-        scene.integrator = name;
-        scene.euler_every = every;
+        scene.override_integrator(resolved.to_string(), every);
     }
     scene.budget = *budget;
     let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
@@ -145,7 +159,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             std::fs::write(
                 dir.join("final.vtk"),
                 vtk_state(
-                    &format!("{} {} t={:e}", r.name, r.form, r.t),
+                    &format!("{} {} t={}", r.name, r.form, sphstab::display::num(r.t)),
                     z,
                     form,
                     scene.c_partition,
@@ -173,7 +187,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if let Some(s) = r.stress {
         let c = r
             .c_partition
-            .map(|c| format!(" ((1 − c)σ + cτ, c = {c})"))
+            .map(|c| format!(" ((1 − c)σ + cτ, c = {})", sphstab::display::num(c)))
             .unwrap_or_default();
         println!(
             "final stress{c} in [{:.4e}, {:.4e}] Pa; max stress error vs analytic: {}",

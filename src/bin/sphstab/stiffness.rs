@@ -13,7 +13,8 @@ pub struct Args {
     /// Weight/kernel (Table I: efg-cubic).
     #[arg(long, default_value = "efg-cubic")]
     kernel: String,
-    /// Support radius R/Δx (Belytschko's D_mx), > 0.
+    /// Support radius R/Δx (Belytschko's D_mx), in (1, 50]: it must reach the nearest
+    /// neighbours.
     #[arg(long, default_value_t = 2.0, allow_hyphen_values = true)]
     support: f64,
     /// Shape family (Table I: mls).
@@ -45,6 +46,20 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let k = sphstab::kernel::by_name(&a.kernel)?;
     sphstab::error::check_range("--support", a.support, 0.0, 50.0, false, true)?;
+    if a.support <= 1.0 {
+        return Err(sphstab::error::Error::OutOfRange {
+            field: "support",
+            value: a.support,
+            range: "must be in (1, 50]: the support R/Δx must exceed 1 so that particles have neighbours (Table I uses 2)".into(),
+        }
+        .into());
+    }
+    if a.consistent && a.theta.is_none() {
+        return Err(crate::query::not_in(
+            "--consistent",
+            "no --theta (the mass matrix enters the frequencies along θ, not K_jk or the zero-frequency check)",
+        ));
+    }
     if a.lattice != "square" && a.gamma.is_some() {
         return Err(crate::query::not_in(
             "--gamma",
@@ -118,10 +133,21 @@ pub fn run(a: Args) -> Result<()> {
     } else {
         None
     };
+    // a result that is not a number is an error, not `null` in the JSON
+    let table = if ap.pattern.sites.len() == 1 {
+        ap.stiffness_table()?
+    } else {
+        Vec::new()
+    };
+    if table.iter().any(|e| !e.2.is_finite())
+        || disp.iter().any(|d| d.1.iter().any(|w| !w.is_finite()))
+    {
+        return Err(sphstab::error::Error::NonFinite("the stiffness K_jk or ωΔx/c").into());
+    }
     if a.json {
         let entries = if ap.pattern.sites.len() == 1 {
-            ap.stiffness_table()?
-                .into_iter()
+            table
+                .iter()
                 .map(|(j, k, v)| serde_json::json!({"j": j, "k": k, "value": v}))
                 .collect()
         } else {
@@ -151,10 +177,10 @@ pub fn run(a: Args) -> Result<()> {
             q.name(),
             a.shape,
             a.kernel,
-            a.support,
+            sphstab::display::num(a.support),
             a.lattice
         );
-        for (j, kk, v) in ap.stiffness_table()? {
+        for &(j, kk, v) in &table {
             if v.abs() > 1e-14 {
                 println!("{j:>3} {kk:>3} {v:>14.6e}");
             }

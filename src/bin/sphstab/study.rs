@@ -7,6 +7,36 @@ use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::path::{Path, PathBuf};
 
+/// The files of a study command: `--config` and `--from` read, `--plot` written (checked with
+/// [`crate::files::Files::check`]).
+pub fn files(
+    config: Option<&PathBuf>,
+    from: Option<&PathBuf>,
+    plot: Option<&PathBuf>,
+) -> crate::files::Files {
+    let mut f = crate::files::Files::new();
+    if let Some(p) = config {
+        f = f.input("--config", p);
+    }
+    if let Some(p) = from {
+        f = f.input("--from", p);
+    }
+    if let Some(p) = plot {
+        f = f.output("--plot", p);
+    }
+    f
+}
+
+/// `files` with what a config's `output` regenerates ([`write_figure_and_data`]): the figure
+/// figures/<name> and its data next to it.
+pub fn with_config_output(files: crate::files::Files, name: &str) -> crate::files::Files {
+    let svg = PathBuf::from("figures").join(name);
+    let data = svg.with_extension("json");
+    files
+        .regenerated("--config (its `output`)", svg)
+        .regenerated("--config (its `output`, the data)", data)
+}
+
 /// Reads and parses `--config` with the study's parser (errors name the file and the field).
 pub fn read_config<T>(
     path: &Path,

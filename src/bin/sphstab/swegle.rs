@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result};
 use sphstab::budget::Budget;
+use sphstab::display::num;
 use sphstab::forms::FormKind;
 use sphstab::solver::BoundaryDensity;
 use sphstab::studies::swegle::{SwegleConfig, default_size, run_swegle};
@@ -49,15 +50,15 @@ pub struct Args {
     /// Run past --t-end until a mode growing at the box prediction reaches the fit window.
     #[arg(long = "until-window")]
     until_window: bool,
-    /// Boundary layers' density: evolve (continuity) or frozen.
-    #[arg(long = "boundary-density", default_value = "evolve")]
-    boundary_density: String,
+    /// Boundary layers' density (and stress): evolve (continuity; default) or frozen.
+    #[arg(long = "boundary-density")]
+    boundary_density: Option<String>,
     /// Time step Δt in Δx/c (the CFL number), in (0, 2].
     #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
     cfl: f64,
-    /// Partition coefficient c of lnl/cll, in [0, 1].
-    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
-    c: f64,
+    /// Partition coefficient c of lnl/cll, in [0, 1] (default 0.5).
+    #[arg(long, allow_hyphen_values = true)]
+    c: Option<f64>,
     /// Monaghan–Gray artificial stress ε of the classical form (off by default, as published).
     #[arg(long = "art-eps", allow_hyphen_values = true)]
     art_eps: Option<f64>,
@@ -77,14 +78,18 @@ pub struct Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    let mut files = crate::files::Files::new();
     if let Some(p) = &a.plot {
-        crate::common::check_writable("--plot", p)?;
+        files = files.output("--plot", p);
     }
     if let Some(d) = &a.out {
         std::fs::create_dir_all(d)
             .with_context(|| format!("--out: cannot create {}", d.display()))?;
-        crate::common::check_writable("--out", &d.join("history.csv"))?;
+        files = files
+            .output("--out", d.join("history.csv"))
+            .output("--out", d.join("final.vtk"));
     }
+    files.check()?;
     let form = FormKind::by_name(&a.form)?;
     let k = sphstab::kernel::by_name(&a.kernel)?;
     if !(2..=3).contains(&a.dim) {
@@ -103,7 +108,16 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     cfg.size = a.size.unwrap_or(default_size(a.dim));
     cfg.t_end = a.t_end;
     cfg.cfl = a.cfl;
-    cfg.c_partition = a.c;
+    if a.c.is_some() && !matches!(form, FormKind::Lnl | FormKind::Cll) {
+        return Err(crate::query::not_in(
+            "--c",
+            &format!(
+                "--form {} (the partition coefficient is of lnl and cll)",
+                form.name()
+            ),
+        ));
+    }
+    cfg.c_partition = a.c.unwrap_or(0.5);
     cfg.until_window = a.until_window;
     cfg.integrator = a.integ.integrator()?;
     cfg.diffusion = a.diffusion.get()?;
@@ -122,7 +136,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
         cfg.art_stress = Some((eps, n));
     }
-    cfg.boundary = match a.boundary_density.as_str() {
+    cfg.boundary = match a.boundary_density.as_deref().unwrap_or("evolve") {
         "evolve" => BoundaryDensity::Evolve,
         "frozen" => BoundaryDensity::Frozen,
         s => {
@@ -155,12 +169,12 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
         if let Some(z) = &r.final_state {
             let title = format!(
-                "swegle {} {} h={} f={} t={:e}",
+                "swegle {} {} h={} f={} t={}",
                 r.form,
                 r.kernel,
-                r.h_over_dx,
-                r.density_ratio,
-                r.dt * r.steps as f64
+                num(r.h_over_dx),
+                num(r.density_ratio),
+                num(r.dt * r.steps as f64)
             );
             std::fs::write(
                 dir.join("final.vtk"),
@@ -232,8 +246,8 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
                     "Swegle test: {} / {} h = {}Δx, f = ρ/ρ0 = {}, {}",
                     r.form,
                     r.kernel,
-                    r.h_over_dx,
-                    r.density_ratio,
+                    num(r.h_over_dx),
+                    num(r.density_ratio),
                     cfg.shape_label().replace(' ', "")
                 ),
                 "time t (units of Δx/c)",
@@ -259,8 +273,8 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         r.dim,
         r.form,
         r.kernel,
-        r.h_over_dx,
-        r.density_ratio
+        num(r.h_over_dx),
+        num(r.density_ratio)
     );
     match r.measured_growth_rate {
         Some(m) if r.ratio_box.is_some() => println!(

@@ -2,6 +2,7 @@
 
 use anyhow::Result;
 use sphstab::budget::Budget;
+use sphstab::display::num;
 use sphstab::error::Error;
 use sphstab::forms::{FormKind, ObjectiveRate};
 use sphstab::studies::throughput::{BlockMaterial, Domain, ThroughputConfig, run_throughput};
@@ -22,7 +23,7 @@ pub struct Args {
     #[arg(long)]
     size: Option<usize>,
     /// Several sizes, comma-separated (e.g. 100,316,1000 in 2D, 22,46,100 in 3D), to fit the
-    /// scaling exponent p of time per step ∝ N^p; replaces --size.
+    /// scaling exponent p of time per step ∝ N^p; instead of --size.
     #[arg(long, value_delimiter = ',', num_args = 1..)]
     sizes: Option<Vec<usize>>,
     /// classical, nonlocal, local, lnl, cll, total-lagrangian.
@@ -40,12 +41,13 @@ pub struct Args {
     /// hydro (p = K(ρ/ρ0 − 1)) or elastic (hypo-elastic, P-wave modulus 1).
     #[arg(long, default_value = "elastic")]
     material: String,
-    /// Elastic Poisson ratio ν (plane strain in 2D), in [−0.99, 0.5).
-    #[arg(long, default_value_t = 0.3, allow_hyphen_values = true)]
-    poisson: f64,
-    /// Elastic objective stress rate: jaumann or truesdell.
-    #[arg(long, default_value = "jaumann")]
-    rate: String,
+    /// Elastic Poisson ratio ν (plane strain in 2D), in [−0.99, 0.5) (default 0.3; elastic
+    /// only).
+    #[arg(long, allow_hyphen_values = true)]
+    poisson: Option<f64>,
+    /// Elastic objective stress rate: jaumann (default) or truesdell (elastic only).
+    #[arg(long)]
+    rate: Option<String>,
     /// Monaghan artificial viscosity "α,β" (each in [0, 100]), or "off".
     #[arg(long, default_value = "1,1", allow_hyphen_values = true)]
     av: String,
@@ -53,9 +55,9 @@ pub struct Args {
     /// Default 0.3 for classical and cll in 2D, off otherwise.
     #[arg(long = "art-eps", allow_hyphen_values = true)]
     art_eps: Option<f64>,
-    /// Artificial-stress exponent n, in [1, 12].
-    #[arg(long = "art-n", default_value_t = 4, allow_hyphen_values = true)]
-    art_n: i32,
+    /// Artificial-stress exponent n, in [1, 12] (default 4; only where artificial stress is on).
+    #[arg(long = "art-n", allow_hyphen_values = true)]
+    art_n: Option<i32>,
     /// Time step in Δx/c, in (0, 2].
     #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
     dt: f64,
@@ -126,7 +128,16 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         None => form.default_shape_in(2),
     };
     cfg.h_over_dx = a.h;
-    let rate = match a.rate.as_str() {
+    if a.size.is_some() && a.sizes.is_some() {
+        return Err(crate::query::not_in("--size", "--sizes (give one of them)"));
+    }
+    if a.material == "hydro" && (a.poisson.is_some() || a.rate.is_some()) {
+        return Err(crate::query::not_in(
+            "--poisson/--rate",
+            "--material hydro (G = 0)",
+        ));
+    }
+    let rate = match a.rate.as_deref().unwrap_or("jaumann") {
         "jaumann" => ObjectiveRate::Jaumann,
         "truesdell" => ObjectiveRate::Truesdell,
         r => {
@@ -141,7 +152,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     cfg.material = match a.material.as_str() {
         "hydro" => BlockMaterial::Hydro,
         "elastic" => BlockMaterial::Elastic {
-            poisson: a.poisson,
+            poisson: a.poisson.unwrap_or(0.3),
             rate,
         },
         m => {
@@ -155,15 +166,40 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     };
     cfg.av = parse_av(&a.av)?;
     let art_form = matches!(form, FormKind::Classical | FormKind::Cll);
+    let art_n = a.art_n.unwrap_or(4);
     cfg.art_stress = match a.art_eps {
         Some(0.0) => None,
-        Some(e) => Some((e, a.art_n)),
-        None if art_form && a.dim == 2 => Some((0.3, a.art_n)),
+        Some(e) => Some((e, art_n)),
+        None if art_form && a.dim == 2 => Some((0.3, art_n)),
         None => None,
     };
+    if a.art_n.is_some() && cfg.art_stress.is_none() {
+        return Err(crate::query::not_in(
+            "--art-n",
+            &format!(
+                "no artificial stress (--form {} in {}D{}: it is the exponent of the artificial stress)",
+                form.name(),
+                a.dim,
+                if a.art_eps == Some(0.0) {
+                    ", --art-eps 0"
+                } else {
+                    ""
+                }
+            ),
+        ));
+    }
     cfg.dt = a.dt;
     cfg.steps = a.steps;
     cfg.repeats = a.repeats;
+    if a.no_pair_reuse && form.is_lagrangian() {
+        return Err(crate::query::not_in(
+            "--no-pair-reuse",
+            &format!(
+                "--form {} (a Lagrangian kernel keeps its reference neighbours: there is no search to repeat)",
+                form.name()
+            ),
+        ));
+    }
     cfg.pair_reuse = !a.no_pair_reuse;
     cfg.validate()?;
     let default_size = if a.dim == 3 { 22 } else { 200 };
@@ -180,15 +216,15 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         return Ok(());
     }
     let material = match r.poisson {
-        Some(nu) => format!("{} ν = {nu}", r.material),
+        Some(nu) => format!("{} ν = {}", r.material, num(nu)),
         None => r.material.clone(),
     };
     let av = match r.av {
-        Some([al, be]) => format!("AV α = {al}, β = {be}"),
+        Some([al, be]) => format!("AV α = {}, β = {}", num(al), num(be)),
         None => "no AV".into(),
     };
     let art = match (r.art_eps, r.art_n) {
-        (Some(e), Some(n)) => format!("artificial stress ε = {e}, n = {n}"),
+        (Some(e), Some(n)) => format!("artificial stress ε = {}, n = {n}", num(e)),
         _ => "no artificial stress".into(),
     };
     println!(
@@ -203,11 +239,11 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         r.form,
         r.shape,
         r.kernel,
-        r.h_over_dx
+        num(r.h_over_dx)
     );
     println!(
         "Δt = {} Δx/c; {} timed steps × {} repeats (median) after 1 warm-up step; {} thread{}",
-        r.dt,
+        num(r.dt),
         r.steps,
         r.repeats,
         r.threads,
@@ -225,14 +261,16 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     );
     for b in &r.blocks {
         println!(
-            "{:>6} {:>10} {:>16.1} {:>18.4e} {:>11.2} {:>15.0} {:>12.2}",
+            "{:>6} {:>10} {:>16.1} {:>18.4e} {:>11.2} {:>15} {:>12}",
             b.size,
             b.particles,
             b.ns_per_particle_step,
             b.particle_steps_per_second,
             b.neighbours_per_particle,
-            b.bytes_per_particle.unwrap_or(f64::NAN),
-            b.allocations_per_step.unwrap_or(f64::NAN),
+            b.bytes_per_particle
+                .map_or("-".into(), |x| format!("{x:.0}")),
+            b.allocations_per_step
+                .map_or("-".into(), |x| format!("{x:.2}")),
         );
     }
     for b in &r.blocks {

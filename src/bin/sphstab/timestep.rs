@@ -34,27 +34,9 @@ pub struct Args {
     vary: crate::vary::VaryArgs,
 }
 
-/// A number as people read it: plain notation from 1e-4 to 1e6 with 6 significant digits
-/// (trailing zeros dropped), scientific outside, `0` for zero.
-pub fn plain(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    if !x.is_finite() {
-        return format!("{x}");
-    }
-    let a = x.abs();
-    if (1e-4..1e6).contains(&a) {
-        let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
-        let t = format!("{x:.decimals$}");
-        if t.contains('.') {
-            t.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            t
-        }
-    } else {
-        format!("{x:.3e}")
-    }
+/// A result as people read it: 6 significant digits ([`sphstab::display::num_sig`]).
+fn plain(x: f64) -> String {
+    sphstab::display::num_sig(x, 6)
 }
 
 /// The integrator part of the text output.
@@ -71,7 +53,7 @@ fn print_step(s: &IntegratorReport) {
         Some(dt) if dt.is_finite() => println!(
             "critical Δt ({name}) = {} Δx/c, CFL c Δt/h = {} (largest Δt that adds no growth: |λ| ≤ 1 + 1e-7 per step on modes that do not grow, growth rate within 1% of the physical one on modes that do; bisection on the amplification matrices); closed form {closed}",
             plain(dt),
-            plain(s.critical_cfl.unwrap_or(f64::NAN))
+            s.critical_cfl.map_or("n/a".into(), plain)
         ),
         Some(_) => println!("critical Δt ({name}): none (no Δt up to 1e6 adds growth)"),
         None => println!(
@@ -100,6 +82,14 @@ fn print_eq120(v: Option<f64>) {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    crate::common::refuse(
+        "timestep without --verify",
+        &[(
+            "--av-beta",
+            a.cfg.av_beta.is_some() && !a.verify,
+            crate::common::AV_BETA_WHY,
+        )],
+    )?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }
@@ -133,7 +123,9 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
         }
         Some(name) => ViscosityPairs::by_name("--viscosity", name)?,
     };
-    let r = sphstab::analysis::timestep(&q)?;
+    // in 1D the κ points are --points or --grid: the budget names the one given
+    let r = sphstab::analysis::timestep(&q)
+        .map_err(|e| crate::flags::alias(e, "grid", "--points", a.points.is_some()))?;
     let verified = if a.verify {
         let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
         let v = sphstab::studies::stable_dt::stable_dt(&q, pairs, &pb)?;
@@ -202,7 +194,12 @@ fn compare<const D: usize>(a: &Args, budget: &Budget) -> Result<()> {
     for s in &list {
         let mut q = s.cfg.query::<D>(budget)?;
         q.integrator = match &s.integrator {
-            Some(name) => sphstab::integrator::Integrator::from_name(name, a.integ.euler_every)?,
+            Some(name) => sphstab::integrator::Integrator::from_name(
+                name,
+                a.integ
+                    .euler_every
+                    .unwrap_or(sphstab::integrator::DEFAULT_EULER_EVERY),
+            )?,
             None => a.integ.integrator()?,
         };
         questions.push(q);
@@ -311,7 +308,7 @@ fn print_verify(v: &StableDtReport) {
                     },
                     plain(stable_dt::FLOOR_PER_STEP),
                     plain(p),
-                    plain(v.ratio.unwrap_or(f64::NAN))
+                    v.ratio.map_or("n/a".into(), plain)
                 );
             }
         }

@@ -90,8 +90,8 @@ fn set(s: &mut Series, name: &str, v: &str, integrator_ok: bool) -> Result<()> {
             c.h = None;
         }
         "stress" => c.stress = number(name, v)?,
-        "c" => c.c = number(name, v)?,
-        "alpha-s" => c.alpha_s = number(name, v)?,
+        "c" => c.c = Some(number(name, v)?),
+        "alpha-s" => c.alpha_s = Some(number(name, v)?),
         "shape" => c.shape = Some(v.into()),
         "material" => c.material = Some(v.into()),
         "poisson" => c.poisson = optional(name, v)?,
@@ -191,5 +191,5 @@ pub fn series(cfg: &Config, vary: &VaryArgs, integrator_ok: bool) -> Result<Vec<
 
 /// A number for a comparison table: 6 significant digits, "—" for none.
 pub fn cell(v: Option<f64>) -> String {
-    v.map_or("—".into(), crate::timestep::plain)
+    v.map_or("—".into(), |x| sphstab::display::num_sig(x, 6))
 }

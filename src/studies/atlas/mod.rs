@@ -2,12 +2,15 @@
 //! largest growth rate over κΔx ∈ (0, π] (the engine's [`crate::vonneumann::linearise::Linearisation`]),
 //! computed in parallel (rayon) and splittable into shards for a batch system's job array:
 //! cell `c` (in the fixed order form, kernel, h, σ̄) belongs to shard `c mod n`; `merge` checks
-//! that the shards share one configuration and cover 0..n exactly once.
+//! every shard against its configuration (`check`), that the shards share one configuration
+//! and cover 0..n exactly once.
 
+mod check;
 mod config;
 mod report;
 mod run;
 
+pub use check::{MAX_GROWTH_RATE, MAX_RUNTIME_S, check_stored};
 pub use config::{AtlasConfig, CellSpec, Shard, grid};
 pub use report::{AtlasReport, Cell, merge, summary};
 pub use run::{AFFINE_TOL, lattice_sum_terms, run};

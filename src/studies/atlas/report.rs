@@ -1,6 +1,8 @@
 //! The atlas report: its cells, the merge of shards and the summary `sphstab atlas` prints.
 
+use super::check::check_stored;
 use super::config::{AtlasConfig, Shard};
+use crate::budget::Budget;
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -44,12 +46,16 @@ pub struct AtlasReport {
     pub cells: Vec<Cell>,
 }
 
-/// Merges shards into the whole atlas: same configuration, shard counts equal, every shard
-/// index present exactly once (errors name the file).
-pub fn merge(parts: &[(String, AtlasReport)]) -> Result<AtlasReport> {
+/// Merges shards into the whole atlas: every shard checked against its configuration
+/// ([`check_stored`], within `budget`'s memory), the same configuration in all, shard counts
+/// equal, every shard index present exactly once (errors name the file, and the cell).
+pub fn merge(parts: &[(String, AtlasReport)], budget: &Budget) -> Result<AtlasReport> {
     let Some((first_name, first)) = parts.first() else {
         return Err(Error::Incompatible("merge: no shard files given".into()));
     };
+    for (name, r) in parts {
+        check_stored(name, r, budget)?;
+    }
     let count = first.shard.map_or(1, |s| s.count);
     let mut seen = vec![None::<&str>; count];
     let mut cells = Vec::with_capacity(first.total_cells);

@@ -177,7 +177,7 @@ pub fn table(rep: &PairingReport) -> String {
             "{:<12} {:<4} {:>7} {:>16} {:>16} {:>13.6} {:>5}/{:<3}",
             o.kernel,
             o.lattice,
-            o.stress,
+            crate::display::num(o.stress),
             at(o.first_growth),
             at(o.first_pairing),
             o.max_pairing_growth,
@@ -191,7 +191,12 @@ pub fn table(rep: &PairingReport) -> String {
 fn row_line(r: &PairingRow) -> String {
     let head = format!(
         "{:<12} {:<4} {:>5.2} {:>6.3} {:>5} {:>7}",
-        r.kernel, r.lattice, r.h_over_dx, r.support_over_dx, r.n_h, r.stress
+        r.kernel,
+        r.lattice,
+        r.h_over_dx,
+        r.support_over_dx,
+        r.n_h,
+        crate::display::num(r.stress)
     );
     if let Some(why) = &r.skipped {
         return format!("{head}  skipped: {why}");
@@ -269,7 +274,7 @@ pub fn figure_svg(rep: &PairingReport) -> Result<String> {
                 Quantity::Transverse => "transverse",
             };
             panels.push(Panel {
-                title: format!("{l}: {label}, σ̄ = {s}"),
+                title: format!("{l}: {label}, σ̄ = {}", crate::display::num(s)),
                 curves,
             });
         }

@@ -157,6 +157,13 @@ pub fn integrator_list(cfg: &TradeoffConfig) -> Result<Vec<Integrator>> {
             out.push(Integrator::from_name(name, DEFAULT_EULER_EVERY)?);
         }
     }
+    if out.is_empty() && cfg.safety != integrators::DEFAULT_SAFETY {
+        return Err(Error::Incompatible(
+            field("safety")
+                + " sets the Δt of the integrator rows: it applies with "
+                + field("integrators"),
+        ));
+    }
     if !out.is_empty() && cfg.dim != 1 {
         return Err(Error::Incompatible(
             field("integrators")
