@@ -36,6 +36,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("h_step", "--h-step"),
     ("integrators", "--integrators"),
     ("kappas", "--kappas"),
+    ("kick", "--kick"),
     ("kernels", "--kernels"),
     ("lattice", "--lattice"),
     ("lattices", "--lattices"),
