@@ -182,6 +182,15 @@ pub enum Error {
     },
     /// Long work stopped because its [`crate::progress::Progress`] asked it to.
     Cancelled,
+    /// An iterative method that did not reach its tolerance within its iteration limit.
+    NotConverged {
+        /// What was being computed, and by which method.
+        what: &'static str,
+        /// Iterations (operator products) done.
+        iterations: usize,
+        /// The best residual reached, in units of the tolerance (> 1).
+        residual: f64,
+    },
 }
 
 impl Error {
@@ -245,6 +254,13 @@ impl Error {
                 "DIVERGED at step {step} (t = {t:.6e}): {what} (max |v| = {max_amplitude:.3e}); the run was stopped"
             ),
             Error::Cancelled => "cancelled".into(),
+            Error::NotConverged {
+                what,
+                iterations,
+                residual,
+            } => format!(
+                "{what} did not converge in {iterations} iterations: residual {residual:.2e} × its tolerance"
+            ),
         }
     }
 }

@@ -150,7 +150,7 @@ impl SwegleSeries {
             let ends = [lo * unit, hi * unit];
             out.push(Curve {
                 label: format!(
-                    "{name}: box prediction {box_rate:.4} c/Δx ({}), slope through the fit",
+                    "{name}: box {box_rate:.4} c/Δx ({}), slope through the fit",
                     r.box_method
                 ),
                 x: ends.to_vec(),

@@ -37,6 +37,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("integrator", "--integrator"),
     ("integrators", "--integrators"),
     ("kappas", "--kappas"),
+    ("kick", "--kick"),
     ("kernels", "--kernels"),
     ("lattice", "--lattice"),
     ("lattices", "--lattices"),

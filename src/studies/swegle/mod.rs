@@ -4,8 +4,9 @@
 //! aluminium ρ0 = 2.8, K = 0.686275, G = 0, initial density f ρ0 (f < 1 tension), the centre
 //! particle kicked with v_x = 1e−10, no artificial viscosity. The measured exponential growth of
 //! max |v| over the free particles is compared with the growth rate of the exact linear operator
-//! of the same finite particle set (dense, up to [`MAX_DENSE_BOX_DOFS`] free degrees of
-//! freedom) or of its admitted standing modes, and with the infinite lattice.
+//! of the same finite particle set (its fastest mode by thick-restart Arnoldi; every eigenvalue,
+//! dense, when that finds no growing mode in a box of up to [`MAX_DENSE_BOX_DOFS`] free degrees
+//! of freedom; the standing modes the box admits with δ-SPH) and with the infinite lattice.
 
 mod config;
 mod predict;

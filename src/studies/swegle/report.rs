@@ -68,7 +68,15 @@ pub struct SwegleReport {
     pub measured_growth_rate: Option<f64>,
     /// Prediction for this finite particle set (c/Δx).
     pub predicted_growth_rate_box: f64,
-    /// How the box prediction was obtained: `dense-operator` or `standing-modes`.
+    /// How the box prediction was obtained: `iterative-operator` (the fastest mode of the exact
+    /// operator of the finite particle set, by thick-restart Arnoldi, to 1e−8 in ω²),
+    /// `dense-operator` (every eigenvalue of the same operator, assembled: when the iterative
+    /// search finds no growing mode in a box of up to
+    /// [`MAX_DENSE_BOX_DOFS`](super::MAX_DENSE_BOX_DOFS) free degrees of freedom), or
+    /// `standing-modes` (the infinite lattice's ω² at the wave vectors the box admits: with
+    /// δ-SPH, where the operator is not the undamped one, and when a larger box shows no growing
+    /// mode: its fastest modes are then its zero-energy modes at ω² ≈ 0, which the iterative
+    /// method cannot resolve).
     pub box_method: &'static str,
     /// Infinite-lattice prediction (c/Δx).
     pub predicted_growth_rate_infinite: f64,

@@ -40,7 +40,7 @@ where
     let c = cfg.sound_speed();
     let unit = c / cfg.dx; // c/Δx: normalisation of rates
     let nfree = cfg.size - 2 * cfg.layers;
-    let pred = predict_d(cfg, &run)?;
+    let pred = predict_d(cfg, &run, &progress)?;
     let (box_rate, method, inf) = (pred.box_rate, pred.box_method, pred.infinite_rate);
     let dt = cfg.cfl * cfg.dx / c;
     let t_end = if cfg.until_window && box_rate > 1e-6 {
