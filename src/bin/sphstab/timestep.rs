@@ -190,20 +190,7 @@ fn compare<const D: usize>(a: &Args, budget: &Budget) -> Result<()> {
         ));
     }
     let list = crate::vary::series(&a.cfg, &a.vary, true)?;
-    let mut questions = Vec::with_capacity(list.len());
-    for s in &list {
-        let mut q = s.cfg.query::<D>(budget)?;
-        q.integrator = match &s.integrator {
-            Some(name) => sphstab::integrator::Integrator::from_name(
-                name,
-                a.integ
-                    .euler_every
-                    .unwrap_or(sphstab::integrator::DEFAULT_EULER_EVERY),
-            )?,
-            None => a.integ.integrator()?,
-        };
-        questions.push(q);
-    }
+    let questions = crate::vary::questions::<D>(&list, &a.integ, budget)?;
     let reports = questions
         .iter()
         .map(sphstab::analysis::timestep)

@@ -189,6 +189,26 @@ pub fn series(cfg: &Config, vary: &VaryArgs, integrator_ok: bool) -> Result<Vec<
     Ok(out)
 }
 
+/// The questions of `list`, every one checked before any is answered; the integrator of a
+/// series that varies it replaces `--integrator` (with the same `--euler-every` checks).
+pub fn questions<const D: usize>(
+    list: &[Series],
+    integ: &crate::common::IntegratorArgs,
+    budget: &sphstab::budget::Budget,
+) -> Result<Vec<sphstab::analysis::Query<D>>> {
+    list.iter()
+        .map(|s| {
+            let mut q = s.cfg.query::<D>(budget)?;
+            let mut i = integ.clone();
+            if let Some(name) = &s.integrator {
+                i.integrator = name.clone();
+            }
+            q.integrator = i.integrator()?;
+            Ok(q)
+        })
+        .collect()
+}
+
 /// A number for a comparison table: 6 significant digits, "—" for none.
 pub fn cell(v: Option<f64>) -> String {
     v.map_or("—".into(), |x| sphstab::display::num_sig(x, 6))
