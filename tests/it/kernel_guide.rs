@@ -1,6 +1,6 @@
 //! The kernel guide (`sphstab kernels --table`): its cells against analytic results and
 //! independent computations (each test names where its expected value comes from), its reuse of
-//! the `tradeoff --cfl-table` code path, the command line, and the README block against the
+//! the `tradeoff --cfl-table` code path, the command line, and the docs/kernels.md block against the
 //! command's output.
 
 use crate::common;
@@ -294,11 +294,11 @@ fn json_subset_has_every_field() {
     assert_eq!(j["h_step"], 0.5);
 }
 
-/// The README's kernel guide is the output of the command, verbatim.
+/// The kernel guide of docs/kernels.md is the output of the command, verbatim.
 #[test]
-fn readme_kernel_guide_is_the_command_output() {
+fn documented_kernel_guide_is_the_command_output() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let readme = std::fs::read_to_string(root.join("docs/kernels.md")).unwrap();
     let start = readme
         .find("<!-- kernel-guide -->\n")
         .expect("start marker")
@@ -308,6 +308,6 @@ fn readme_kernel_guide_is_the_command_output() {
     assert_eq!(code, 0, "{err}");
     assert!(
         readme[start..end].trim() == out.trim(),
-        "README's kernel guide differs from `cargo run --release -- kernels --table`"
+        "docs/kernels.md's kernel guide differs from `cargo run --release -- kernels --table`"
     );
 }

@@ -8,7 +8,7 @@
 //! parallel here.
 //!
 //! Slow studies are `#[ignore]`d only where a faster test of the same claim runs in the default
-//! suite (each names it); `.ci/run` runs them, with the README's own commands (`readme::`).
+//! suite (each names it); `.ci/run` runs them, with the documented commands (`docs::`).
 
 mod common;
 
@@ -58,10 +58,10 @@ mod golden_solver2d;
 
 // studies, figures and the documents generated from the code
 mod art_stress;
+mod docs;
 mod figures;
 mod kernel_guide;
 mod pairing;
-mod readme;
 mod reproduction;
 mod shard;
 mod tradeoff;

@@ -1,7 +1,7 @@
 //! The time-domain Δt check (`timestep --verify`, issue 24 item 1): the largest stable Δt
 //! measured by the solver against the analysis' amplification matrices (an independent route:
 //! eigenvalues of the linearised one-step map, no time integration), the renormalisation it
-//! rests on against runs that are never renormalised, and the table in README.md.
+//! rests on against runs that are never renormalised, and the table in docs/timestep.md.
 
 use crate::common::{assert_bad_inputs, sphstab};
 use sphstab::forms::{State, ViscosityPairs};
@@ -146,13 +146,13 @@ fn cli_verify_flags() {
     assert!(out.contains("largest stable Δt (measured) = "), "{out}");
 }
 
-/// The README's table of every integrator × {two-sided, one-sided} viscosity is what the code
+/// The table of docs/timestep.md of every integrator × {two-sided, one-sided} viscosity is what the code
 /// measures now (about 12 s on 2 cores; `.ci/run` runs it). Every two-sided row with an
 /// analysis limit agrees within 2% with the analysis at the runs' resolution (1e-3 added
 /// growth per step: the same criterion).
 #[test]
 #[ignore]
-fn viscosity_table_matches_readme() {
+fn viscosity_table_matches_the_docs() {
     let rows = viscosity_table(&()).unwrap();
     let table = viscosity_markdown(&rows);
     println!("{table}");
@@ -171,9 +171,9 @@ fn viscosity_table_matches_readme() {
         }
     }
     let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/timestep.md")).unwrap();
     assert!(
         readme.contains(&table),
-        "README.md's viscosity table differs from the measurement:\n{table}"
+        "docs/timestep.md's viscosity table differs from the measurement:\n{table}"
     );
 }

@@ -388,7 +388,7 @@ fn integrator_rows_match_closed_forms_on_the_oscillator() {
     // rest of `cargo test`, and a single timed run of rk4 vs kdk gave 7.4 against the expected
     // 8/3 under that load (CI, 2026-12-01). The deterministic part of the cost model, the rate
     // calls per step, is asserted above; the step-cost ratio is measured back to back by the
-    // benches (README "Benchmarks").
+    // benches (docs/benchmarks.md).
 }
 
 /// The critical CFL table: kdk's Δt_crit (bisection on the amplification matrices) must equal
@@ -431,18 +431,18 @@ fn cfl_table_matches_the_leapfrog_and_rk4_limits() {
     }
 }
 
-/// The README's CFL table is the output of the command, verbatim.
+/// The CFL table of docs/tradeoff.md is the output of the command, verbatim.
 #[test]
-fn readme_cfl_table_is_the_command_output() {
+fn documented_cfl_table_is_the_command_output() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let readme = std::fs::read_to_string(root.join("docs/tradeoff.md")).unwrap();
     let start = readme.find("<!-- cfl-table -->\n").expect("start marker") + 19;
     let end = readme.find("<!-- /cfl-table -->").expect("end marker");
     let (code, out, err) = common::sphstab(&["tradeoff", "--cfl-table"]);
     assert_eq!(code, 0, "{err}");
     assert!(
         readme[start..end].trim() == out.trim(),
-        "README's CFL table differs from `cargo run --release -- tradeoff --cfl-table`"
+        "docs/tradeoff.md's CFL table differs from `cargo run --release -- tradeoff --cfl-table`"
     );
     let j = common::json(&["tradeoff", "--cfl-table", "--json"]);
     assert_eq!(j["cells"].as_array().unwrap().len(), 2 * 2 * 12 * 11);
