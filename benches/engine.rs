@@ -71,7 +71,7 @@ fn benches(c: &mut Criterion) {
     let mut g0 = c.benchmark_group("atlas");
     g0.sample_size(10);
     g0.bench_function("atlas 1D, 256 cells x 512 kappa (classical m4)", |b| {
-        b.iter(|| sphstab::studies::atlas::run(&acfg, None, ()).unwrap())
+        b.iter(|| sphstab::studies::atlas::run(&acfg, ()).unwrap())
     });
     g0.finish();
 

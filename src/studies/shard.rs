@@ -3,23 +3,28 @@
 //! unsharded run.
 //!
 //! A study that shards implements [`Sharded`]: its configuration gives a fixed list of cells
-//! (the pairing study's rows kernel × lattice × h/Δx × σ̄, the trade-off study's configurations
-//! form × kernel × h/Δx, the artificial-stress study's predictions and runs), each computed from
-//! the configuration alone, and its report is assembled from the cells in index order. Cell `c`
-//! belongs to shard `c mod n`, as in the atlas: consecutive cells, which often cost alike
-//! (neighbouring h/Δx), go to different shards, so the shards take about equally long.
+//! (the atlas's form × kernel × h/Δx × σ̄, the pairing study's rows kernel × lattice × h/Δx × σ̄,
+//! the trade-off study's configurations form × kernel × h/Δx, the artificial-stress study's
+//! predictions and runs), each computed from the configuration alone, and its report is
+//! assembled from the cells in index order. Cell `c` belongs to shard `c mod n`: consecutive
+//! cells, which often cost alike (neighbouring h/Δx), go to different shards, so the shards
+//! take about equally long.
 //!
 //! [`run_shard`] computes one shard into a [`ShardFile`]: JSON that says what it is — the
 //! study, the sphstab version, the whole configuration and the budget it ran within (a budget
 //! can turn a cell into a skipped one), the shard i/n, the number of cells of the study and the
 //! shard's cells with their indices. [`merge`] checks that the files are the n shards of one
 //! study — same version, configuration, budget and n, every shard once, every cell once and in
-//! its own shard — and assembles the report with the code of the unsharded run ([`run_whole`]),
+//! its own shard, a plausible clock — and every cell against the configuration
+//! ([`Sharded::check_cell`]: a shard file is data that users keep and pass around, so a cell
+//! that cannot be the study's is refused, naming the file and the cell, instead of being
+//! merged); then it assembles the report with the code of the unsharded run ([`run_whole`]),
 //! so the merged report equals the unsharded one bit for bit, except what a clock measures:
 //! `runtime_s` (after a merge the sum over the shards), `threads` (the first shard's) and the
 //! trade-off study's costs (measured per cell on whichever machine ran its shard).
 
 use crate::budget::Budget;
+use crate::display::num;
 use crate::error::{Error, Result, Text, field};
 use crate::progress::Progress;
 use serde::de::DeserializeOwned;
@@ -31,6 +36,8 @@ pub const FORMAT: &str = "sphstab-shard";
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 /// Most shards of one study.
 pub const MAX_SHARDS: usize = 100_000;
+/// Largest `runtime_s` of a shard file (≈ 30 years).
+pub const MAX_RUNTIME_S: f64 = 1e9;
 
 /// One shard of n (0 ≤ index < count): the cells c with c mod count = index.
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq)]
@@ -118,7 +125,21 @@ pub trait Sharded {
         cells: Vec<Self::Cell>,
         timing: Timing,
     ) -> Result<Self::Report>;
+
+    /// The check of a stored cell against the configuration, prepared once per merge from the
+    /// (valid) configuration: called with each cell's index and result, it says what is wrong
+    /// with a cell that cannot be the study's (a field that does not fit the configuration at
+    /// that index, a number out of its range). The default accepts every cell; the checks of
+    /// the index and the shard ([`merge`]) apply to every study.
+    fn check_cell<'a>(&'a self, cfg: &'a Self::Config) -> Result<CellCheck<'a, Self::Cell>> {
+        let _ = cfg;
+        Ok(Box::new(|_, _| Ok(())))
+    }
 }
+
+/// A check of one stored cell (its index, its result): what is wrong with it, if anything
+/// ([`Sharded::check_cell`]).
+pub type CellCheck<'a, C> = Box<dyn Fn(usize, &C) -> std::result::Result<(), Text> + 'a>;
 
 /// The budget a shard ran within.
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
@@ -226,15 +247,8 @@ struct Head {
     format: Option<String>,
     study: Option<String>,
     sphstab_version: Option<String>,
-}
-
-/// The study a shard file belongs to; None for JSON that is not a shard file (e.g. an atlas
-/// shard, which has a format of its own).
-pub fn study_of(text: &str) -> Option<String> {
-    let h: Head = serde_json::from_str(text).ok()?;
-    (h.format.as_deref() == Some(FORMAT))
-        .then_some(h.study)
-        .flatten()
+    /// Present in an atlas written before the atlas had shard files (no `format`).
+    shard: Option<serde::de::IgnoredAny>,
 }
 
 fn merge_error(file: Option<&str>, cell: Option<usize>, problem: impl Into<Text>) -> Error {
@@ -245,35 +259,43 @@ fn merge_error(file: Option<&str>, cell: Option<usize>, problem: impl Into<Text>
     }
 }
 
-/// Parses the shard file `file` of study `S`: refuses another format, another study or
-/// another sphstab version before reading the cells.
-pub fn parse<S: Sharded>(file: &str, text: &str) -> Result<ShardOf<S>> {
+/// The study of the shard file `file` (its text): refuses JSON that is not a shard file (an
+/// atlas of the format before shard files among them, which is not read any more: its shards
+/// are computed again) and a shard of another sphstab version, before the cells are read.
+pub fn study_of(file: &str, text: &str) -> Result<String> {
     let err = |p: String| merge_error(Some(file), None, p);
     let head: Head = serde_json::from_str(text).map_err(|e| err(format!("not JSON: {e}")))?;
     if head.format.as_deref() != Some(FORMAT) {
+        return Err(err(if head.shard.is_some() && head.format.is_none() {
+            "an atlas of the old format (a `shard` field, no `format`), which this sphstab does not read: compute its shards again (`sphstab atlas --shard i/n --out FILE`)".into()
+        } else {
+            format!(
+                "not a shard file (`format` is not \"{FORMAT}\"; shard files are written by `sphstab <study> --shard i/n --out FILE`)"
+            )
+        }));
+    }
+    let Some(study) = head.study else {
+        return Err(err("has no `study`".into()));
+    };
+    match head.sphstab_version.as_deref() {
+        Some(VERSION) => Ok(study),
+        v => Err(err(format!(
+            "written by sphstab {}, this is {VERSION}: merge shards with the version that computed them",
+            v.unwrap_or("(unknown)")
+        ))),
+    }
+}
+
+/// Parses the shard file `file` of study `S`: refuses what [`study_of`] refuses and a shard of
+/// another study before reading the cells.
+pub fn parse<S: Sharded>(file: &str, text: &str) -> Result<ShardOf<S>> {
+    let study = study_of(file, text)?;
+    let err = |p: String| merge_error(Some(file), None, p);
+    if study != S::STUDY {
         return Err(err(format!(
-            "not a shard file (written by `sphstab {} --shard i/n --out FILE`)",
+            "a shard of the `{study}` study, not of `{}`",
             S::STUDY
         )));
-    }
-    match head.study.as_deref() {
-        Some(s) if s == S::STUDY => {}
-        Some(s) => {
-            return Err(err(format!(
-                "a shard of the `{s}` study, not of `{}`",
-                S::STUDY
-            )));
-        }
-        None => return Err(err("has no `study`".into())),
-    }
-    match head.sphstab_version.as_deref() {
-        Some(VERSION) => {}
-        v => {
-            return Err(err(format!(
-                "written by sphstab {}, this is {VERSION}: merge shards with the version that computed them",
-                v.unwrap_or("(unknown)")
-            )));
-        }
     }
     serde_json::from_str(text).map_err(|e| err(e.to_string()))
 }
@@ -294,8 +316,9 @@ fn differing_field<C: Serialize>(a: &C, b: &C) -> String {
 
 /// Merges the shard files `(name, shard)` of one study into its report (module docs). Refuses,
 /// naming the file and the cell: shards of different configurations, budgets or shard counts,
-/// a shard given twice or missing, a cell out of range, in the wrong shard, given twice or
-/// missing.
+/// a shard given twice or missing, a clock out of range (`threads`, `runtime_s`), a cell out
+/// of range, in the wrong shard, given twice or missing, and a cell the study's
+/// [`Sharded::check_cell`] refuses.
 pub fn merge<S: Sharded>(study: &S, parts: Vec<(String, ShardOf<S>)>) -> Result<S::Report> {
     let Some((first_name, first)) = parts.first() else {
         return Err(merge_error(None, None, "no shard files given"));
@@ -308,13 +331,15 @@ pub fn merge<S: Sharded>(study: &S, parts: Vec<(String, ShardOf<S>)>) -> Result<
             max_steps: budget.max_steps,
         },
     );
-    let total = study.cells(&cfg).map_err(|e| {
+    let invalid = |e: Error| {
         merge_error(
             Some(first_name),
             None,
             format!("its configuration is not valid: {e}"),
         )
-    })?;
+    };
+    let total = study.cells(&cfg).map_err(invalid)?;
+    let check = study.check_cell(&cfg).map_err(invalid)?;
     let mut shard_file: Vec<Option<usize>> = vec![None; count.min(MAX_SHARDS)];
     let mut seen = vec![false; total];
     let mut runtime_s = 0.0;
@@ -369,6 +394,20 @@ pub fn merge<S: Sharded>(study: &S, parts: Vec<(String, ShardOf<S>)>) -> Result<
             ));
         }
         shard_file[sh.index] = Some(p);
+        if s.threads == 0 {
+            return Err(at(None, "threads = 0: must be at least 1".into()));
+        }
+        if !(0.0..=MAX_RUNTIME_S).contains(&s.runtime_s) {
+            return Err(at(
+                None,
+                format!(
+                    "runtime_s = {} is out of range: must be a number in [0, {}]",
+                    num(s.runtime_s),
+                    num(MAX_RUNTIME_S)
+                )
+                .into(),
+            ));
+        }
         if s.total_cells != total {
             return Err(at(
                 None,
@@ -406,6 +445,7 @@ pub fn merge<S: Sharded>(study: &S, parts: Vec<(String, ShardOf<S>)>) -> Result<
                 return Err(at(Some(i), "given twice".into()));
             }
             seen[i] = true;
+            check(i, &c.result).map_err(|p| at(Some(i), p))?;
         }
         runtime_s += s.runtime_s;
     }

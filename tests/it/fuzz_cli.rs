@@ -595,6 +595,11 @@ fn hostile_flags_that_cannot_act() {
         ),
         case(&["atlas", "--shard", "2/2"], &["--shard"]),
         case(&["atlas", "--shard", "0/0"], &["--shard"]),
+        case(&["atlas", "--shard", "0/2"], &["--shard", "--out"]),
+        case(
+            &["atlas", "--shard", "0/2", "--out", "x.json", "--json"],
+            &["--shard", "--json"],
+        ),
         case(&["merge"], &["<FILES>"]),
         case(
             &["figures", "--configs", "/nonexistent-sphstab"],
@@ -891,35 +896,21 @@ fn hostile_scene_files() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Shard files: every corruption is refused before the merge, naming the file and the cell (a
-/// shard of count 0 or an index out of range made `merge` panic).
+/// Shard files (the atlas's): every corruption is refused before the merge, naming the file and
+/// the cell (a shard of count 0 or an index out of range made `merge` panic), and an atlas of
+/// the format before shard files with what to do instead.
 #[test]
 fn hostile_shard_files() {
     let d = scratch("shards");
     let shard = |i: usize| d.join(format!("s{i}.json"));
     for i in 0..2 {
-        let a = [
-            "atlas",
-            "--forms",
-            "classical,nonlocal",
-            "--kernels",
-            "m4",
-            "--h-points",
-            "2",
-            "--stress-points",
-            "3",
-            "--stress-min",
-            "-0.2",
-            "--stress-max",
-            "0.3",
-            "--kappas",
-            "16",
-            "--shard",
-            &format!("{i}/2"),
-            "--out",
-            &shard(i).display().to_string(),
-        ]
-        .map(String::from);
+        let mut a: Vec<String> = crate::common::SMALL_ATLAS.map(String::from).to_vec();
+        a.extend([
+            "--shard".into(),
+            format!("{i}/2"),
+            "--out".into(),
+            shard(i).display().to_string(),
+        ]);
         let (code, _, err, _) = run_limited(&a);
         assert_eq!(code, Some(0), "{err}");
     }
@@ -931,68 +922,93 @@ fn hostile_shard_files() {
     let cells = s0["cells"].as_array().unwrap();
     let grows = cells
         .iter()
-        .position(|c| c["stable"] == false)
+        .position(|c| c["result"]["stable"] == false)
         .expect("a growing cell");
     let stable = cells
         .iter()
-        .position(|c| c["stable"] == true)
+        .position(|c| c["result"]["stable"] == true)
         .expect("a stable cell");
+    let index = |j: usize| cells[j]["index"].as_u64().unwrap();
+    // which cell the message names: none (the file), the growing or the stable one
+    #[derive(Clone, Copy)]
+    enum At {
+        File,
+        Grows,
+        Stable,
+    }
     type Edit = fn(&mut serde_json::Value, usize, usize);
-    let edits: &[(&str, Edit, &[&str])] = &[
+    let edits: &[(&str, Edit, At, &[&str])] = &[
         (
             "count0",
             |v, _, _| v["shard"] = serde_json::json!({"index": 0, "count": 0}),
+            At::File,
             &["shard 0/0"],
         ),
         (
             "index9",
             |v, _, _| v["shard"] = serde_json::json!({"index": 9, "count": 2}),
+            At::File,
             &["shard 9/2"],
         ),
         (
             "huge",
-            |v, g, _| v["cells"][g]["max_growth_rate"] = serde_json::json!(1e308),
-            &["max_growth_rate = 1e308", "cells["],
+            |v, g, _| v["cells"][g]["result"]["max_growth_rate"] = serde_json::json!(1e308),
+            At::Grows,
+            &["max_growth_rate = 1e308"],
         ),
         (
             "negative",
-            |v, g, _| v["cells"][g]["max_growth_rate"] = serde_json::json!(-0.5),
+            |v, g, _| v["cells"][g]["result"]["max_growth_rate"] = serde_json::json!(-0.5),
+            At::Grows,
             &["max_growth_rate = -0.5"],
         ),
         (
             "form",
-            |v, g, _| v["cells"][g]["form"] = serde_json::json!("nope"),
+            |v, g, _| v["cells"][g]["result"]["form"] = serde_json::json!("nope"),
+            At::Grows,
             &["form `nope`"],
         ),
         (
             "h",
-            |v, g, _| v["cells"][g]["h_over_dx"] = serde_json::json!(1.7),
+            |v, g, _| v["cells"][g]["result"]["h_over_dx"] = serde_json::json!(1.7),
+            At::Grows,
             &["h_over_dx = 1.7"],
         ),
         (
             "stress",
-            |v, g, _| v["cells"][g]["stress"] = serde_json::json!(0.31),
+            |v, g, _| v["cells"][g]["result"]["stress"] = serde_json::json!(0.31),
+            At::Grows,
             &["stress = 0.31"],
         ),
         (
             "kappa",
-            |v, g, _| v["cells"][g]["kappa_at_max"] = serde_json::json!(1.0),
+            |v, g, _| v["cells"][g]["result"]["kappa_at_max"] = serde_json::json!(1.0),
+            At::Grows,
             &["kappa_at_max = 1"],
         ),
         (
             "stable",
-            |v, g, _| v["cells"][g]["stable"] = serde_json::json!(true),
+            |v, g, _| v["cells"][g]["result"]["stable"] = serde_json::json!(true),
+            At::Grows,
             &["stable = true"],
         ),
         (
             "grows",
-            |v, _, s| v["cells"][s]["max_growth_rate"] = serde_json::json!(0.25),
+            |v, _, s| v["cells"][s]["result"]["max_growth_rate"] = serde_json::json!(0.25),
+            At::Stable,
             &["max_growth_rate = 0.25", "stable cell"],
+        ),
+        (
+            "result-index",
+            |v, g, _| v["cells"][g]["result"]["index"] = serde_json::json!(1),
+            At::Grows,
+            &["`index` 1"],
         ),
         (
             "index",
             |v, g, _| v["cells"][g]["index"] = serde_json::json!(1),
-            &["not a cell of shard 0/2"],
+            At::File,
+            &["cell 1", "belongs to shard 1/2"],
         ),
         (
             "dup",
@@ -1000,49 +1016,80 @@ fn hostile_shard_files() {
                 let c = v["cells"][0].clone();
                 v["cells"][1] = c;
             },
-            &["increasing"],
+            At::File,
+            &["cell 0", "given twice"],
         ),
         (
             "total",
             |v, _, _| v["total_cells"] = serde_json::json!(5),
+            At::File,
             &["total_cells = 5"],
         ),
         (
             "runtime",
             |v, _, _| v["runtime_s"] = serde_json::json!(1e308),
+            At::File,
             &["runtime_s = 1e308"],
         ),
         (
             "threads",
             |v, _, _| v["threads"] = serde_json::json!(0),
+            At::File,
             &["threads = 0"],
         ),
         (
             "config",
             |v, _, _| v["config"]["h_points"] = serde_json::json!(0),
-            &["config: h_points = 0"],
+            At::File,
+            &["configuration is not valid", "h_points = 0"],
         ),
         (
             "missing",
             |v, _, _| {
                 v["cells"].as_array_mut().unwrap().pop();
             },
-            &["cells, but shard 0/2"],
+            At::File,
+            &["missing from shard 0/2"],
+        ),
+        (
+            // an atlas file of the format before shard files: refused with what to do
+            "old-format",
+            |v, _, _| {
+                let cells: Vec<serde_json::Value> = v["cells"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|c| c["result"].clone())
+                    .collect();
+                *v = serde_json::json!({
+                    "config": v["config"].clone(),
+                    "shard": v["shard"].clone(),
+                    "total_cells": v["total_cells"].clone(),
+                    "threads": 1,
+                    "runtime_s": 0.5,
+                    "cells": cells,
+                });
+            },
+            At::File,
+            &["old format", "atlas --shard i/n --out"],
         ),
     ];
     let mut table = Vec::new();
-    for (name, edit, needles) in edits {
+    for (name, edit, at, needles) in edits {
         let mut v = s0.clone();
         edit(&mut v, grows, stable);
         let f = d.join(format!("bad-{name}.json"));
         std::fs::write(&f, v.to_string()).unwrap();
         let f = f.display().to_string();
-        let mut needles: Vec<&str> = needles.to_vec();
-        needles.push(&f);
-        table.push(case(
-            &["merge", &f, &shard(1).display().to_string()],
-            &needles,
-        ));
+        let mut needles: Vec<String> = needles.iter().map(|n| n.to_string()).collect();
+        needles.push(f.clone());
+        match at {
+            At::File => {}
+            At::Grows => needles.push(format!("cell {}: ", index(grows))),
+            At::Stable => needles.push(format!("cell {}: ", index(stable))),
+        }
+        let args = ["merge", &f, &shard(1).display().to_string()].map(String::from);
+        table.push((args.to_vec(), needles));
     }
     let junk = d.join("junk.json");
     std::fs::write(&junk, "[1, 2").unwrap();

@@ -1,5 +1,5 @@
-//! Studies in shards (issue 25): each study that runs longer than a minute (pairing, tradeoff,
-//! art-stress) computed once whole and once as 3 shards, the shards written as files (JSON
+//! Studies in shards (issue 25): each study that runs longer than a minute (atlas, pairing,
+//! tradeoff, art-stress) computed once whole and once as 3 shards, the shards written as files (JSON
 //! text) and read back, merged: the merged report serialises to the same bytes as the whole
 //! one, once what a clock measures is set aside (`runtime_s`, `threads`, the trade-off costs).
 //! Then the merges that must fail — a shard missing or given twice, shards of another
@@ -10,7 +10,8 @@
 use crate::common;
 use sphstab::error::Error;
 use sphstab::studies::art_stress::{ArtStressConfig, ArtStressSetup, ArtStressStudy};
-use sphstab::studies::pairing::{PairingConfig, PairingReport, PairingStudy};
+use sphstab::studies::atlas::{AtlasConfig, AtlasStudy};
+use sphstab::studies::pairing::{PairingConfig, PairingStudy};
 use sphstab::studies::shard::{self, Shard, ShardOf, Sharded};
 use sphstab::studies::tradeoff::{TradeoffConfig, TradeoffReport, TradeoffStudy};
 use std::path::{Path, PathBuf};
@@ -27,6 +28,89 @@ fn shards<S: Sharded>(study: &S, cfg: &S::Config, n: usize) -> Vec<(String, Shar
         .collect()
 }
 
+/// A report (JSON) with the clock (runtime_s, threads) set aside, as text.
+fn clockless(mut v: serde_json::Value) -> String {
+    v["runtime_s"] = 0.into();
+    v["threads"] = 0.into();
+    v.to_string()
+}
+
+/// A report with the clock set aside, as JSON text.
+fn report_bytes<T: serde::Serialize>(r: &T) -> String {
+    clockless(serde_json::to_value(r).unwrap())
+}
+
+/// A report file with the clock set aside, as JSON text.
+fn without_clock(p: &Path) -> String {
+    clockless(serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap())
+}
+
+/// The atlas of [`common::SMALL_ATLAS`]: 42 cells, σ̄ interpolated.
+fn atlas_config() -> AtlasConfig {
+    AtlasConfig {
+        forms: vec!["classical".into(), "nonlocal".into()],
+        kernels: vec!["m4".into()],
+        h_points: 3,
+        stress_points: 7,
+        kappas: 64,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn atlas_shards_merge_bit_for_bit() {
+    let cfg = atlas_config();
+    let whole = sphstab::studies::atlas::run(&cfg, ()).unwrap();
+    assert_eq!(whole.cells.len(), 42);
+    assert!(whole.cells.iter().any(|c| !c.stable) && whole.cells.iter().any(|c| c.stable));
+    let merged = shard::merge(&AtlasStudy, shards(&AtlasStudy, &cfg, 3)).unwrap();
+    assert_eq!(report_bytes(&merged), report_bytes(&whole));
+}
+
+/// Stored atlas cells that do not fit the sweep are refused, naming the file and the cell (the
+/// study's own check, [`Sharded::check_cell`]; the command-line table of corruptions is
+/// `fuzz_cli::hostile_shard_files`).
+#[test]
+fn atlas_cells_are_checked_against_the_sweep() {
+    let parts = shards(&AtlasStudy, &atlas_config(), 2);
+    let name = Some(parts[1].0.clone());
+    let growing = parts[1]
+        .1
+        .cells
+        .iter()
+        .position(|c| !c.result.stable)
+        .unwrap();
+    let stable = parts[1]
+        .1
+        .cells
+        .iter()
+        .position(|c| c.result.stable)
+        .unwrap();
+    type Edit = fn(&mut sphstab::studies::atlas::Cell);
+    let edits: [(usize, Edit); 8] = [
+        (growing, |c| c.max_growth_rate = 1e308),
+        (growing, |c| c.max_growth_rate = -0.5),
+        (growing, |c| c.form = "nope".into()),
+        (growing, |c| c.kernel = "m5".into()),
+        (growing, |c| c.h_over_dx = 1.7),
+        (growing, |c| c.kappa_at_max = Some(1.0)),
+        (stable, |c| c.max_growth_rate = 0.25),
+        (stable, |c| c.index += 2),
+    ];
+    for (j, edit) in edits {
+        let mut bad = parts.clone();
+        let cell = &mut bad[1].1.cells[j];
+        edit(&mut cell.result);
+        let i = cell.index;
+        match shard::merge(&AtlasStudy, bad) {
+            Err(Error::Merge { file, cell, .. }) => {
+                assert_eq!((file, cell), (name.clone(), Some(i)))
+            }
+            other => panic!("cell {i}: {:?}", other.map(|_| "merged")),
+        }
+    }
+}
+
 /// 2 kernels × sc, bcc × h/Δx = 0.8, 1.2 × 2 stresses at 4³ wave vectors: 16 rows.
 fn pairing_config() -> PairingConfig {
     PairingConfig {
@@ -41,12 +125,6 @@ fn pairing_config() -> PairingConfig {
     }
 }
 
-fn pairing_bytes(mut r: PairingReport) -> String {
-    r.runtime_s = 0.0;
-    r.threads = 0;
-    serde_json::to_string(&r).unwrap()
-}
-
 #[test]
 fn pairing_shards_merge_bit_for_bit() {
     let cfg = pairing_config();
@@ -58,7 +136,7 @@ fn pairing_shards_merge_bit_for_bit() {
     let mut reversed = parts.clone();
     reversed.reverse();
     let merged = shard::merge(&PairingStudy, reversed).unwrap();
-    assert_eq!(pairing_bytes(merged), pairing_bytes(whole));
+    assert_eq!(report_bytes(&merged), report_bytes(&whole));
 }
 
 /// Everything but the clock: wall time, threads and the timed costs.
@@ -194,8 +272,15 @@ fn bad_shards_are_refused_naming_the_file_and_the_cell() {
     }
     // a pairing shard is not a trade-off shard
     assert!(shard::parse::<TradeoffStudy>("f.json", &text).is_err());
-    assert_eq!(shard::study_of(&text).as_deref(), Some("pairing"));
-    assert_eq!(shard::study_of("{\"config\": {}}"), None);
+    assert_eq!(shard::study_of("f.json", &text).unwrap(), "pairing");
+    assert!(matches!(
+        shard::study_of("f.json", "{\"config\": {}}"),
+        Err(Error::Merge {
+            file: Some(_),
+            cell: None,
+            ..
+        })
+    ));
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -203,15 +288,6 @@ fn scratch(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
-}
-
-/// A report file with the clock (runtime_s, threads) set aside, as JSON text.
-fn without_clock(p: &Path) -> String {
-    let mut v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
-    v["runtime_s"] = 0.into();
-    v["threads"] = 0.into();
-    v.to_string()
 }
 
 const PAIRING_FLAGS: [&str; 11] = [
@@ -228,19 +304,20 @@ const PAIRING_FLAGS: [&str; 11] = [
     "4",
 ];
 
-#[test]
-fn cli_shards_merge_into_the_single_run() {
-    let dir = scratch("cli");
+/// Runs `flags` once whole (`--out`) and as 3 shards, merges them (`--out`) and checks that the
+/// merged report equals the whole one apart from the clock: (the whole run's stdout, the
+/// merge's, the shard files).
+fn cli_whole_and_merged(dir: &Path, flags: &[&str]) -> (String, String, Vec<String>) {
     let p = |f: &str| dir.join(f).display().to_string();
-    let mut whole = PAIRING_FLAGS.to_vec();
+    let mut whole = flags.to_vec();
     let whole_out = p("whole.json");
     whole.extend(["--out", &whole_out]);
-    let (code, _, err) = common::sphstab(&whole);
+    let (code, whole_stdout, err) = common::sphstab(&whole);
     assert_eq!(code, 0, "{err}");
     let files: Vec<String> = (0..3).map(|i| p(&format!("s{i}.json"))).collect();
     for (i, f) in files.iter().enumerate() {
         let spec = format!("{i}/3");
-        let mut a = PAIRING_FLAGS.to_vec();
+        let mut a = flags.to_vec();
         a.extend(["--shard", &spec, "--out", f]);
         let (code, _, err) = common::sphstab(&a);
         assert_eq!(code, 0, "{err}");
@@ -249,13 +326,21 @@ fn cli_shards_merge_into_the_single_run() {
     let mut m = vec!["merge"];
     m.extend(files.iter().map(String::as_str));
     m.extend(["--out", &merged_out]);
-    let (code, table, err) = common::sphstab(&m);
+    let (code, merged_stdout, err) = common::sphstab(&m);
     assert_eq!(code, 0, "{err}");
-    assert!(table.contains("onsets"), "{table}");
     assert_eq!(
         without_clock(Path::new(&merged_out)),
         without_clock(Path::new(&whole_out))
     );
+    (whole_stdout, merged_stdout, files)
+}
+
+#[test]
+fn cli_shards_merge_into_the_single_run() {
+    let dir = scratch("cli");
+    let p = |f: &str| dir.join(f).display().to_string();
+    let (_, table, files) = cli_whole_and_merged(&dir, &PAIRING_FLAGS);
+    assert!(table.contains("onsets"), "{table}");
     // a corrupted cell index: exit 2, one line naming the file and the cell
     let text = std::fs::read_to_string(&files[1]).unwrap();
     let bad = p("bad.json");
@@ -290,6 +375,45 @@ fn cli_shards_merge_into_the_single_run() {
             "--shard",
         ),
         (&["art-stress", "--shard", "0/2"], "--out"),
+    ]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The atlas through the command line: 3 shards merged equal the single run (`--out`) and
+/// print its summary, with its units; a shard missing or given twice is refused.
+#[test]
+fn cli_atlas_shards_merge_into_the_single_run() {
+    let dir = scratch("atlas");
+    let p = |f: &str| dir.join(f).display().to_string();
+    let (summary, merged_summary, files) = cli_whole_and_merged(&dir, &common::SMALL_ATLAS);
+    for s in [&summary, &merged_summary] {
+        assert!(s.contains("c/Δx") && s.contains("h in Δx"), "{s}");
+    }
+    let merged_out = p("merged.json");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&merged_out).unwrap()).unwrap();
+    assert_eq!(report["units"]["growth_rate"], "c/dx");
+    assert_eq!(report["units"]["h"], "dx");
+    assert_eq!(report["cells"].as_array().unwrap().len(), 2 * 3 * 7);
+    // a missing or repeated shard is an error, not a silent hole
+    for args in [
+        vec!["merge", &files[0], &files[1]],
+        vec!["merge", &files[0], &files[0], &files[1]],
+    ] {
+        let (code, out, err) = common::sphstab(&args);
+        assert_eq!((code, out.as_str()), (2, ""), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+    common::assert_bad_inputs(&[
+        (&["atlas", "--shard", "3/3"], "--shard"),
+        (&["atlas", "--shard", "x"], "--shard"),
+        (&["atlas", "--shard", "0/3"], "--out"),
+        (
+            &["atlas", "--shard", "0/3", "--out", &p("x.json"), "--json"],
+            "--json",
+        ),
+        (&["atlas", "--kappas", "1"], "--kappas"),
+        (&["atlas", "--stress-min", "-2"], "--stress-min"),
     ]);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,11 +1,12 @@
 //! `sphstab atlas`: the 1D stability atlas (forms × kernels × h × σ̄, max growth over κ), in
-//! parallel, optionally one shard of a job array; `sphstab merge` joins the shards.
+//! parallel, optionally one shard of a job array ([`crate::shard`]); `sphstab merge` joins the
+//! shards.
 
 use crate::progress;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use sphstab::budget::Budget;
-use sphstab::studies::atlas::{AtlasConfig, AtlasReport, Shard};
-use std::path::PathBuf;
+use sphstab::studies::atlas::{AtlasConfig, AtlasReport, AtlasStudy};
+use std::path::{Path, PathBuf};
 
 /// Flags of `atlas`.
 #[derive(clap::Args, Debug)]
@@ -31,11 +32,13 @@ pub struct Args {
     /// κΔx points in (0, π], in [2, 1000000].
     #[arg(long, default_value_t = 512)]
     kappas: usize,
-    /// Compute only shard i of n (0 ≤ i < n): cells c with c mod n = i. For job arrays, e.g.
-    /// Slurm `--array=0-7` with `--shard $SLURM_ARRAY_TASK_ID/8`.
+    /// Compute only shard i of n (0 ≤ i < n): the cells c with c mod n = i, written to --out
+    /// for `sphstab merge`, which gives the summary and JSON of all the shards. For job arrays:
+    /// analysis/cluster/study_array.sh, or Slurm `--array=0-7` with
+    /// `--shard $SLURM_ARRAY_TASK_ID/8`.
     #[arg(long)]
     shard: Option<String>,
-    /// Write the atlas (JSON) to this file.
+    /// Write the atlas JSON here (the bytes --json prints); with --shard, the shard.
     #[arg(long)]
     out: Option<PathBuf>,
     /// Print the atlas JSON on stdout instead of the summary.
@@ -44,9 +47,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    if let Some(p) = &a.out {
-        crate::files::Files::new().output("--out", p).check()?;
-    }
+    let shard = crate::shard::flags(a.shard.as_deref(), a.out.as_ref(), &[(a.json, "--json")])?;
     let d = AtlasConfig::default();
     let cfg = AtlasConfig {
         forms: if a.forms.is_empty() { d.forms } else { a.forms },
@@ -61,36 +62,28 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         kappas: a.kappas,
         budget: *budget,
     };
-    let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
+    if let Some((shard, out)) = shard {
+        return crate::shard::run(&AtlasStudy, &cfg, shard, &out);
+    }
     let pb = progress::Bar::new(progress::wanted(a.json));
-    let rep = sphstab::studies::atlas::run(&cfg, shard, pb.clone())?;
+    let rep = sphstab::studies::atlas::run(&cfg, pb.clone())?;
     pb.finish();
-    output(&rep, a.out.as_ref(), a.json)
+    output(&rep, a.out.as_deref(), a.json)
 }
 
-/// Writes/prints an atlas (shared with `merge`).
-pub fn output(rep: &AtlasReport, out: Option<&PathBuf>, json: bool) -> Result<()> {
+/// Writes/prints an atlas (shared with `merge`): `--out` (JSON), then the JSON (`--json`) or
+/// the summary.
+pub fn output(rep: &AtlasReport, out: Option<&Path>, json: bool) -> Result<()> {
     if let Some(path) = out {
-        let f = std::fs::File::create(path)
-            .with_context(|| format!("--out: cannot write {}", path.display()))?;
-        serde_json::to_writer(std::io::BufWriter::new(f), rep)
-            .with_context(|| format!("--out: cannot write {}", path.display()))?;
+        crate::shard::write_json(path, rep)?;
     }
     if json {
         println!("{}", serde_json::to_string(rep)?);
     } else {
         print!("{}", sphstab::studies::atlas::summary(rep));
-        let what = match rep.shard {
-            Some(s) => format!("shard {}/{}: ", s.index, s.count),
-            None => String::new(),
-        };
         println!(
-            "{what}{} of {} cells ({} κ each) in {:.1} s on {} threads",
-            rep.cells.len(),
-            rep.total_cells,
-            rep.config.kappas,
-            rep.runtime_s,
-            rep.threads
+            "{} cells ({} κ each) in {:.1} s on {} threads",
+            rep.total_cells, rep.config.kappas, rep.runtime_s, rep.threads
         );
         let terms = sphstab::studies::atlas::lattice_sum_terms(rep);
         println!(

@@ -1,7 +1,7 @@
-//! `--shard i/n` of the studies that run longer than a minute (`pairing`, `tradeoff`,
-//! `art-stress`) and `sphstab merge` of their shards: one shard computed into its file
-//! (`--out`), the files read back (bounded by the memory budget) and merged into the report
-//! the unsharded command prints and writes. The library side is
+//! `--shard i/n` of the studies that run longer than a minute (`atlas`, `pairing`,
+//! `tradeoff`, `art-stress`) and `sphstab merge` of their shards: one shard computed into its
+//! file (`--out`), the files read back (bounded by the memory budget) and merged into the
+//! report the unsharded command prints and writes. The library side is
 //! [`sphstab::studies::shard`]; `analysis/cluster/study_array.sh` runs a study this way.
 
 use crate::progress;
@@ -9,6 +9,7 @@ use anyhow::{Context, Result, bail};
 use serde::Serialize;
 use sphstab::budget::Budget;
 use sphstab::studies::art_stress::ArtStressStudy;
+use sphstab::studies::atlas::AtlasStudy;
 use sphstab::studies::pairing::PairingStudy;
 use sphstab::studies::shard::{Shard, ShardOf, Sharded};
 use sphstab::studies::tradeoff::TradeoffStudy;
@@ -99,26 +100,21 @@ fn parse_all<S: Sharded>(texts: Vec<(String, String)>) -> Result<Vec<(String, Sh
         .collect()
 }
 
-/// `sphstab merge` of a study's shard files: false when the first file is not one (an atlas
-/// shard, merged by `merge` itself). Prints and writes what the unsharded command does: the
-/// table or `--json`, `--out` (the same JSON), and for a study run from a config with an
-/// `output`, the figure and its data in figures/.
-pub fn merge(
-    files: &[PathBuf],
-    out: Option<&PathBuf>,
-    json: bool,
-    budget: &Budget,
-) -> Result<bool> {
-    let Some(first) = files.first() else {
-        return Ok(false);
-    };
-    let head = read_bounded(first, budget)?;
-    let Some(study) = sphstab::studies::shard::study_of(&head) else {
-        return Ok(false);
-    };
+/// `sphstab merge` of a study's shard files: each file checked and parsed as a shard of the
+/// study the first one names. Prints and writes what the unsharded command does: the table or
+/// `--json`, `--out` (the same JSON), and for a study run from a config with an `output`, the
+/// figure and its data in figures/.
+pub fn merge(files: &[PathBuf], out: Option<&PathBuf>, json: bool, budget: &Budget) -> Result<()> {
+    let mut io = files
+        .iter()
+        .fold(crate::files::Files::new(), |f, p| f.input("<FILES>", p));
     if let Some(p) = out {
-        crate::files::Files::new().output("--out", p).check()?;
+        io = io.output("--out", p);
     }
+    io.check()?;
+    let Some(first) = files.first() else {
+        bail!("<FILES>: give the shard files");
+    };
     // every shard is held in memory as text and parsed (~3× its size), before the merge
     let total: u64 = files
         .iter()
@@ -129,12 +125,18 @@ pub fn merge(
         &format!("merging {} shard files", files.len()),
         4.0 * total as f64,
     )?;
-    let mut texts = vec![(first.display().to_string(), head)];
-    for f in &files[1..] {
+    let mut texts = Vec::with_capacity(files.len());
+    for f in files {
         texts.push((f.display().to_string(), read_bounded(f, budget)?));
     }
+    let study = sphstab::studies::shard::study_of(&texts[0].0, &texts[0].1)?;
     let out = out.map(PathBuf::as_path);
     match study.as_str() {
+        AtlasStudy::STUDY => {
+            let parts = parse_all::<AtlasStudy>(texts)?;
+            let rep = sphstab::studies::shard::merge(&AtlasStudy, parts)?;
+            crate::atlas::output(&rep, out, json)?;
+        }
         PairingStudy::STUDY => {
             let parts = parse_all::<PairingStudy>(texts)?;
             let output = parts[0].1.config.output.clone();
@@ -153,9 +155,9 @@ pub fn merge(
             crate::art_stress::output(&rep, out, json, None)?;
         }
         other => bail!(
-            "{}: a shard of the `{other}` study, which this sphstab cannot merge (pairing, tradeoff, art-stress; atlas shards have their own format)",
+            "{}: a shard of the `{other}` study, which this sphstab cannot merge (atlas, pairing, tradeoff, art-stress)",
             first.display()
         ),
     }
-    Ok(true)
+    Ok(())
 }

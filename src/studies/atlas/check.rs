@@ -1,20 +1,19 @@
-//! A stored atlas (a shard file before `merge`) checked against its own configuration: a merged
-//! atlas is data that users keep, so a file whose cells do not fit the sweep its `config`
-//! describes is refused, naming the file and the cell, instead of being merged.
+//! A stored cell (in a shard file, before `merge`) checked against the configuration: a merged
+//! atlas is data that users keep, so a cell that does not fit the sweep its configuration
+//! describes is refused, naming the file and the cell, instead of being merged (the study's
+//! [`crate::studies::shard::Sharded::check_cell`]; the shard, the cell indices, `total_cells`,
+//! `threads` and `runtime_s` are checked for every study by [`crate::studies::shard::merge`]).
 //!
-//! What is checked: the configuration itself (the ranges of [`super::grid`]), the shard
-//! (0 ≤ index < count ≤ 100000), `total_cells`, `threads` and `runtime_s`, and every cell: its
-//! index (in the sweep, in this shard, increasing), its form, kernel, h/Δx and σ̄ (exactly those
-//! of the sweep at that index; JSON numbers read back bit for bit), its growth rate (finite, in
-//! [0, [`MAX_GROWTH_RATE`]], zero exactly when it is stable), and its κΔx (a point of the κ
-//! grid, present exactly when the cell grows). A changed growth rate that is still plausible
-//! cannot be told from a computed one without computing it again.
+//! What is checked of every cell: its `index` (the cell's own), its form, kernel, h/Δx and σ̄
+//! (exactly those of the sweep at that index; JSON numbers read back bit for bit), its growth
+//! rate (finite, in [0, [`MAX_GROWTH_RATE`]], zero exactly when it is stable), and its κΔx (a
+//! point of the κ grid, present exactly when the cell grows). A changed growth rate that is
+//! still plausible cannot be told from a computed one without computing it again.
 
-use super::config::{AtlasConfig, Shard, grid};
-use super::report::{AtlasReport, Cell};
-use crate::budget::Budget;
+use super::config::Sweep;
+use super::report::Cell;
 use crate::display::num;
-use crate::error::{Error, Result};
+use crate::error::Text;
 use crate::vonneumann::classify::GROWTH_TOL;
 use std::f64::consts::PI;
 
@@ -23,105 +22,37 @@ use std::f64::consts::PI;
 /// mollifier, h = 1.5Δx, σ̄ = 10, at κΔx = π); a rate 450 times that is not the engine's.
 pub const MAX_GROWTH_RATE: f64 = 1e4;
 
-/// Largest `runtime_s` of a stored atlas (≈ 30 years).
-pub const MAX_RUNTIME_S: f64 = 1e9;
-
-/// Checks the atlas `r`, read from `file` (module docs); the sweep is rebuilt within `budget`'s
-/// memory (the κ-evaluations are not done again, so their limit does not apply).
-pub fn check_stored(file: &str, r: &AtlasReport, budget: &Budget) -> Result<()> {
-    let bad = |msg: String| Error::Config {
-        file: file.to_string(),
-        msg,
-    };
-    let cfg = AtlasConfig {
-        budget: Budget {
-            max_memory: budget.max_memory,
-            max_steps: f64::INFINITY,
-        },
-        ..r.config.clone()
-    };
-    let sweep = grid(&cfg).map_err(|e| bad(format!("config: {e}")))?;
-    let shard = r.shard.unwrap_or(Shard { index: 0, count: 1 });
-    if shard.count == 0 || shard.count > 100_000 || shard.index >= shard.count {
-        return Err(bad(format!(
-            "shard {}/{}: must be i/n with integers 0 ≤ i < n ≤ 100000",
-            shard.index, shard.count
-        )));
+/// Checks the stored cell `c`, cell `index` (< `sweep.len()`) of `sweep` with a κ grid of
+/// `kappas` points (module docs).
+pub fn check_cell(
+    sweep: &Sweep,
+    kappas: usize,
+    index: usize,
+    c: &Cell,
+) -> std::result::Result<(), Text> {
+    if c.index != index {
+        return Err(format!("holds `index` {}: not this cell's", c.index).into());
     }
-    if r.total_cells != sweep.len() {
-        return Err(bad(format!(
-            "total_cells = {}, but its config has {} cells",
-            r.total_cells,
-            sweep.len()
-        )));
-    }
-    if r.threads == 0 {
-        return Err(bad("threads = 0: must be at least 1".into()));
-    }
-    if !(r.runtime_s.is_finite() && (0.0..=MAX_RUNTIME_S).contains(&r.runtime_s)) {
-        return Err(bad(format!(
-            "runtime_s = {} is out of range: must be a finite number in [0, {}]",
-            num(r.runtime_s),
-            num(MAX_RUNTIME_S)
-        )));
-    }
-    let expected = sweep
-        .len()
-        .saturating_sub(shard.index)
-        .div_ceil(shard.count);
-    if r.cells.len() != expected {
-        return Err(bad(format!(
-            "{} cells, but shard {}/{} of {} cells has {expected}",
-            r.cells.len(),
-            shard.index,
-            shard.count,
-            sweep.len()
-        )));
-    }
-    let mut last = None;
-    for (j, c) in r.cells.iter().enumerate() {
-        let cell_err = |what: String| bad(format!("cells[{j}] (index {}): {what}", c.index));
-        if c.index >= sweep.len() || c.index % shard.count != shard.index {
-            return Err(cell_err(format!(
-                "not a cell of shard {}/{} of {} cells",
-                shard.index,
-                shard.count,
-                sweep.len()
-            )));
+    let (form, kernel, h, s) = sweep.cell(index);
+    for (field, v, want) in [
+        ("form", &c.form, form.name()),
+        ("kernel", &c.kernel, kernel.name()),
+    ] {
+        if v != want {
+            return Err(format!("{field} `{v}`, but its configuration puts {want} there").into());
         }
-        if last.is_some_and(|l| c.index <= l) {
-            return Err(cell_err(
-                "cells must be in increasing index order, each once".into(),
-            ));
-        }
-        last = Some(c.index);
-        let (form, kernel, h, s) = sweep[c.index];
-        if c.form != form.name() {
-            return Err(cell_err(format!(
-                "form `{}`, but its config puts {} there",
-                c.form,
-                form.name()
-            )));
-        }
-        if c.kernel != kernel.name() {
-            return Err(cell_err(format!(
-                "kernel `{}`, but its config puts {} there",
-                c.kernel,
-                kernel.name()
-            )));
-        }
-        for (field, v, want) in [("h_over_dx", c.h_over_dx, h), ("stress", c.stress, s)] {
-            if v.to_bits() != want.to_bits() {
-                return Err(cell_err(format!(
-                    "{field} = {}, but its config puts {} there",
-                    num(v),
-                    num(want)
-                )));
-            }
-        }
-        check_result(c, r.config.kappas).map_err(cell_err)?;
     }
-    Ok(())
+    for (field, v, want) in [("h_over_dx", c.h_over_dx, h), ("stress", c.stress, s)] {
+        if v.to_bits() != want.to_bits() {
+            return Err(format!(
+                "{field} = {}, but its configuration puts {} there",
+                num(v),
+                num(want)
+            )
+            .into());
+        }
+    }
+    check_result(c, kappas).map_err(Text::from)
 }
 
 /// The computed part of a cell: growth rate, stability and κΔx consistent with each other and

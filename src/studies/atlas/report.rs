@@ -1,13 +1,12 @@
-//! The atlas report: its cells, the merge of shards and the summary `sphstab atlas` prints.
+//! The atlas report: its units, its cells and the summary `sphstab atlas` prints.
 
-use super::check::check_stored;
-use super::config::{AtlasConfig, Shard};
-use crate::budget::Budget;
-use crate::error::{Error, Result};
+use super::config::AtlasConfig;
+use crate::studies::shard::Timing;
 use serde::{Deserialize, Serialize};
 
 /// One cell of the atlas.
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
 pub struct Cell {
     /// Position in the full sweep.
     pub index: usize,
@@ -17,7 +16,7 @@ pub struct Cell {
     pub kernel: String,
     /// h/Δx.
     pub h_over_dx: f64,
-    /// σ̄.
+    /// σ̄ = σ/C (positive in tension).
     pub stress: f64,
     /// No mode grows (γ ≤ 1e-6 c/Δx at every κ).
     pub stable: bool,
@@ -29,94 +28,67 @@ pub struct Cell {
     pub error: Option<String>,
 }
 
-/// An atlas (or one shard of it).
-#[derive(Clone, Debug, Deserialize, Serialize)]
+/// The units of the atlas's numbers (SPEC §1), stated in its JSON as `units`: each quantity is
+/// its number times the unit, so `h_over_dx` is h in Δx, `kappa_at_max` (κΔx) is κ in 1/Δx and
+/// `stress` (σ̄ = σ/C, positive in tension) is σ in C.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Units {
+    /// Growth rates (`max_growth_rate`): `c/dx`.
+    pub growth_rate: &'static str,
+    /// Smoothing lengths (`h_over_dx`): `dx`.
+    pub h: &'static str,
+    /// Wave numbers (`kappa_at_max`): `1/dx`.
+    pub kappa: &'static str,
+    /// Stresses (`stress`): `C`, the tangent modulus.
+    pub stress: &'static str,
+}
+
+impl Units {
+    /// The atlas's units.
+    pub const ATLAS: Units = Units {
+        growth_rate: "c/dx",
+        h: "dx",
+        kappa: "1/dx",
+        stress: "C",
+    };
+}
+
+/// The atlas: every cell of the sweep.
+#[derive(Clone, Debug, Serialize)]
 pub struct AtlasReport {
+    /// The units of its numbers ([`Units::ATLAS`]).
+    pub units: Units,
     /// The sweep.
     pub config: AtlasConfig,
-    /// The shard (null: the whole sweep, or merged shards).
-    pub shard: Option<Shard>,
-    /// Cells in the full sweep.
+    /// Cells in the sweep.
     pub total_cells: usize,
-    /// Worker threads.
+    /// Worker threads (after a merge: the first shard's).
     pub threads: usize,
-    /// Wall-clock seconds (sum over shards after a merge).
+    /// Wall-clock seconds (after a merge: the sum over the shards).
     pub runtime_s: f64,
-    /// The cells of this shard, in sweep order.
+    /// The cells, in sweep order.
     pub cells: Vec<Cell>,
 }
 
-/// Merges shards into the whole atlas: every shard checked against its configuration
-/// ([`check_stored`], within `budget`'s memory), the same configuration in all, shard counts
-/// equal, every shard index present exactly once (errors name the file, and the cell).
-pub fn merge(parts: &[(String, AtlasReport)], budget: &Budget) -> Result<AtlasReport> {
-    let Some((first_name, first)) = parts.first() else {
-        return Err(Error::Incompatible("merge: no shard files given".into()));
-    };
-    for (name, r) in parts {
-        check_stored(name, r, budget)?;
-    }
-    let count = first.shard.map_or(1, |s| s.count);
-    let mut seen = vec![None::<&str>; count];
-    let mut cells = Vec::with_capacity(first.total_cells);
-    let mut runtime = 0.0;
-    for (name, r) in parts {
-        if r.config != first.config {
-            return Err(Error::Incompatible(
-                format!(
-                    "merge: {name} was computed with a different configuration than {first_name}"
-                )
-                .into(),
-            ));
-        }
-        let s = r.shard.unwrap_or(Shard { index: 0, count: 1 });
-        if s.count != count {
-            return Err(Error::Incompatible(
-                format!(
-                    "merge: {name} is shard {}/{} but {first_name} is one of {count}",
-                    s.index, s.count
-                )
-                .into(),
-            ));
-        }
-        if let Some(other) = seen[s.index] {
-            return Err(Error::Incompatible(
-                format!(
-                    "merge: shard {}/{count} given twice ({other} and {name})",
-                    s.index
-                )
-                .into(),
-            ));
-        }
-        seen[s.index] = Some(name);
-        runtime += r.runtime_s;
-        cells.extend(r.cells.iter().cloned());
-    }
-    if let Some(missing) = seen.iter().position(|s| s.is_none()) {
-        return Err(Error::Incompatible(
-            format!("merge: shard {missing}/{count} is missing").into(),
-        ));
-    }
-    cells.sort_by_key(|c| c.index);
-    if cells.len() != first.total_cells || cells.iter().enumerate().any(|(i, c)| c.index != i) {
-        return Err(Error::Incompatible(
-            "merge: the shards do not add up to the whole sweep".into(),
-        ));
-    }
-    Ok(AtlasReport {
-        config: first.config.clone(),
-        shard: None,
-        total_cells: first.total_cells,
-        threads: first.threads,
-        runtime_s: runtime,
+/// The report from every cell of the sweep, in index order.
+pub(super) fn assemble(cfg: &AtlasConfig, cells: Vec<Cell>, timing: Timing) -> AtlasReport {
+    AtlasReport {
+        units: Units::ATLAS,
+        config: cfg.clone(),
+        total_cells: cells.len(),
+        threads: timing.threads,
+        runtime_s: timing.runtime_s,
         cells,
-    })
+    }
 }
 
 /// Summary table: per form × kernel, the fraction of stable cells in tension (σ̄ > 0) and in
 /// compression (σ̄ < 0), the largest growth rate, and cells with errors.
 pub fn summary(r: &AtlasReport) -> String {
-    let mut s = format!(
+    let mut s = String::from(
+        "units: growth rate γ in c/Δx, h in Δx, κ in 1/Δx, σ̄ = σ/C (positive in tension)\n",
+    );
+    s += &format!(
         "{:<24} {:<12} {:>10} {:>10} {:>10} {:>7}\n",
         "form", "kernel", "stable σ̄>0", "stable σ̄<0", "max γ", "errors"
     );

@@ -1,13 +1,15 @@
 //! Computing the atlas: the cells of one shard in parallel, grouped so that cells affine in σ̄
 //! share one linearisation.
 
-use super::config::{AtlasConfig, CellSpec, Shard, grid};
+use super::config::{AtlasConfig, CellSpec, Sweep};
 use super::report::{AtlasReport, Cell};
+use super::shard::AtlasStudy;
 use crate::analysis::Query;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel;
 use crate::progress::{Counter, Progress};
+use crate::studies::shard::{Shard, run_whole};
 use crate::vonneumann::classify::GROWTH_TOL;
 use crate::vonneumann::linearise::{Linearisation, PhaseTable, has_consistent_mass};
 use rayon::prelude::*;
@@ -118,23 +120,21 @@ fn evaluate(
     c
 }
 
-/// Computes the atlas (or one shard), telling `progress` the fraction of cells finished.
-pub fn run(
+/// Computes the cells `shard` owns, ascending, each with its index, telling `progress` the
+/// fraction finished.
+pub(super) fn compute_cells(
     cfg: &AtlasConfig,
-    shard: Option<Shard>,
-    progress: impl Progress,
-) -> Result<AtlasReport> {
-    let all = grid(cfg)?;
-    let total_cells = all.len();
+    shard: Shard,
+    progress: &dyn Progress,
+) -> Result<Vec<(usize, Cell)>> {
+    let sweep = Sweep::new(cfg)?;
     // the σ̄ grid (the same for every form, kernel and h: the innermost loop of the sweep)
-    let sgrid: Vec<f64> = all[..cfg.stress_points].iter().map(|c| c.3).collect();
-    let mine: Vec<(usize, _)> = all
-        .into_iter()
-        .enumerate()
-        .filter(|(i, _)| shard.is_none_or(|s| i % s.count == s.index))
+    let sgrid: Vec<f64> = (0..cfg.stress_points).map(|i| sweep.stress(i)).collect();
+    let mine: Vec<(usize, CellSpec)> = (0..sweep.len())
+        .filter(|&i| shard.owns(i))
+        .map(|i| (i, sweep.cell(i)))
         .collect();
-    let start = std::time::Instant::now();
-    let done = Counter::new(&progress, mine.len(), 256);
+    let done = Counter::new(progress, mine.len(), 256);
     // one κ grid for every cell (Query::kappas), its phase factors tabulated once per thread
     let mut q = Query::<1>::new(FormKind::Classical, kernel::by_name("m4")?, 1.0, 0.0);
     q.grid = cfg.kappas;
@@ -148,7 +148,7 @@ pub fn run(
         groups.push(&rest[..len]);
         rest = &rest[len..];
     }
-    let cells: Vec<Cell> = groups
+    Ok(groups
         .into_par_iter()
         .map_init(
             || PhaseTable::new(&kappas, 0),
@@ -161,15 +161,14 @@ pub fn run(
         .collect::<Result<Vec<_>>>()?
         .into_iter()
         .flatten()
-        .collect();
-    Ok(AtlasReport {
-        config: cfg.clone(),
-        shard,
-        total_cells,
-        threads: rayon::current_num_threads(),
-        runtime_s: start.elapsed().as_secs_f64(),
-        cells,
-    })
+        .map(|c| (c.index, c))
+        .collect())
+}
+
+/// Computes the whole atlas, telling `progress` the fraction of cells finished (one shard of
+/// one: [`crate::studies::shard::run_whole`]).
+pub fn run(cfg: &AtlasConfig, progress: impl Progress) -> Result<AtlasReport> {
+    run_whole(&AtlasStudy, cfg, progress)
 }
 
 /// The work the atlas cannot avoid: for every cell, one Fourier term per κ point per lattice

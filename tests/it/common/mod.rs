@@ -101,6 +101,23 @@ pub fn material_specs() -> [(&'static str, MaterialSpec); 3] {
     ]
 }
 
+/// A small atlas (2 forms × m4 × 3 h/Δx × 7 σ̄ at 64 κ: 42 cells, a few milliseconds) with
+/// growing and stable cells; 7 σ̄ values, so that the atlas interpolates the Jacobian in σ̄ (from
+/// 5 on) while a shard holds only some cells of each (form, kernel, h).
+pub const SMALL_ATLAS: [&str; 11] = [
+    "atlas",
+    "--forms",
+    "classical,nonlocal",
+    "--kernels",
+    "m4",
+    "--h-points",
+    "3",
+    "--stress-points",
+    "7",
+    "--kappas",
+    "64",
+];
+
 /// Runs the built `sphstab` binary: (exit code, stdout, stderr).
 pub fn sphstab(args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_sphstab"))
