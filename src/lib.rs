@@ -31,7 +31,12 @@
 //! - Lengths in units of the particle spacing Δx; wave number κΔx ∈ (0, π].
 //! - Material speed c = sqrt(C/ρ0), C the tangent modulus (Truesdell rate, as in \[B00\]: in 1D
 //!   σ̇ = (C + σ) ∂v/∂x, continuum modulus C̄ = C + σ). Frequencies and growth rates in c/Δx,
-//!   time steps in Δx/c.
+//!   times and time steps in Δx/c (a field or flag that sets Δt in Δx/c is named `dt`).
+//! - The CFL number is c Δt/h, h in the kernel's own convention (`critical_cfl` =
+//!   `critical_dt` / (h/Δx)); it is never a name for Δt in Δx/c.
+//! - A run with physical units (a 1D scene in SI, the Swegle test in its own units) reports what
+//!   it measures in those units, with the scales that normalise them (fields named `_physical`:
+//!   Δt, Δx, c and, for a scene, C).
 //! - Stress σ̄ = σ/C, positive in tension; pressure p = −σ.
 //! - Perturbation ~ exp(iκX + st); semi-discrete ω² = −s²; growth rate γ = max Re s ≥ 0.
 //!   Fully discrete: amplification factor λ per step, amplifying when |λ| > 1 + 1e-7

@@ -47,11 +47,11 @@ impl Setup {
 }
 
 impl std::fmt::Display for Setup {
-    /// One line: form / kernel / shape, h and R in Δx, σ̄.
+    /// One line: form / kernel / shape, h and R in Δx, σ̄ (saying it is σ/C).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = {}",
+            "{} / {} / {}  h = {:.4}Δx (R = {:.4}Δx), σ̄ = σ/C = {}",
             self.form,
             self.kernel,
             self.shape,

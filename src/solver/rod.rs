@@ -38,8 +38,8 @@ pub struct RodConfig {
     pub v0: f64,
     /// End time (s).
     pub t_end: f64,
-    /// Δt in Δx/c.
-    pub cfl: f64,
+    /// Time step Δt in Δx/c (the CFL number c Δt/h is dt/(h/Δx)).
+    pub dt: f64,
 }
 
 impl RodConfig {
@@ -58,7 +58,7 @@ impl RodConfig {
             rho: 2450.0,
             v0: 40.0,
             t_end: 1e-4,
-            cfl: 0.2,
+            dt: 0.2,
         }
     }
 }
@@ -113,7 +113,7 @@ pub fn run_rod(cfg: &RodConfig) -> Result<RodReport> {
         .collect();
     let mut run = Run::with_prescribed(model, z, &prescribed)?;
     let c = (cfg.modulus / cfg.rho).sqrt();
-    let dt = cfg.cfl * dx / c;
+    let dt = cfg.dt * dx / c;
     let mut vmax: f64 = cfg.v0;
     let mut diverged = false;
     while run.t < cfg.t_end {

@@ -114,9 +114,10 @@ pub struct Scene1D {
     pub artificial_viscosity_pairs: ViscosityPairs,
     /// End time (s).
     pub t_end: f64,
-    /// Δt in Δx/c.
-    #[serde(default = "cfl_default")]
-    pub cfl: f64,
+    /// Time step Δt in Δx/c, in (0, 2] (the CFL number c Δt/h is dt/(h/Δx)); `cfl`, its old
+    /// name, is read too.
+    #[serde(default = "dt_default", alias = "cfl")]
+    pub dt: f64,
     /// Time integrator ([`crate::integrator::INTEGRATOR_NAMES`]; null: `kdk`).
     #[serde(default)]
     pub integrator: Option<String>,
@@ -140,7 +141,7 @@ pub const SCALE_RANGE: (f64, f64) = (1e-30, 1e30);
 fn half() -> f64 {
     0.5
 }
-fn cfl_default() -> f64 {
+fn dt_default() -> f64 {
     0.2
 }
 
@@ -174,7 +175,7 @@ const UNIFORM_BAR: &str = r#"{
   "modulus": 2.0, "rho0": 8.0, "particles": 100, "origin": -0.5, "length": 1.0,
   "initial_velocity": {"kind": "linear", "gradient": 0.001},
   "left": {"layers": 3, "velocity": null}, "right": {"layers": 3, "velocity": null},
-  "t_end": 10.0, "cfl": 0.2, "analytic": "uniform-strain"
+  "t_end": 10.0, "dt": 0.2, "analytic": "uniform-strain"
 }"#;
 
 /// [V21 §7.4]: 5 cm steel bar (E = 200 GPa, ρ = 8000) at −50 m/s onto a rigid wall at x = 0,
@@ -185,7 +186,7 @@ const COMPRESSIVE_WAVE: &str = r#"{
   "initial_velocity": {"kind": "uniform", "value": -50.0},
   "left": {"layers": 3, "velocity": 0.0},
   "artificial_viscosity": [0.5, 0.0],
-  "t_end": 5e-6, "cfl": 0.2, "analytic": "wall-impact"
+  "t_end": 5e-6, "dt": 0.2, "analytic": "wall-impact"
 }"#;
 
 /// [V21 §7.5]: 0.2 m bar (E = 70.8 GPa, ρ = 1550), 200 particles, the 7 particles at each end
@@ -196,7 +197,7 @@ const TENSILE_WAVE: &str = r#"{
   "initial_velocity": {"kind": "rest"},
   "left": {"layers": 7, "velocity": -70.0}, "right": {"layers": 7, "velocity": 70.0},
   "artificial_viscosity": [0.5, 0.0],
-  "t_end": 1e-5, "cfl": 0.2, "analytic": "end-pull"
+  "t_end": 1e-5, "dt": 0.2, "analytic": "end-pull"
 }"#;
 
 /// [B00 §4.1.2]: rod fixed at both ends (3 layers), σ0 = 1 GPa, E = 10 GPa, ρ = 2450, l = 0.04 m,
@@ -206,7 +207,7 @@ const ROD: &str = r#"{
   "modulus": 1e10, "rho0": 2450.0, "initial_stress": 1e9, "particles": 41, "origin": 0.0, "length": 0.04,
   "initial_velocity": {"kind": "point", "index": 20, "value": 40.0},
   "left": {"layers": 3, "velocity": 0.0}, "right": {"layers": 3, "velocity": 0.0},
-  "t_end": 1e-4, "cfl": 0.2
+  "t_end": 1e-4, "dt": 0.2
 }"#;
 
 /// Result of a scene run.
@@ -218,13 +219,24 @@ pub struct SceneReport {
     pub form: &'static str,
     /// Time integrator (CLI name).
     pub integrator: &'static str,
-    /// Time reached.
+    /// Time reached (s).
     pub t: f64,
     /// Steps.
     pub steps: usize,
+    /// The time step taken, in Δx/c: the scene's `dt`, rounded down so that the steps end at
+    /// `t_end`.
+    pub dt: f64,
+    /// The time step taken (s).
+    pub dt_physical: f64,
+    /// The particle spacing Δx (m).
+    pub dx_physical: f64,
+    /// The sound speed c = √(C/ρ0) (m/s).
+    pub sound_speed_physical: f64,
+    /// The modulus C (Pa): σ̄ = σ/C.
+    pub modulus_physical: f64,
     /// Relative L2 error of the free particles' velocity against the analytic solution.
     pub velocity_error_l2: Option<f64>,
-    /// Largest |v| over the run.
+    /// Largest |v| over the run (m/s).
     pub max_velocity: f64,
     /// Wall-clock seconds.
     pub runtime_s: f64,
@@ -268,7 +280,7 @@ const SCENE_NAMES: ParamNames = ParamNames {
     c: "c_partition",
     av_alpha: "artificial_viscosity[0]",
     av_beta: "artificial_viscosity[1]",
-    dt: "cfl",
+    dt: "dt",
 };
 
 impl Scene1D {
@@ -290,7 +302,7 @@ impl Scene1D {
         crate::error::check_range("rho0", self.rho0, lo, hi, true, true)?;
         self.check_keys_apply(form)?;
         crate::error::check_range("t_end", self.t_end, 0.0, f64::INFINITY, false, false)?;
-        crate::error::check_range("cfl", self.cfl, 0.0, 2.0, false, true)?;
+        crate::error::check_range("dt", self.dt, 0.0, 2.0, false, true)?;
         crate::error::check_range(
             "initial_stress",
             self.initial_stress,
@@ -350,16 +362,16 @@ impl Scene1D {
         // scratch per particle, the history (3 f64 per step)
         let n = self.particles as f64;
         let neighbours = 2.0 * k.zeta() * self.h_over_dx + 1.0;
-        let steps = (self.t_end / (self.cfl * dx / c)).ceil();
+        let steps = (self.t_end / (self.dt * dx / c)).ceil();
         self.budget.steps(
             field("t_end")
                 + ", "
-                + field("cfl")
+                + field("dt")
                 + ", "
                 + fields(&["length", "particles"])
                 + ", "
                 + fields(&["modulus", "rho0"])
-                + " (steps = t_end c/(cfl Δx))",
+                + " (steps = t_end c/(dt Δx))",
             &format!("the scene ({} time steps)", fmt_count(steps)),
             n * steps,
         )?;
@@ -510,7 +522,7 @@ impl Scene1D {
         let mut run = Run::with_prescribed(model, z, &pv)?;
         let integ = self.integrator()?;
         run.set_integrator(integ);
-        let dt = self.cfl * dx / c;
+        let dt = self.dt * dx / c;
         let steps = (self.t_end / dt).ceil() as usize;
         let dt = self.t_end / steps as f64;
         let mass = self.rho0 * dx;
@@ -574,6 +586,11 @@ impl Scene1D {
             integrator: integ.name(),
             t: run.t,
             steps: run.steps,
+            dt: dt * c / dx,
+            dt_physical: dt,
+            dx_physical: dx,
+            sound_speed_physical: c,
+            modulus_physical: self.modulus,
             velocity_error_l2: error,
             max_velocity: vmax,
             runtime_s,

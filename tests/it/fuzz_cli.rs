@@ -307,7 +307,7 @@ fn scene_json() -> impl Strategy<Value = String> {
         "origin",
         "length",
         "t_end",
-        "cfl",
+        "dt",
         "left",
         "artificial_viscosity",
     ]);
@@ -330,7 +330,7 @@ fn scene_json() -> impl Strategy<Value = String> {
             "initial_stress": 1e9, "particles": 41, "origin": 0.0, "length": 0.04,
             "initial_velocity": {"kind": "point", "index": 20, "value": 40.0},
             "left": {"layers": 3, "velocity": 0.0}, "right": {"layers": 3, "velocity": 0.0},
-            "t_end": 1e-4, "cfl": 0.2
+            "t_end": 1e-4, "dt": 0.2
         });
         for (f, v, remove) in edits {
             if remove {
@@ -695,7 +695,7 @@ fn hostile_numbers_print_short() {
         out
     };
     let out = run(&["query", "--stress", "5e-324", "--points", "8"]);
-    assert!(out.contains("σ̄ = 5e-324"), "{out}");
+    assert!(out.contains("σ̄ = σ/C = 5e-324"), "{out}");
     let out = run(&["query", "--dt", "5e-324", "--points", "8"]);
     assert!(out.contains("at Δt = 5e-324 Δx/c"), "{out}");
     assert!(out.lines().all(|l| l.chars().count() < 300), "{out}");
@@ -822,7 +822,7 @@ fn hostile_scene_files() {
         "origin": 0.0, "length": 0.04,
         "initial_velocity": {"kind": "point", "index": 20, "value": 40.0},
         "left": {"layers": 3, "velocity": 0.0}, "right": {"layers": 3, "velocity": 0.0},
-        "t_end": 1e-4, "cfl": 0.2
+        "t_end": 1e-4, "dt": 0.2
     });
     let cases: &[(&str, serde_json::Value, &[&str])] = &[
         (

@@ -33,9 +33,15 @@ const TOL: f64 = 1e-12;
 
 /// Fields schema version 1 adds to some reports (the header in every dimension, the 1D
 /// polarisation and zone fraction, the path of a 1D dispersion, the 2D/3D `timestep` header).
-const ADDED: [&str; 20] = [
-    // issue 25: the atlas states its units
+const ADDED: [&str; 25] = [
+    // issue 25: every JSON document (the atlas too) names its units; `simulate` reports its step in Δx/c and
+    // the physical scales that normalise its values
     "units",
+    "dt",
+    "dt_physical",
+    "dx_physical",
+    "sound_speed_physical",
+    "modulus_physical",
     // issue 24 (item 2 and 3): `timestep` reports the physical growth apart from the time-step
     // limit, names the added growth and gives the decay rate its own field
     "physical_growth_rate",
@@ -180,6 +186,24 @@ fn accept_refined_maximum(args: &[&str], gold: &Value, new: &mut Value) {
     }
 }
 
+/// Issue 25 gave the Swegle report's `dt` the unit every other `dt` has, Δx/c; the time step in
+/// the test's units, which the golden `dt` holds, is now `dt_physical`. The two must agree
+/// (dt_physical = dt Δx/c, to rounding); the golden `dt` is then compared with `dt_physical`.
+fn accept_swegle_dt(args: &[&str], gold: &Value, new: &mut Value) {
+    if !args.contains(&"swegle") || !gold["dt"].is_number() {
+        return;
+    }
+    let f = |k: &str| new[k].as_f64().unwrap();
+    let from_dt = f("dt") * f("dx_physical") / f("sound_speed_physical");
+    assert!(
+        (from_dt - f("dt_physical")).abs() <= 1e-14 * f("dt_physical"),
+        "{}: dt_physical {} is not dt Δx/c = {from_dt}",
+        args.join(" "),
+        f("dt_physical")
+    );
+    new["dt"] = new["dt_physical"].clone();
+}
+
 /// Issue 24 (items 2 and 3) changed three `timestep` answers on purpose; each is checked
 /// against what the golden value implies, then taken from the golden file so that every other
 /// number is compared to 1e-12 as before:
@@ -279,6 +303,7 @@ fn replay(file: &str, count: usize) {
         let mut new: Value = serde_json::from_slice(&out.stdout).unwrap();
         accept_refined_maximum(&args, &c["output"], &mut new);
         accept_timestep_labels(&args, &c["output"], &mut new);
+        accept_swegle_dt(&args, &c["output"], &mut new);
         compare(&args.join(" "), &c["output"], &new, 0.0, &mut worst);
     }
     println!("worst relative difference {:.2e} at {}", worst.0, worst.1);

@@ -85,7 +85,7 @@ fn scene(name: &str, patch: serde_json::Value) -> String {
         "origin": 0.0, "length": 0.04,
         "initial_velocity": {"kind": "point", "index": 20, "value": 40.0},
         "left": {"layers": 3, "velocity": 0.0}, "right": {"layers": 3, "velocity": 0.0},
-        "t_end": 1e-4, "cfl": 0.2
+        "t_end": 1e-4, "dt": 0.2
     });
     for (k, v) in patch.as_object().unwrap() {
         s[k] = v.clone();
@@ -130,7 +130,7 @@ fn memory_hogs_are_refused_before_allocating() {
         ),
         (&["throughput", "--size", "3000"], "--size"),
         (&["simulate", &big], "particles"),
-        (&["swegle", "--cfl", "1e-9"], "--cfl"),
+        (&["swegle", "--dt", "1e-9"], "--dt"),
         // a budget the user lowers is honoured, naming the flag that raises it
         (
             &["--max-memory", "100M", "query", "--dim", "2", "--h", "10"],
@@ -161,7 +161,7 @@ fn endless_runs_are_refused() {
     let t308 = s("t308", serde_json::json!({"t_end": 1e308}));
     let t6 = s("t6", serde_json::json!({"t_end": 1e6}));
     refused_by_step_budget(&[
-        (&["swegle", "--cfl", "1e-308"], "--cfl"),
+        (&["swegle", "--dt", "1e-308"], "--dt"),
         (&["simulate", &t308], "t_end"),
         (&["simulate", &t6], "t_end"),
         (&["swegle", "--t-end", "1000000"], "--t-end"),

@@ -74,3 +74,4 @@ mod compare;
 mod fuzz_cli;
 mod limits;
 mod throughput3d;
+mod units;

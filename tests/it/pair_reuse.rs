@@ -140,7 +140,7 @@ fn swegle_instability_matches_bitwise() {
     );
     cfg.size = 15;
     let c = cfg.sound_speed();
-    let dt = cfg.cfl * cfg.dx / c;
+    let dt = cfg.dt * cfg.dx / c;
     let (full, refr) = same_with_and_without("Swegle box", || cfg.build::<2>().unwrap(), dt, 1200);
     // the run did go unstable (its speed grew from the kick), and both kinds of build occurred
     let mut run = cfg.build::<2>().unwrap();

@@ -4,6 +4,7 @@
 //! grid (m4, h = 1.2, f = 0.99, no runs); the published study is
 //! `--config analysis/art_stress.json`.
 
+use crate::units::{self, System};
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
@@ -22,17 +23,18 @@ pub struct Args {
     /// Form: classical or cll (default classical).
     #[arg(long)]
     form: Option<String>,
-    /// Comma-separated h/Δx, 1 to 4 values in [0.8, 6] (default 1.2).
+    /// Comma-separated smoothing lengths h/Δx, 1 to 4 values in [0.8, 6] (default 1.2).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     h: Vec<f64>,
     /// Comma-separated density ratios f = ρ/ρ0 (f < 1: tension σ̄ = 1 − f), 1 to 4 values in
     /// [0.5, 1.5] (default 0.99).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     density_ratio: Vec<f64>,
-    /// Comma-separated ε of the prediction grid, each in [0, 10] (default 0, 0.05, …, 0.6).
+    /// Comma-separated artificial-stress ε (dimensionless) of the prediction grid, each in
+    /// [0, 10] (default 0, 0.05, …, 0.6).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     eps: Vec<f64>,
-    /// Comma-separated ε of Swegle runs, each in [0, 10] (default none).
+    /// Comma-separated ε (dimensionless) of Swegle runs, each in [0, 10] (default none).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     runs: Vec<f64>,
     /// Exponent n of f = W(r)/W(Δx), in [1, 12] (default 4).
@@ -54,7 +56,7 @@ pub struct Args {
     /// computing; needs --plot.
     #[arg(long)]
     from: Option<PathBuf>,
-    /// Print the JSON report instead of the table.
+    /// Print the JSON report instead of the table (its "units" name the unit of every field).
     #[arg(long)]
     json: bool,
     /// Write the figure (SVG: growth rate against ε, one panel per h and f) here.
@@ -225,7 +227,7 @@ pub fn output(
     plot: Option<&Path>,
 ) -> Result<()> {
     if let Some(path) = out {
-        crate::shard::write_json(path, rep)?;
+        crate::shard::write_json(path, &units::with_units(rep, System::Normalised)?)?;
     }
     if let Some(path) = plot {
         study::write_plot(sphstab::studies::art_stress::figure_svg(rep), path)?;
@@ -234,7 +236,7 @@ pub fn output(
         study::write_figure_and_data(rep, name, sphstab::studies::art_stress::figure_svg)?;
     }
     if json {
-        println!("{}", serde_json::to_string(rep)?);
+        println!("{}", units::json(rep, System::Normalised, false)?);
     } else {
         print!("{}", sphstab::studies::art_stress::table(rep));
     }

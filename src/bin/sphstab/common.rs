@@ -35,17 +35,20 @@ pub struct Config {
     /// Partition coefficient c ∈ [0, 1] of lnl/cll (c = 1: fully local; default 0.5).
     #[arg(long, allow_hyphen_values = true)]
     pub c: Option<f64>,
-    /// Least-squares stabilisation α_s ≥ 0 (β = α_s Δx²) of the least-squares form (default 0).
+    /// Least-squares stabilisation α_s of the least-squares form, dimensionless (β = α_s Δx²),
+    /// in [0, 100] (default 0).
     #[arg(long = "alpha-s", allow_hyphen_values = true)]
     pub alpha_s: Option<f64>,
-    /// Time step Δt in Δx/c (> 0) for the fully discrete (leapfrog) check.
+    /// Time step Δt in Δx/c, in (0, 1e6], for the fully discrete check with --integrator
+    /// (default kdk); the CFL number is c Δt/h = dt/(h/Δx).
     #[arg(long, allow_hyphen_values = true)]
     pub dt: Option<f64>,
-    /// Monaghan artificial viscosity α (linearised), ≥ 0.
+    /// Monaghan artificial viscosity α (linearised), dimensionless, in [0, 100].
     #[arg(long = "av-alpha", allow_hyphen_values = true)]
     pub av_alpha: Option<f64>,
-    /// Monaghan artificial viscosity β, ≥ 0: it multiplies the squared velocity divergence,
-    /// which vanishes in the linearisation, so only `timestep --verify` (the solver) uses it.
+    /// Monaghan artificial viscosity β, dimensionless, in [0, 100]: it multiplies the squared
+    /// velocity divergence, which vanishes in the linearisation, so only `timestep --verify`
+    /// (the solver) uses it.
     #[arg(long = "av-beta", allow_hyphen_values = true)]
     pub av_beta: Option<f64>,
     /// Dimension: 1 (plane wave in a bar, default), 2 (in-plane Bloch analysis of a lattice) or
@@ -69,7 +72,8 @@ pub struct Config {
     /// 2D/3D elastic objective stress rate: jaumann (default) or truesdell (the 1D law).
     #[arg(long)]
     pub rate: Option<String>,
-    /// 2D classical/cll: Monaghan–Gray artificial stress ε (≥ 0; typical 0.2–0.3).
+    /// 2D classical/cll: Monaghan–Gray artificial stress ε, dimensionless, in [0, 10] (typical
+    /// 0.2–0.3).
     #[arg(long = "art-eps", allow_hyphen_values = true)]
     pub art_eps: Option<f64>,
     /// Artificial-stress exponent n of f = W(r)/W(Δx), in [1, 12] (default 4; needs --art-eps).
@@ -345,8 +349,9 @@ pub fn euler_every_context(name: &str) -> String {
 /// `timestep` and `swegle`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct DiffusionArgs {
-    /// δ-SPH density diffusion δ in [0, 10] (typical 0.1): D_I = δ h c Σ_J ψ_IJ·∇_I W_IJ V_J is
-    /// added to the continuity equation (forms with a density state, not total-lagrangian).
+    /// δ-SPH density diffusion δ, dimensionless, in [0, 10] (typical 0.1):
+    /// D_I = δ h c Σ_J ψ_IJ·∇_I W_IJ V_J is added to the continuity equation (forms with a
+    /// density state, not total-lagrangian).
     #[arg(long, allow_hyphen_values = true)]
     pub delta: Option<f64>,
     /// The δ-SPH term: antuono (default; renormalised-gradient correction, Antuono et al. 2010)

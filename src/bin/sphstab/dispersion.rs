@@ -1,6 +1,7 @@
 //! `sphstab dispersion`.
 
 use crate::common::Config;
+use crate::units::{self, System};
 use anyhow::{Context, Result};
 use sphstab::analysis::DispersionReport;
 use sphstab::budget::Budget;
@@ -14,7 +15,7 @@ pub struct Args {
     /// path, in [2, 100000].
     #[arg(long, default_value_t = 256)]
     points: usize,
-    /// Print one JSON document instead of a table.
+    /// Print one JSON document instead of a table (its "units" name the unit of every field).
     #[arg(long)]
     json: bool,
     /// Write an SVG plot of ω²Δx²/c² against κΔx/π to this file; for a dissipative system also
@@ -313,12 +314,10 @@ fn run_in<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
                 .iter()
                 .map(|(label, r)| serde_json::json!({"label": label, "dispersion": r}))
                 .collect();
-            println!(
-                "{}",
-                serde_json::to_string_pretty(&serde_json::json!({ "series": series }))?
-            );
+            let doc = serde_json::json!({ "series": series });
+            println!("{}", units::json(&doc, System::Normalised, true)?);
         } else {
-            println!("{}", serde_json::to_string_pretty(&reports[0].1)?);
+            println!("{}", units::json(&reports[0].1, System::Normalised, true)?);
         }
         return Ok(());
     }
@@ -344,7 +343,13 @@ fn print_table<const D: usize>(r: &DispersionReport, x_range: Option<(f64, f64)>
         .iter()
         .map(|(l, s)| format!("{l} (s = {s:.4})"))
         .collect();
-    println!("# {} — path {}", r.header, path.join(" – "));
+    // the one line of units the columns without one need
+    let units = if D == 1 {
+        "continuum ω² in c²/Δx²"
+    } else {
+        "continuum ω² in c²/Δx², s = path length in κΔx (1/Δx)"
+    };
+    println!("# {} — path {}; {units}", r.header, path.join(" – "));
     let axes = ["κxΔx/π", "κyΔx/π", "κzΔx/π"];
     let mut head = String::new();
     if D == 1 {

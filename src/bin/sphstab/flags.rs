@@ -16,7 +16,6 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("av_beta", "--av-beta"),
     ("box", "--box"),
     ("c_partition", "--c"),
-    ("cfl", "--cfl"),
     ("delta", "--delta"),
     ("delta_form", "--delta-form"),
     ("density_ratio", "--density-ratio"),

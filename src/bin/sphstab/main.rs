@@ -22,6 +22,7 @@ mod swegle;
 mod throughput;
 mod timestep;
 mod tradeoff;
+mod units;
 mod vary;
 
 use clap::{Parser, Subcommand};
@@ -30,9 +31,12 @@ use sphstab::budget::Budget;
 /// Stability of SPH forms, kernels, smoothing lengths, stress states and time steps.
 ///
 /// Units: lengths in Δx, wave numbers as κΔx ∈ (0, π], frequencies and growth rates in c/Δx,
-/// time steps in Δx/c, stress σ̄ = σ/C (positive in tension). Bad input, or a run whose
-/// estimated memory or particle-steps exceed --max-memory / --max-steps, exits with status 2
-/// before it starts; a time integration that diverges stops with status 3.
+/// times and time steps in Δx/c, stress σ̄ = σ/C (positive in tension; C the tangent modulus,
+/// c = √(C/ρ0)); the CFL number is c Δt/h (h in the kernel's own convention). A run with
+/// physical units (simulate's scenes, SI; the Swegle test's own units) prints the physical value
+/// and the normalised one; every JSON document names its units in "units". Bad input, or a run
+/// whose estimated memory or particle-steps exceed --max-memory / --max-steps, exits with
+/// status 2 before it starts; a time integration that diverges stops with status 3.
 #[derive(Parser)]
 #[command(name = "sphstab", version, about)]
 pub(crate) struct Cli {
@@ -91,21 +95,24 @@ fn parse_steps(s: &str) -> Result<f64, String> {
 pub(crate) enum Cmd {
     /// Is this configuration stable? Names and classifies every instability (growth rates in c/Δx).
     Query(query::Args),
-    /// Dispersion curve ω²(κ) of the mechanical branch, with the continuum overlaid.
+    /// Dispersion curve ω²(κ) of the mechanical branch (ω² in c²/Δx², κ as κΔx), with the
+    /// continuum overlaid.
     Dispersion(dispersion::Args),
-    /// Critical leapfrog time step and CFL number.
+    /// Critical time step Δt (in Δx/c) of the integrator, and the CFL number c Δt/h.
     Timestep(timestep::Args),
     /// The kernel table.
     Kernels(kernels::Args),
     /// Regenerate the figures in figures/ from the configs in analysis/configs/.
     Figures(figures::Args),
-    /// 2D stability map: growth rate over (κx, κy) as a heat map.
+    /// 2D stability map: growth rate (c/Δx) over (κxΔx, κyΔx) as a heat map.
     Map(map::Args),
     /// Anti-plane Galerkin stiffness K_jk for a quadrature pattern [B00 Table I].
     Stiffness(stiffness::Args),
-    /// The Swegle perturbed-particle test (2D or 3D), measured against the engine's predictions.
+    /// The Swegle perturbed-particle test (2D or 3D), measured against the engine's predictions
+    /// (rates in c/Δx, Δt in Δx/c, each also in the test's own units).
     Swegle(swegle::Args),
-    /// Run a 1D scene (JSON file or built-in) and compare it with its analytic solution.
+    /// Run a 1D scene (JSON file or built-in; SI units) and compare it with its analytic
+    /// solution (times, speeds and stresses also in Δx/c, c and σ/C).
     Simulate(simulate::Args),
     /// Speed/accuracy trade-off: cost, accuracy and robustness of every form × kernel × h.
     Tradeoff(tradeoff::Args),

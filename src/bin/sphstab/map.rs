@@ -11,10 +11,11 @@ use sphstab::display::num;
 pub struct Args {
     #[command(flatten)]
     cfg: Config,
-    /// Wave vectors per direction over [−π, π]² (n × n), in [2, 1024].
+    /// Wave vectors per direction over κΔx ∈ [−π, π]² (n × n), in [2, 1024].
     #[arg(long, default_value_t = 128)]
     n: usize,
-    /// Print one JSON document (kx, ky, growth) instead of a summary.
+    /// Print one JSON document (kx, ky as κΔx; growth in c/Δx; its "units" name them) instead
+    /// of a summary.
     #[arg(long)]
     json: bool,
     /// Write the heat map SVG to this file.
@@ -118,7 +119,10 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) 
             .with_context(|| format!("--plot: cannot write {}", path.display()))?;
     }
     if a.json {
-        println!("{}", serde_json::to_string(&m)?);
+        println!(
+            "{}",
+            crate::units::json(&m, crate::units::System::Normalised, false)?
+        );
         return Ok(());
     }
     let gmax = m.growth.iter().flatten().fold(0.0f64, |x, &y| x.max(y));

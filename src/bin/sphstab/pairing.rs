@@ -3,6 +3,7 @@
 //! Bare, a quick subset ([`PairingConfig::quick`], seconds); the full study (~47 min) is
 //! `--config analysis/pairing3d.json`.
 
+use crate::units::{self, System};
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
@@ -43,7 +44,7 @@ pub struct Args {
     /// computing; needs --plot.
     #[arg(long)]
     from: Option<PathBuf>,
-    /// Print the JSON report instead of the table.
+    /// Print the JSON report instead of the table (its "units" name the unit of every field).
     #[arg(long)]
     json: bool,
     /// Write the figure (SVG: growth against N_H, one panel per lattice and σ̄) here.
@@ -200,7 +201,7 @@ pub fn output(
     config_out: Option<&str>,
 ) -> Result<()> {
     if let Some(path) = out {
-        crate::shard::write_json(path, rep)?;
+        crate::shard::write_json(path, &units::with_units(rep, System::Normalised)?)?;
     }
     if let Some(path) = plot {
         study::write_plot(sphstab::studies::pairing::figure_svg(rep), path)?;
@@ -209,7 +210,7 @@ pub fn output(
         study::write_figure_and_data(rep, name, sphstab::studies::pairing::figure_svg)?;
     }
     if json {
-        println!("{}", serde_json::to_string(rep)?);
+        println!("{}", units::json(rep, System::Normalised, false)?);
     } else {
         print!("{}", sphstab::studies::pairing::table(rep));
         println!(

@@ -1,6 +1,7 @@
 //! `sphstab query`.
 
 use crate::common::Config;
+use crate::units::{self, System};
 use anyhow::Result;
 use sphstab::budget::Budget;
 
@@ -14,7 +15,7 @@ pub struct Args {
     /// 1D: number of κ points in (0, π], in [2, 10000000] (default 512); the same as --grid.
     #[arg(long)]
     points: Option<usize>,
-    /// Print one JSON document instead of a table.
+    /// Print one JSON document instead of a table (its "units" name the unit of every field).
     #[arg(long)]
     json: bool,
     /// 2D/3D: also predict the growth a box of N^D free particles between fixed layers can
@@ -106,7 +107,7 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
             v["box_growth_rate"] = serde_json::json!(g);
             v["box_kappa"] = serde_json::json!(k.to_vec());
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        println!("{}", units::json(&v, System::Normalised, true)?);
         return Ok(());
     }
     if let Some((g, k)) = boxp {
@@ -205,10 +206,8 @@ fn compare<const D: usize>(a: &Args, budget: &Budget) -> Result<()> {
             .zip(&reports)
             .map(|(s, r)| serde_json::json!({"label": s.label, "query": r}))
             .collect();
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&serde_json::json!({ "series": series }))?
-        );
+        let doc = serde_json::json!({ "series": series });
+        println!("{}", units::json(&doc, System::Normalised, true)?);
         return Ok(());
     }
     println!(

@@ -16,7 +16,8 @@ pub struct Args {
     /// Override the scene's form.
     #[arg(long)]
     form: Option<String>,
-    /// Override the scene's end time (s).
+    /// Override the scene's end time t_end, > 0: in s for a scene (SI), in the test's units for
+    /// swegle (as `swegle --t-end`).
     #[arg(long = "t-end", allow_hyphen_values = true)]
     t_end: Option<f64>,
     /// Time integrator (overrides the scene's `integrator`; default kdk): kdk, dkd, verlet-lagged,
@@ -28,10 +29,12 @@ pub struct Args {
     /// verlet-euler only.
     #[arg(long = "euler-every", allow_hyphen_values = true)]
     euler_every: Option<usize>,
-    /// JSON summary on stdout.
+    /// JSON summary on stdout: physical values in SI with the scales that normalise them
+    /// (dx_physical, sound_speed_physical, modulus_physical) and the step in Δx/c (dt); its
+    /// "units" name the unit of every field.
     #[arg(long)]
     json: bool,
-    /// Write history.csv (t, max |v|, kinetic energy) and final.vtk here.
+    /// Write history.csv (t, max |v|, kinetic energy; SI) and final.vtk here.
     #[arg(long)]
     out: Option<std::path::PathBuf>,
 }
@@ -169,17 +172,26 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
     }
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        println!(
+            "{}",
+            crate::units::json(&r, crate::units::System::Si, true)?
+        );
         return Ok(());
     }
+    // every physical value with its normalised one (Δx/c, c, σ̄ = σ/C)
+    let time_unit = r.dx_physical / r.sound_speed_physical;
     println!(
-        "{} / {}: t = {:.4e} s in {} steps ({:.2} s); max |v| {:.4e}; velocity L2 error vs analytic: {}",
+        "{} / {}: t = {:.4e} s ({} Δx/c) in {} steps of Δt = {:.4e} s ({} Δx/c) ({:.2} s wall clock); max |v| {:.4e} m/s ({:.4e} c); velocity L2 error vs analytic (relative): {}",
         r.name,
         r.form,
         r.t,
+        sphstab::display::num_sig(r.t / time_unit, 6),
         r.steps,
+        r.dt_physical,
+        sphstab::display::num_sig(r.dt, 6),
         r.runtime_s,
         r.max_velocity,
+        r.max_velocity / r.sound_speed_physical,
         r.velocity_error_l2
             .map(|e| format!("{e:.4e}"))
             .unwrap_or("n/a".into()),
@@ -189,10 +201,13 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             .c_partition
             .map(|c| format!(" ((1 − c)σ + cτ, c = {})", sphstab::display::num(c)))
             .unwrap_or_default();
+        let modulus = r.modulus_physical;
         println!(
-            "final stress{c} in [{:.4e}, {:.4e}] Pa; max stress error vs analytic: {}",
+            "final stress{c} in [{:.4e}, {:.4e}] Pa (σ̄ = σ/C in [{:.4e}, {:.4e}]); max stress error vs analytic: {}",
             s.min,
             s.max,
+            s.min / modulus,
+            s.max / modulus,
             s.error_max
                 .map(|e| format!("{e:.4e} of max |σ_exact|"))
                 .unwrap_or("n/a".into()),

@@ -29,7 +29,8 @@ pub struct Args {
     /// Square-lattice aspect ratio γ = Δy/Δx, in [0.1, 10] (default 1; square lattice only).
     #[arg(long, allow_hyphen_values = true)]
     gamma: Option<f64>,
-    /// Also print ωΔx/c along this direction θ (degrees) for κΔx ∈ (0, κ_cut].
+    /// Also print ω along this direction θ (degrees, in [−360, 360]), in c/Δx (ωΔx/c), for
+    /// κΔx ∈ (0, κ_cut].
     #[arg(long, allow_hyphen_values = true)]
     theta: Option<f64>,
     /// Points along θ, in [2, 1000000] (default 32; needs --theta).
@@ -38,7 +39,7 @@ pub struct Args {
     /// Use the consistent mass (default lumped, as Table I / eq 119).
     #[arg(long)]
     consistent: bool,
-    /// JSON output.
+    /// JSON output (K_jk entries, κΔx and ωΔx/c; its "units" name them).
     #[arg(long)]
     json: bool,
 }
@@ -157,12 +158,11 @@ pub fn run(a: Args) -> Result<()> {
             .iter()
             .map(|(k, w)| serde_json::json!({"kappa_dx": k, "omega_dx_over_c": w}))
             .collect();
+        let doc = serde_json::json!({"quadrature": q.name(), "entries": entries, "dispersion": d,
+            "spurious_zero_frequency": spurious.map(|(a, b)| serde_json::json!({"theta_0": a, "theta_45": b}))});
         println!(
             "{}",
-            serde_json::to_string_pretty(
-                &serde_json::json!({"quadrature": q.name(), "entries": entries, "dispersion": d,
-            "spurious_zero_frequency": spurious.map(|(a, b)| serde_json::json!({"theta_0": a, "theta_45": b}))})
-            )?
+            crate::units::json(&doc, crate::units::System::Normalised, true)?
         );
         return Ok(());
     }
@@ -173,7 +173,7 @@ pub fn run(a: Args) -> Result<()> {
             "offsets j a1 + k a2 over a half-plane; K(−j, −k) = K(j, k)"
         };
         println!(
-            "K_jk ({}, {} / {}, D_mx = {}, {}; {half}):",
+            "K_jk = ∫ ∇φ_0·∇φ_jk dΩ (dimensionless: the stiffness per unit thickness is G K_jk) ({}, {} / {}, D_mx = R/Δx = {}, {}; {half}):",
             q.name(),
             a.shape,
             a.kernel,

@@ -72,7 +72,7 @@ pub fn write_plot(svg: sphstab::error::Result<String>, path: &Path) -> Result<()
 }
 
 /// A config's `output`: the figure `figures/<name>` and the report next to it
-/// (`figures/<name>.json`, pretty JSON), reported on stderr.
+/// (`figures/<name>.json`, pretty JSON with its "units"), reported on stderr.
 pub fn write_figure_and_data<T: Serialize>(
     report: &T,
     name: &str,
@@ -81,7 +81,8 @@ pub fn write_figure_and_data<T: Serialize>(
     let svg = PathBuf::from("figures").join(name);
     write_plot(draw(report), &svg)?;
     let data = svg.with_extension("json");
-    std::fs::write(&data, serde_json::to_string_pretty(report)? + "\n")
+    let text = crate::units::json(report, crate::units::System::Normalised, true)?;
+    std::fs::write(&data, text + "\n")
         .with_context(|| format!("cannot write {}", data.display()))?;
     eprintln!("wrote {} and {}", svg.display(), data.display());
     Ok(())

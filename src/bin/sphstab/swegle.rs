@@ -30,7 +30,8 @@ pub struct Args {
     /// Shape family (default: the form's).
     #[arg(long)]
     shape: Option<String>,
-    /// f = ρ/ρ0: < 1 tension, > 1 compression, in [0.5, 1.5].
+    /// f = ρ/ρ0, dimensionless, in [0.5, 1.5]: < 1 tension, > 1 compression (pre-stress
+    /// σ̄ = σ/K = 1 − f).
     #[arg(
         long = "density-ratio",
         default_value_t = 0.99,
@@ -44,14 +45,16 @@ pub struct Args {
     /// eigenvalues up to 1,000 free degrees of freedom (--size 28 in 2D, 12 in 3D).
     #[arg(long)]
     size: Option<usize>,
-    /// End time in the test's units (Δx = 0.1, c = √(K/ρ) ≈ 0.495: t = 40 is ≈ 198 Δx/c), in
-    /// (0, 1e6]; the run (size^dim × t_end/Δt particle-steps) must fit --max-steps.
+    /// End time in the test's units (Δx = 0.1, c = √(K/ρ0) ≈ 0.495, so Δx/c ≈ 0.2020: t = 40 is
+    /// ≈ 198 Δx/c), in (0, 1e6]; the run (size^dim × t_end/Δt particle-steps) must fit
+    /// --max-steps.
     #[arg(long = "t-end", default_value_t = 40.0, allow_hyphen_values = true)]
     t_end: f64,
     /// Run past --t-end until a mode growing at the box prediction reaches the fit window.
     #[arg(long = "until-window")]
     until_window: bool,
-    /// Initial v_x of the centre particle, in [1e-15, 1e-9] (1e-10 as published). Smaller: the
+    /// Initial v_x of the centre particle in the test's units (c ≈ 0.495), in [1e-15, 1e-9]
+    /// (1e-10 as published). Smaller: the
     /// fastest mode outgrows the slower ones for longer before the fixed fit window
     /// (1e-8 < max |v| < 1e-4); large 3D boxes need 1e-14 to be fitted at their fastest rate.
     #[arg(long, default_value_t = 1e-10)]
@@ -59,26 +62,30 @@ pub struct Args {
     /// Boundary layers' density (and stress): evolve (continuity; default) or frozen.
     #[arg(long = "boundary-density")]
     boundary_density: Option<String>,
-    /// Time step Δt in Δx/c (the CFL number), in (0, 2].
-    #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
-    cfl: f64,
+    /// Time step Δt in Δx/c, in (0, 2] (in the test's units Δt = dt × 0.2020; the CFL number
+    /// c Δt/h is dt/(h/Δx)). `--cfl`, its old name, is read too.
+    #[arg(long, alias = "cfl", default_value_t = 0.2, allow_hyphen_values = true)]
+    dt: f64,
     /// Partition coefficient c of lnl/cll, in [0, 1] (default 0.5).
     #[arg(long, allow_hyphen_values = true)]
     c: Option<f64>,
-    /// Monaghan–Gray artificial stress ε of the classical form (off by default, as published).
+    /// Monaghan–Gray artificial stress ε of the classical form, dimensionless, in [0, 10] (off
+    /// by default, as published).
     #[arg(long = "art-eps", allow_hyphen_values = true)]
     art_eps: Option<f64>,
     /// Artificial-stress exponent n, in [1, 12] (needs --art-eps).
     #[arg(long = "art-n")]
     art_n: Option<i32>,
-    /// JSON on stdout.
+    /// JSON on stdout: rates in c/Δx, dt in Δx/c, what the run measures in the test's units
+    /// with the scales that convert them (dt_physical, dx_physical, sound_speed_physical); its
+    /// "units" name the unit of every field.
     #[arg(long)]
     json: bool,
-    /// SVG of max |v| against time with the predicted slopes.
+    /// SVG of max |v| against time (in Δx/c) with the predicted slopes.
     #[arg(long)]
     plot: Option<std::path::PathBuf>,
-    /// Write history.csv (t, centre |v|, max and RMS |v| of the free particles, kinetic energy)
-    /// and final.vtk (particles) here.
+    /// Write history.csv (t, centre |v|, max and RMS |v| of the free particles, kinetic energy;
+    /// in the test's units) and final.vtk (particles) here.
     #[arg(long)]
     out: Option<std::path::PathBuf>,
 }
@@ -113,7 +120,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     }
     cfg.size = a.size.unwrap_or(default_size(a.dim));
     cfg.t_end = a.t_end;
-    cfg.cfl = a.cfl;
+    cfg.dt = a.dt;
     if a.c.is_some() && !matches!(form, FormKind::Lnl | FormKind::Cll) {
         return Err(crate::query::not_in(
             "--c",
@@ -181,7 +188,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
                 r.kernel,
                 num(r.h_over_dx),
                 num(r.density_ratio),
-                num(r.dt * r.steps as f64)
+                num(r.dt_physical * r.steps as f64)
             );
             std::fs::write(
                 dir.join("final.vtk"),
@@ -271,42 +278,65 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         if let Some(o) = v.as_object_mut() {
             o.remove("history");
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        println!(
+            "{}",
+            crate::units::json(&v, crate::units::System::SwegleTest, true)?
+        );
         return diverged(&r);
     }
+    // the test has units of its own: every time, rate and speed also in them
+    let per_time = r.sound_speed_physical / r.dx_physical;
+    let rate = |g: f64| {
+        format!(
+            "{g:.5} c/Δx ({} /time unit)",
+            sphstab::display::num_sig(g * per_time, 4)
+        )
+    };
     println!(
-        "Swegle test {} ({}D): {} / {} h = {}Δx, f = {}",
+        "Swegle test {} ({}D): {} / {} h = {}Δx, f = ρ/ρ0 = {} (σ̄ = 1 − f = {}); test units Δx = {}, c = {:.4}, Δx/c = {:.4}",
         cfg.shape_label().replace(' ', ""),
         r.dim,
         r.form,
         r.kernel,
         num(r.h_over_dx),
-        num(r.density_ratio)
+        num(r.density_ratio),
+        sphstab::display::num_sig(1.0 - r.density_ratio, 6),
+        num(r.dx_physical),
+        r.sound_speed_physical,
+        1.0 / per_time
     );
     match r.measured_growth_rate {
         Some(m) if r.ratio_box.is_some() => println!(
-            "measured growth {:.5} c/Δx; box prediction {:.5} ({}); infinite lattice {:.5}; measured/box {:.4}{}",
-            m,
-            r.predicted_growth_rate_box,
+            "measured growth {}; box prediction ({}) {}; infinite lattice {}; measured/box {:.4}{}",
+            rate(m),
             r.box_method,
-            r.predicted_growth_rate_infinite,
+            rate(r.predicted_growth_rate_box),
+            rate(r.predicted_growth_rate_infinite),
             r.ratio_box.unwrap_or(0.0),
             r.ratio_infinite
                 .map(|x| format!(", measured/infinite {x:.4}"))
                 .unwrap_or_default()
         ),
         Some(m) => println!(
-            "max |v| rose through the fit window at {:.5} c/Δx, but the engine predicts no exponential growth (box {:.2e}, infinite lattice {:.2e}): secular growth of a zero-energy mode or a nonlinear effect, not a linear instability",
-            m, r.predicted_growth_rate_box, r.predicted_growth_rate_infinite
+            "max |v| rose through the fit window at {}, but the engine predicts no exponential growth (box {:.2e} c/Δx, infinite lattice {:.2e} c/Δx): secular growth of a zero-energy mode or a nonlinear effect, not a linear instability",
+            rate(m),
+            r.predicted_growth_rate_box,
+            r.predicted_growth_rate_infinite
         ),
         None => println!(
-            "no exponential growth measured (grew: {}); box prediction {:.5}, infinite lattice {:.5}",
-            r.grew, r.predicted_growth_rate_box, r.predicted_growth_rate_infinite
+            "no exponential growth measured (grew: {}); box prediction {}, infinite lattice {}",
+            r.grew,
+            rate(r.predicted_growth_rate_box),
+            rate(r.predicted_growth_rate_infinite)
         ),
     }
     println!(
-        "max |v| at the end {:.3e}; {} steps of Δt = {:.4e} in {:.2} s",
-        r.max_velocity_end, r.steps, r.dt, r.runtime_s
+        "max |v| at the end {:.3e} ({:.3e} c); {} steps of Δt = {} in {:.2} s wall clock",
+        r.max_velocity_end,
+        r.max_velocity_end / r.sound_speed_physical,
+        r.steps,
+        crate::units::both(r.dt_physical, "time units", r.dt, "Δx/c"),
+        r.runtime_s
     );
     diverged(&r)
 }

@@ -35,7 +35,7 @@ pub struct Args {
     /// Kernel name (m4 = cubic spline).
     #[arg(long, default_value = "m4")]
     kernel: String,
-    /// h/Δx, in (0, 10].
+    /// Smoothing length h/Δx in the kernel's own convention, in (0, 10].
     #[arg(long, default_value_t = 1.3, allow_hyphen_values = true)]
     h: f64,
     /// hydro (p = K(ρ/ρ0 − 1)) or elastic (hypo-elastic, P-wave modulus 1).
@@ -48,17 +48,18 @@ pub struct Args {
     /// Elastic objective stress rate: jaumann (default) or truesdell (elastic only).
     #[arg(long)]
     rate: Option<String>,
-    /// Monaghan artificial viscosity "α,β" (each in [0, 100]), or "off".
+    /// Monaghan artificial viscosity "α,β" (dimensionless, each in [0, 100]), or "off".
     #[arg(long, default_value = "1,1", allow_hyphen_values = true)]
     av: String,
-    /// Monaghan–Gray artificial stress ε in [0, 10] (classical and cll, 2D only; 0: off).
+    /// Monaghan–Gray artificial stress ε, dimensionless, in [0, 10] (classical and cll, 2D
+    /// only; 0: off).
     /// Default 0.3 for classical and cll in 2D, off otherwise.
     #[arg(long = "art-eps", allow_hyphen_values = true)]
     art_eps: Option<f64>,
     /// Artificial-stress exponent n, in [1, 12] (default 4; only where artificial stress is on).
     #[arg(long = "art-n", allow_hyphen_values = true)]
     art_n: Option<i32>,
-    /// Time step in Δx/c, in (0, 2].
+    /// Time step Δt in Δx/c, in (0, 2] (the CFL number c Δt/h is dt/(h/Δx)).
     #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
     dt: f64,
     /// Timed steps per repeat (after one warm-up step), in [1, 10⁶]. Default 20: the default
@@ -76,7 +77,8 @@ pub struct Args {
     /// the last full one while they provably have not changed; bitwise the same results).
     #[arg(long)]
     no_pair_reuse: bool,
-    /// JSON on stdout.
+    /// JSON on stdout (times in wall-clock s and ns, dt in Δx/c, max_speed_end in c; its
+    /// "units" name the unit of every field).
     #[arg(long)]
     json: bool,
 }
@@ -212,7 +214,10 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     let r = run_throughput(&cfg, &sizes, a.threads, Some(&probe), pb.clone())?;
     pb.finish();
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        println!(
+            "{}",
+            crate::units::json(&r, crate::units::System::Normalised, true)?
+        );
         return Ok(());
     }
     let material = match r.poisson {

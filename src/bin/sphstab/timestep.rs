@@ -1,6 +1,7 @@
 //! `sphstab timestep`.
 
 use crate::common::{Config, IntegratorArgs};
+use crate::units::{self, System};
 use anyhow::Result;
 use sphstab::analysis::IntegratorReport;
 use sphstab::budget::Budget;
@@ -18,8 +19,8 @@ pub struct Args {
     #[command(flatten)]
     integ: IntegratorArgs,
     /// Also measure the largest stable Δt in the time domain: the same solver on a periodic
-    /// body of the lattice (64 particles in 1D), Δt bisected to 1% (seconds in 1D, up to
-    /// minutes in 3D; budget --max-steps).
+    /// body of the lattice (64 particles in 1D), Δt bisected to 1% (wall time: seconds in 1D,
+    /// up to minutes in 3D; budget --max-steps).
     #[arg(long)]
     verify: bool,
     /// Which pairs the viscosity of the --verify runs acts on: one-sided (approaching pairs
@@ -27,7 +28,7 @@ pub struct Args {
     /// linearises it). Needs --verify and --av-alpha.
     #[arg(long)]
     viscosity: Option<String>,
-    /// Print one JSON document instead of text.
+    /// Print one JSON document instead of text (its "units" name the unit of every field).
     #[arg(long)]
     json: bool,
     #[command(flatten)]
@@ -47,8 +48,7 @@ fn print_step(s: &IntegratorReport) {
     };
     let closed = s
         .critical_dt_closed_form
-        .map(plain)
-        .unwrap_or_else(|| "n/a".into());
+        .map_or_else(|| "n/a".into(), |d| format!("{} Δx/c", plain(d)));
     match s.critical_dt {
         Some(dt) if dt.is_finite() => println!(
             "critical Δt ({name}) = {} Δx/c, CFL c Δt/h = {} (largest Δt that adds no growth: |λ| ≤ 1 + 1e-7 per step on modes that do not grow, growth rate within 1% of the physical one on modes that do; bisection on the amplification matrices); closed form {closed}",
@@ -139,7 +139,7 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
         if let (Some(v), Some(map)) = (&verified, doc.as_object_mut()) {
             map.insert("verify".into(), serde_json::to_value(v)?);
         }
-        println!("{}", serde_json::to_string_pretty(&doc)?);
+        println!("{}", units::json(&doc, System::Normalised, true)?);
         return Ok(());
     }
     println!("{}", r.header);
@@ -201,10 +201,8 @@ fn compare<const D: usize>(a: &Args, budget: &Budget) -> Result<()> {
             .zip(&reports)
             .map(|(s, r)| serde_json::json!({"label": s.label, "timestep": r}))
             .collect();
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&serde_json::json!({ "series": series }))?
-        );
+        let doc = serde_json::json!({ "series": series });
+        println!("{}", units::json(&doc, System::Normalised, true)?);
         return Ok(());
     }
     println!(
@@ -277,7 +275,7 @@ fn print_verify(v: &StableDtReport) {
     match (&v.measured_dt, &v.stable_run, &v.unstable_run) {
         (Some(dt), Some(s), Some(u)) => {
             println!(
-                "largest stable Δt (measured) = {} Δx/c: the run at Δt = {} grows at {} (allowed {}); at Δt = {} it grows at {}",
+                "largest stable Δt (measured) = {} Δx/c: the run at Δt = {} Δx/c grows at {} (allowed {} c/Δx); at Δt = {} Δx/c it grows at {}",
                 plain(*dt),
                 plain(s.dt),
                 rate(s),

@@ -1,6 +1,7 @@
 //! `sphstab tradeoff`: the speed/accuracy trade-off study (cost, accuracy, robustness of every
 //! form × kernel × h/Δx), as a table, JSON and a Pareto figure.
 
+use crate::units::{self, System};
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
@@ -48,7 +49,7 @@ pub struct Args {
     /// Re-draw the figure from stored data (a JSON written by --json or --config) without measuring.
     #[arg(long)]
     from: Option<PathBuf>,
-    /// Print the JSON report instead of the table.
+    /// Print the JSON report instead of the table (its "units" name the unit of every field).
     #[arg(long)]
     json: bool,
     /// Write the Pareto figure (SVG) here.
@@ -155,7 +156,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
         let t = sphstab::studies::tradeoff::cfl::cfl_table()?;
         if a.json {
-            println!("{}", serde_json::to_string(&t)?);
+            println!("{}", units::json(&t, System::Normalised, false)?);
         } else {
             print!("{}", sphstab::studies::tradeoff::cfl::cfl_markdown(&t));
         }
@@ -235,7 +236,7 @@ pub fn output(
     config_out: Option<&str>,
 ) -> Result<()> {
     if let Some(path) = out {
-        crate::shard::write_json(path, rep)?;
+        crate::shard::write_json(path, &units::with_units(rep, System::Normalised)?)?;
     }
     if let Some(path) = plot {
         study::write_plot(
@@ -249,7 +250,7 @@ pub fn output(
         })?;
     }
     if json {
-        println!("{}", serde_json::to_string(rep)?);
+        println!("{}", units::json(rep, System::Normalised, false)?);
     } else {
         print!("{}", sphstab::studies::tradeoff::table(rep));
         if !rep.integrator_rows.is_empty() {

@@ -98,7 +98,7 @@ pub fn table(r: &ArtStressReport) -> String {
     let mut s = String::new();
     let c = &r.config;
     s += &format!(
-        "# artificial stress: {} {} (n = {}), Swegle box {}×{} ({} boundary density); rates in c/Δx\n",
+        "# artificial stress: {} {} (n = {}), Swegle box {}×{} ({} boundary density); rates in c/Δx, σ̄ = σ/K = 1 − f, h in Δx\n",
         c.form,
         c.kernel,
         c.art_n,

@@ -121,6 +121,10 @@ pub fn table(rep: &PairingReport) -> String {
     );
     let _ = writeln!(
         s,
+        "units: growth rates (growth, pairing, transverse, max pairing) in c/Δx, c = √(K/ρ0); σ̄ = σ/K (negative: pressure); h, R in Δx"
+    );
+    let _ = writeln!(
+        s,
         "\nkernel 3D Fourier transform W*(k)/W*(0), k in 1/h over [0, {}]",
         rep.kernels.first().map_or(0.0, |k| k.k_max)
     );

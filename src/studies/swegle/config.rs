@@ -75,7 +75,7 @@ pub struct SwegleConfig {
     pub rho0: f64,
     /// Bulk modulus K.
     pub bulk: f64,
-    /// End time.
+    /// End time, in the test's units (not Δx/c).
     pub t_end: f64,
     /// Initial v_x of the centre particle (1e−10, as published), in [1e−15, 1e−9]: below the
     /// fit window, above the rounding of the positions (a displacement of 1e−16 per step is
@@ -84,8 +84,9 @@ pub struct SwegleConfig {
     pub kick: f64,
     /// Boundary density treatment.
     pub boundary: BoundaryDensity,
-    /// Time step in units of Δx/c.
-    pub cfl: f64,
+    /// Time step Δt in Δx/c, in (0, 2] (the CFL number c Δt/h is dt/(h/Δx));
+    /// [`SwegleConfig::dt_physical`] in the test's units.
+    pub dt: f64,
     /// Fit window for max |v|.
     pub window: (f64, f64),
     /// Partition coefficient (lnl / cll).
@@ -127,7 +128,7 @@ impl SwegleConfig {
             t_end: 40.0,
             kick: 1e-10,
             boundary: BoundaryDensity::Evolve,
-            cfl: 0.2,
+            dt: 0.2,
             window: (1e-8, 1e-4),
             c_partition: 0.5,
             until_window: false,
@@ -167,7 +168,7 @@ impl SwegleConfig {
             None,
         )?;
         check_range("t_end", self.t_end, 0.0, 1e6, false, true)?;
-        check_range("cfl", self.cfl, 0.0, 2.0, false, true)?;
+        check_range("dt", self.dt, 0.0, 2.0, false, true)?;
         check_range("kick", self.kick, 1e-15, 1e-9, true, true)?;
         let top = max_size(self.dim);
         if self.size < 2 * self.layers + 3 || self.size > top {
@@ -214,9 +215,9 @@ impl SwegleConfig {
             ),
             bytes,
         )?;
-        let steps = (self.t_end / (self.cfl * self.dx / self.sound_speed())).ceil();
+        let steps = (self.t_end / self.dt_physical()).ceil();
         self.budget.steps(
-            fields(&["t_end", "cfl", "size"]),
+            fields(&["t_end", "dt", "size"]),
             &format!("the Swegle run ({} time steps)", fmt_count(steps)),
             particles * steps,
         )
@@ -253,9 +254,14 @@ impl SwegleConfig {
         }
     }
 
-    /// Sound speed c = sqrt(K/ρ0).
+    /// Sound speed c = sqrt(K/ρ0), in the test's units.
     pub fn sound_speed(&self) -> f64 {
         (self.bulk / self.rho0).sqrt()
+    }
+
+    /// The time step in the test's units: `dt` × Δx/c.
+    pub fn dt_physical(&self) -> f64 {
+        self.dt * self.dx / self.sound_speed()
     }
 
     /// Particles in the box, `size`^D.

@@ -38,7 +38,9 @@ impl From<State<f64, 3>> for FinalState {
     }
 }
 
-/// Result of a Swegle run (rates in c/Δx unless named `_physical`).
+/// Result of a Swegle run: rates in c/Δx, the time step in Δx/c; what the run measures in the
+/// test's own units (Δx = 0.1, c = √(K/ρ0) ≈ 0.495: `max_velocity_end`, the `fit`'s rate (1/time)
+/// and window, `history`, `diverged.t`) and the keys named `_physical`, which convert them.
 #[derive(Clone, Debug, Serialize)]
 pub struct SwegleReport {
     /// The run stopped early because it diverged (first non-finite value or a runaway); the
@@ -84,14 +86,20 @@ pub struct SwegleReport {
     pub ratio_box: Option<f64>,
     /// measured / infinite.
     pub ratio_infinite: Option<f64>,
-    /// The fit.
+    /// The fit (in the test's units: rate per unit time, window in time).
     pub fit: Option<GrowthFit>,
-    /// max |v| of the free particles at the end.
+    /// max |v| of the free particles at the end (test units).
     pub max_velocity_end: f64,
     /// max |v| ever exceeded 2× the kick.
     pub grew: bool,
-    /// Time step (physical) and number of steps.
+    /// Time step Δt in Δx/c (`--dt`).
     pub dt: f64,
+    /// Time step in the test's units.
+    pub dt_physical: f64,
+    /// The particle spacing Δx in the test's units.
+    pub dx_physical: f64,
+    /// The sound speed c = √(K/ρ0) in the test's units.
+    pub sound_speed_physical: f64,
     /// Steps taken.
     pub steps: usize,
     /// Wall-clock seconds of the time loop.
@@ -103,7 +111,7 @@ pub struct SwegleReport {
     /// Wave vector (D components) of the fastest standing mode the box admits (engine), for
     /// comparison.
     pub predicted_kappa_box: Vec<f64>,
-    /// History (t, max |v|), at most ~400 samples.
+    /// History (t, max |v|) in the test's units, at most ~400 samples.
     pub history: Vec<(f64, f64)>,
     /// Full history every step: t, centre |v|, max |v| and RMS |v| over the free particles,
     /// kinetic energy of all particles.

@@ -42,7 +42,7 @@ where
     let nfree = cfg.size - 2 * cfg.layers;
     let pred = predict_d(cfg, &run, &progress)?;
     let (box_rate, method, inf) = (pred.box_rate, pred.box_method, pred.infinite_rate);
-    let dt = cfg.cfl * cfg.dx / c;
+    let dt = cfg.dt_physical();
     let t_end = if cfg.until_window && box_rate > 1e-6 {
         cfg.t_end
             .max(1.5 * (cfg.window.1 / cfg.kick).ln() / (box_rate * unit))
@@ -178,7 +178,10 @@ where
         fit,
         max_velocity_end: *y.last().unwrap_or(&0.0),
         grew: vmax_ever > 2.0 * cfg.kick,
-        dt,
+        dt: cfg.dt,
+        dt_physical: dt,
+        dx_physical: cfg.dx,
+        sound_speed_physical: c,
         steps: run.steps,
         runtime_s,
         history_full: full,

@@ -10,7 +10,7 @@
 //! | `wave_l2_error` | relative L2 error of the particle velocities of a standing wave v = V sin(kx) cos(ωt) (20 points per wavelength, periodic, Δt = 0.2 Δx/c, t = 2⅛ periods) against the continuum solution |
 //! | `max_stable_tension` | largest σ̄ ≤ 0.999 (2D hydro: ≤ 0.95) up to which no mode grows (scan, then bisection to 1e-3 relative); 0 if a mode grows at σ̄ = 1e-6 |
 //! | `stable_in_compression` | no growing mode at σ̄ = −0.01 |
-//! | `critical_dt` | critical leapfrog Δt c/Δx at σ̄ = 0 from the amplification matrices (the critical CFL number in Δx) |
+//! | `critical_dt` | critical leapfrog Δt in Δx/c at σ̄ = 0 from the amplification matrices (the CFL number c Δt/h is `critical_dt` / (h/Δx)) |
 //! | `ns_per_particle_time` | ns_per_particle_step / critical_dt: the cost of advancing one particle by Δx/c at the largest stable step |
 //!
 //! With `integrators` (1D only) the report gains `integrator_rows`: the integrator as a

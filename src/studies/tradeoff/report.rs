@@ -77,7 +77,13 @@ fn fmt_opt(v: Option<f64>, prec: usize) -> String {
 
 /// The table printed by `sphstab tradeoff`.
 pub fn table(rep: &TradeoffReport) -> String {
-    let mut s = format!(
+    let mut s = String::from(
+        "units: h, R in Δx; ns/p·st = ns (wall clock) per particle-step; nb = neighbours within R; \
+         B/part = peak heap bytes per particle; phase@10, @20 = |c_num/c − 1| at 10, 20 points per \
+         wavelength; L2 wave relative; σ̄max+ = largest stable tension σ̄ = σ/C; comp = stable at \
+         σ̄ = −0.01; Δt_crit in Δx/c; ns/p·Δx/c = ns per particle per Δx/c of simulated time\n",
+    );
+    s += &format!(
         "{:<24} {:<12} {:>5} {:>5} {:>8} {:>4} {:>7} {:>9} {:>9} {:>9} {:>8} {:>5} {:>7} {:>9}\n",
         "form",
         "kernel",
@@ -155,7 +161,14 @@ pub fn pareto_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
 
 /// The table of the integrator rows printed by `sphstab tradeoff --integrators …`.
 pub fn integrator_table(rep: &TradeoffReport) -> String {
-    let mut s = format!(
+    let mut s = String::from(
+        "units: Δt_crit, Δt_used in Δx/c; weak γ = spurious growth in c/Δx; eval, calls = rate \
+         evaluations per step; ns/p·st, ns/ev = ns (wall clock) per particle-step, per evaluation; \
+         ns/p·Δx/c = ns per particle per Δx/c of simulated time; phase@10, @20 = phase error in \
+         radians per wavelength travelled, amp@10, @20 = amplitude error per wavelength, at 10, 20 \
+         points per wavelength\n",
+    );
+    s += &format!(
         "{:<18} {:<12} {:>5} {:<20} {:>8} {:>8} {:>8} {:>4} {:>5} {:>7} {:>6} {:>9} {:>10} {:>10} {:>10} {:>10}\n",
         "form",
         "kernel",
