@@ -12,6 +12,6 @@ mod shard;
 
 pub use check::MAX_GROWTH_RATE;
 pub use config::{AtlasConfig, CellSpec, Sweep};
-pub use report::{AtlasReport, Cell, Units, summary};
+pub use report::{AtlasReport, Cell, summary};
 pub use run::{AFFINE_TOL, lattice_sum_terms, run};
 pub use shard::AtlasStudy;

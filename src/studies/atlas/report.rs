@@ -1,4 +1,5 @@
-//! The atlas report: its units, its cells and the summary `sphstab atlas` prints.
+//! The atlas report: its cells and the summary `sphstab atlas` prints (its JSON's `units` are
+//! the CLI's, from the one table of every report's units).
 
 use super::config::AtlasConfig;
 use crate::studies::shard::Timing;
@@ -28,36 +29,9 @@ pub struct Cell {
     pub error: Option<String>,
 }
 
-/// The units of the atlas's numbers (SPEC §1), stated in its JSON as `units`: each quantity is
-/// its number times the unit, so `h_over_dx` is h in Δx, `kappa_at_max` (κΔx) is κ in 1/Δx and
-/// `stress` (σ̄ = σ/C, positive in tension) is σ in C.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
-pub struct Units {
-    /// Growth rates (`max_growth_rate`): `c/dx`.
-    pub growth_rate: &'static str,
-    /// Smoothing lengths (`h_over_dx`): `dx`.
-    pub h: &'static str,
-    /// Wave numbers (`kappa_at_max`): `1/dx`.
-    pub kappa: &'static str,
-    /// Stresses (`stress`): `C`, the tangent modulus.
-    pub stress: &'static str,
-}
-
-impl Units {
-    /// The atlas's units.
-    pub const ATLAS: Units = Units {
-        growth_rate: "c/dx",
-        h: "dx",
-        kappa: "1/dx",
-        stress: "C",
-    };
-}
-
 /// The atlas: every cell of the sweep.
 #[derive(Clone, Debug, Serialize)]
 pub struct AtlasReport {
-    /// The units of its numbers ([`Units::ATLAS`]).
-    pub units: Units,
     /// The sweep.
     pub config: AtlasConfig,
     /// Cells in the sweep.
@@ -73,7 +47,6 @@ pub struct AtlasReport {
 /// The report from every cell of the sweep, in index order.
 pub(super) fn assemble(cfg: &AtlasConfig, cells: Vec<Cell>, timing: Timing) -> AtlasReport {
     AtlasReport {
-        units: Units::ATLAS,
         config: cfg.clone(),
         total_cells: cells.len(),
         threads: timing.threads,
