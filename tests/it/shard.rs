@@ -392,8 +392,10 @@ fn cli_atlas_shards_merge_into_the_single_run() {
     let merged_out = p("merged.json");
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&merged_out).unwrap()).unwrap();
-    assert_eq!(report["units"]["growth_rate"], "c/dx");
-    assert_eq!(report["units"]["h"], "dx");
+    // the units of every report, from the one table (tests/it/units.rs checks the table)
+    assert_eq!(report["units"]["max_growth_rate"], "c/dx");
+    assert_eq!(report["units"]["h_over_dx"], "dx");
+    assert_eq!(report["units"]["stress"], "sigma/C");
     assert_eq!(report["cells"].as_array().unwrap().len(), 2 * 3 * 7);
     // a missing or repeated shard is an error, not a silent hole
     for args in [

@@ -68,6 +68,11 @@ const DIMENSIONLESS: &[&str] = &[
     "amplitude_error_20ppw",
     "wave_l2_error",
     "order",
+    "index",
+    "total_cells",
+    "kappas",
+    "h_points",
+    "stress_points",
     "evaluations_per_step",
     "rate_calls_per_step",
     "j",
@@ -126,6 +131,7 @@ fn every_json_output_names_its_units() {
         "pairing --kernels m4 --h-min 1 --h-max 1.2 --grid 4 --json",
         "art-stress --eps 0,0.3 --json",
         "tradeoff --forms classical --kernels m4 --h-points 1 --repeats 1 --json",
+        "atlas --forms classical --kernels m4 --h-points 2 --stress-points 2 --kappas 16 --json",
     ];
     for args in cases {
         doc(&args.split(' ').collect::<Vec<_>>());
