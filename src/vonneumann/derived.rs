@@ -119,14 +119,100 @@ fn sph_derivs<const D: usize>(
     (n.map(|c| vol * w1 * c), h)
 }
 
+/// One lattice offset of [`SphSums`]: integer coordinates m, position R = Σ mᵢaᵢ, ∇φ(R), ∇∇φ(R).
+type SphTerm<const D: usize> = ([i64; D], [f64; D], [f64; D], [[f64; D]; D]);
+
+/// The `sph` lattice sums of one lattice, kernel and h at many wave vectors: ∇φ and ∇∇φ at every
+/// offset within the support computed once ([`sums`] evaluates the kernel at every k). The
+/// sums are [`sums`]'s, bit for bit: the same products added in the same order.
+#[derive(Clone, Debug)]
+pub struct SphSums<const D: usize> {
+    terms: Vec<SphTerm<D>>,
+}
+
+impl<const D: usize> SphSums<D> {
+    /// The derivatives of the `sph` shape of node 0 at every offset of `lat` within the support.
+    pub fn new(lat: &Lattice<D>, kp: KernelParams) -> Self {
+        let vol = lat.area();
+        let terms = lat
+            .offsets_within(kp.support() + 1e-12)
+            .into_iter()
+            .map(|(m, rr)| {
+                let (g, h) = sph_derivs(kp, vol, rr);
+                (m, rr, g, h)
+            })
+            .collect();
+        Self { terms }
+    }
+
+    /// Largest |mᵢ| of an offset (0 without offsets): how far a table of phases must reach.
+    pub fn reach(&self) -> i64 {
+        self.terms
+            .iter()
+            .flat_map(|t| t.0)
+            .map(i64::abs)
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The sums at wave vector k ([`sums`] with `ShapeFamily::Sph`).
+    pub fn at(&self, k: [f64; D]) -> Sums<D> {
+        self.with_phases(|_, rr| {
+            let mut t = k[0] * rr[0];
+            for a in 1..D {
+                t += k[a] * rr[a];
+            }
+            (t.sin(), (0.5 * t).sin())
+        })
+    }
+
+    /// The sums with (sin θ, sin(θ/2)) of θ = k·R given by `phase(m, R)` (a table computed once
+    /// for a grid of wave vectors, for instance).
+    pub fn with_phases(&self, phase: impl Fn(&[i64; D], &[f64; D]) -> (f64, f64)) -> Sums<D> {
+        let mut s = Sums {
+            s1: [0.0; D],
+            s2: [[0.0; D]; D],
+            m1: [[0.0; D]; D],
+        };
+        for (m, rr, g, h) in &self.terms {
+            let (sn, hv) = phase(m, rr);
+            add_term(&mut s, g, h, rr, sn, hv);
+        }
+        s
+    }
+}
+
+/// Adds one offset's terms to the sums (the one expression of [`sums`] and [`SphSums`]).
+#[inline]
+fn add_term<const D: usize>(
+    s: &mut Sums<D>,
+    g: &[f64; D],
+    h: &[[f64; D]; D],
+    rr: &[f64; D],
+    sn: f64,
+    hv: f64,
+) {
+    for a in 0..D {
+        s.s1[a] += g[a] * sn;
+        for b in 0..D {
+            s.s2[a][b] += h[a][b] * 2.0 * hv * hv;
+            s.m1[a][b] -= g[a] * rr[b];
+        }
+    }
+}
+
 /// Lattice sums of `lat` for `family` at wave vector k (S2 only for `sph`, zero otherwise);
-/// in 1D `sums(&Lattice::chain(), family, kp, [κ])`.
+/// in 1D `sums(&Lattice::chain(), family, kp, [κ])`. Many wave vectors of one `sph` lattice:
+/// [`SphSums`].
 pub fn sums<const D: usize>(
     lat: &Lattice<D>,
     family: ShapeFamily,
     kp: KernelParams,
     k: [f64; D],
 ) -> Result<Sums<D>> {
+    if family == ShapeFamily::Sph {
+        return Ok(SphSums::new(lat, kp).at(k));
+    }
     let r = kp.support();
     let vol = lat.area();
     let pts = lat.offsets_within(r + 1e-12);
@@ -137,45 +223,34 @@ pub fn sums<const D: usize>(
     };
     let mut out = Vec::new();
     for &(_, rr) in &pts {
-        let (g, h) = if family == ShapeFamily::Sph {
-            sph_derivs(kp, vol, rr)
-        } else {
-            // shape of node 0 at x = R: nodes within the support of R
-            let nodes: Vec<([f64; D], f64)> = lat
-                .offsets_within(2.0 * r + 2.0)
-                .into_iter()
-                .map(|(_, p)| {
-                    let mut d = p;
-                    for a in 0..D {
-                        d[a] -= rr[a];
-                    }
-                    d
-                })
-                .filter(|d| len(d) < r)
-                .map(|d| (d, vol))
-                .collect();
-            let kp1 = KernelParams {
-                kernel: kp.kernel,
-                h: kp.h,
-            };
-            eval_d(family, kp1, &nodes, rr[0], &mut out)?;
-            let i0 = nodes
-                .iter()
-                .position(|(d, _)| (0..D).all(|a| (d[a] + rr[a]).abs() < 1e-12));
-            (i0.map(|i| out[i].1).unwrap_or([0.0; D]), [[0.0; D]; D])
+        // shape of node 0 at x = R: nodes within the support of R
+        let nodes: Vec<([f64; D], f64)> = lat
+            .offsets_within(2.0 * r + 2.0)
+            .into_iter()
+            .map(|(_, p)| {
+                let mut d = p;
+                for a in 0..D {
+                    d[a] -= rr[a];
+                }
+                d
+            })
+            .filter(|d| len(d) < r)
+            .map(|d| (d, vol))
+            .collect();
+        let kp1 = KernelParams {
+            kernel: kp.kernel,
+            h: kp.h,
         };
+        eval_d(family, kp1, &nodes, rr[0], &mut out)?;
+        let i0 = nodes
+            .iter()
+            .position(|(d, _)| (0..D).all(|a| (d[a] + rr[a]).abs() < 1e-12));
+        let g = i0.map(|i| out[i].1).unwrap_or([0.0; D]);
         let mut t = k[0] * rr[0];
         for a in 1..D {
             t += k[a] * rr[a];
         }
-        let (sn, hv) = (t.sin(), (0.5 * t).sin());
-        for a in 0..D {
-            s.s1[a] += g[a] * sn;
-            for b in 0..D {
-                s.s2[a][b] += h[a][b] * 2.0 * hv * hv;
-                s.m1[a][b] -= g[a] * rr[b];
-            }
-        }
+        add_term(&mut s, &g, &[[0.0; D]; D], &rr, t.sin(), (0.5 * t).sin());
     }
     Ok(s)
 }

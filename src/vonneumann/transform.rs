@@ -171,8 +171,7 @@ pub fn radial_integral<const D: usize>(g: &dyn Fn(f64) -> f64, zeta: f64, k: f64
         if b <= a {
             continue;
         }
-        let panels =
-            ((k.abs() * (b - a) / MAX_PANEL_PHASE).ceil() as usize).clamp(2, MAX_PANELS_PER_PIECE);
+        let panels = panels_of_piece(k, a, b);
         let width = (b - a) / panels as f64;
         for m in 0..panels {
             let lo = a + m as f64 * width;
@@ -192,6 +191,117 @@ pub fn radial_integral<const D: usize>(g: &dyn Fn(f64) -> f64, zeta: f64, k: f64
         }
     }
     sum
+}
+
+/// Panels of the piece [a, b] of [`radial_integral`] at wave number k.
+fn panels_of_piece(k: f64, a: f64, b: f64) -> usize {
+    ((k.abs() * (b - a) / MAX_PANEL_PHASE).ceil() as usize).clamp(2, MAX_PANELS_PER_PIECE)
+}
+
+/// The panels per piece [`radial_integral`] uses at wave number k on [0, ζ] (0 for an empty
+/// piece): the quadrature rule is the same for every k with the same layout.
+pub fn panel_layout(zeta: f64, k: f64) -> Vec<usize> {
+    (0..(zeta / PIECE).ceil() as usize)
+        .map(|p| {
+            let a = p as f64 * PIECE;
+            let b = (a + PIECE).min(zeta);
+            if b <= a { 0 } else { panels_of_piece(k, a, b) }
+        })
+        .collect()
+}
+
+/// [`radial_integral`] for one panel layout ([`panel_layout`]) with the k-independent factors
+/// w·q^{D−1}·g(q) of every node computed once: [`RadialRule::eval`] at a k of that layout is
+/// `radial_integral::<D>(g, ζ, k)` to the last bit (the same products, added in the same order);
+/// at any other k it is the same rule, a finite sum Σᵢ cᵢ φ_D(k qᵢ).
+#[derive(Clone, Debug)]
+pub struct RadialRule<const D: usize> {
+    /// (q, w·q^{D−1}·g(q)) of every node, panel after panel.
+    nodes: Vec<(f64, f64)>,
+    /// Half-width of every panel (its nodes are the next [`GL_POINTS`] of `nodes`).
+    halves: Vec<f64>,
+    /// Σ half·Σ|c| over the panels: |eval(k)| ≤ abs_sum · max|φ_D|.
+    abs_sum: f64,
+}
+
+impl<const D: usize> RadialRule<D> {
+    /// The rule of `layout` for g on [0, ζ].
+    pub fn new(g: &dyn Fn(f64) -> f64, zeta: f64, layout: &[usize]) -> Self {
+        const { assert!(D >= 1 && D <= 3, "RadialRule: D = 1, 2 or 3") };
+        let (gl_nodes, weights) = gl_rule();
+        let (mut nodes, mut halves, mut abs_sum) = (Vec::new(), Vec::new(), 0.0);
+        for (p, &panels) in layout.iter().enumerate() {
+            let a = p as f64 * PIECE;
+            let b = (a + PIECE).min(zeta);
+            if b <= a || panels == 0 {
+                continue;
+            }
+            let width = (b - a) / panels as f64;
+            for m in 0..panels {
+                let lo = a + m as f64 * width;
+                let (mid, half) = (lo + 0.5 * width, 0.5 * width);
+                let mut panel_abs = 0.0;
+                for (&x, &w) in gl_nodes.iter().zip(weights) {
+                    let q = mid + half * x;
+                    let c = if D == 1 {
+                        w * g(q)
+                    } else if D == 2 {
+                        w * q * g(q)
+                    } else {
+                        w * q * q * g(q)
+                    };
+                    panel_abs += c.abs();
+                    nodes.push((q, c));
+                }
+                abs_sum += panel_abs * half;
+                halves.push(half);
+            }
+        }
+        Self {
+            nodes,
+            halves,
+            abs_sum,
+        }
+    }
+
+    /// Σ over panels of half·Σ c φ_D(kq).
+    pub fn eval(&self, k: f64) -> f64 {
+        let mut sum = 0.0;
+        for (panel, &half) in self.nodes.chunks_exact(GL_POINTS).zip(&self.halves) {
+            let mut s = 0.0;
+            for &(q, c) in panel {
+                s += c * if D == 1 {
+                    (k * q).cos()
+                } else if D == 2 {
+                    libm::j0(k * q)
+                } else {
+                    sinc(k * q)
+                };
+            }
+            sum += s * half;
+        }
+        sum
+    }
+
+    /// Number of nodes (terms of the sum).
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether the rule has no node (ζ ≤ 0).
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Σ over panels of half·Σ|c|: |[`Self::eval`]| ≤ this (|φ_D| ≤ 1 on the real axis).
+    pub fn abs_sum(&self) -> f64 {
+        self.abs_sum
+    }
+
+    /// The largest node q.
+    pub fn max_node(&self) -> f64 {
+        self.nodes.iter().map(|n| n.0).fold(0.0, f64::max)
+    }
 }
 
 /// W*(k) = 2∫₀^ζ W(x) cos(kx) dx = 2 [`radial_integral`]`::<1>`: the slow, obviously correct

@@ -6,16 +6,26 @@
 use crate::common;
 
 use common::{assert_bad_inputs, json, sphstab};
+use rayon::prelude::*;
 use sphstab::forms::FormKind;
 use sphstab::integrator::Integrator;
 use sphstab::kernel::{self, Kernel};
+use sphstab::lattice::Lattice;
+use sphstab::shape::{KernelParams, ShapeFamily};
 use sphstab::studies::kernel_guide::{
-    GUIDE_FORMS, GUIDE_H, Interval, REFERENCE_TENSION, SAFETY, WSTAR_K_STEP, compression_scan,
-    intervals, tensile_onset, time_step_cell,
+    COMPRESSION, GUIDE_FORMS, GUIDE_H, GuideConfig, Interval, MAX_SUPPORT_2D, PhaseGrid,
+    REFERENCE_TENSION, SAFETY, WSTAR_K_STEP, closed_form_growth_1d, closed_form_zone_2d,
+    compression_scan, intervals, max_growth_1d, query_1d, query_2d, tensile_onset, time_step_cell,
 };
-use sphstab::studies::pairing::wstar::{NEGATIVE_TOL, Transform, sign_criterion_with};
+use sphstab::studies::pairing::wstar::{NEGATIVE_TOL, Transform, scan_grid, sign_criterion_with};
+use sphstab::studies::pairing::wstar_scan::{proxy_scan, sign_criterion_fast};
+use sphstab::studies::pairing::{ZoneGrowth, zone_growth};
 use sphstab::studies::tradeoff::cfl::cfl_cell;
-use sphstab::vonneumann::transform::{gauss_legendre, lucy_ft};
+use sphstab::vonneumann::classify::GROWTH_TOL;
+use sphstab::vonneumann::derived::{SphSums, sums};
+use sphstab::vonneumann::transform::{
+    RadialRule, gauss_legendre, lucy_ft, panel_layout, radial_integral,
+};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -238,13 +248,200 @@ fn compression_follows_the_transform_sign() {
         let w_neg = sign_criterion_with(kern, 1, WSTAR_K_STEP)
             .first_negative_k
             .is_some();
-        let c = compression_scan(kern, 1, &h, &Default::default()).unwrap();
+        let c = compression_scan(kern, 1, &h).unwrap();
         let whole = c.scanned.unwrap();
         let all_stable = c.stable == vec![whole];
         assert_eq!(all_stable, !w_neg, "{}: {:?}", kern.name(), c.stable);
     }
-    let c = compression_scan(k("wendland-c2"), 2, &h, &Default::default()).unwrap();
+    let c = compression_scan(k("wendland-c2"), 2, &h).unwrap();
     assert_eq!(c.no_pairing, vec![c.scanned.unwrap()]);
+}
+
+/// The compression columns come from the derived closed form of the sum form
+/// (`kernel_guide/compression.rs`); the engine's chain linearisation gives the same largest
+/// growth rate to rounding (|Δγ| ≤ 1e-8 c/Δx: γ = √(−ω²) of an ω² that is zero up to ~1e-17 in
+/// one and not the other) and the same verdict at GROWTH_TOL, at every h of the guide's 1D scans
+/// (the engine's κ grid and stress), for every kernel.
+#[test]
+fn compression_1d_closed_form_is_the_engine() {
+    let h = GuideConfig::default().h_grid();
+    for &kern in kernel::all() {
+        let hs: Vec<f64> = h
+            .iter()
+            .copied()
+            .filter(|&x| kern.zeta() * x > 1.0)
+            .collect();
+        let cf = closed_form_growth_1d(kern, &hs, COMPRESSION).unwrap();
+        for (&x, &g) in hs.iter().zip(&cf) {
+            let e = max_growth_1d(kern, x, COMPRESSION).unwrap();
+            let at = format!(
+                "{} h = {x}: engine γ = {e:e}, closed form {g:e}",
+                kern.name()
+            );
+            assert!((e - g).abs() <= 1e-8, "{at}");
+            assert_eq!(e > GROWTH_TOL, g > GROWTH_TOL, "{at}");
+        }
+    }
+}
+
+/// The 2D column: the closed form on the pairing study's zone scan gives the engine's
+/// `zone_growth` (the Bloch linearisation of the periodic patch) — all three rates to 1e-12
+/// c/Δx (8e-15 measured) at every fifth h of each kernel's 2D scan (the patch costs ~10 ms per h;
+/// the README block, the command's output at every h, is checked below).
+#[test]
+fn compression_2d_closed_form_is_the_engine() {
+    let h = GuideConfig::default().h_grid();
+    for &kern in kernel::all() {
+        let r = |x: f64| kern.zeta() * x;
+        let hs: Vec<f64> = h
+            .iter()
+            .copied()
+            .filter(|&x| r(x) > 1.0 && r(x) <= MAX_SUPPORT_2D + 1e-9)
+            .step_by(5)
+            .collect();
+        let cf = closed_form_zone_2d(kern, &hs, COMPRESSION).unwrap();
+        let en: Vec<ZoneGrowth> = hs
+            .par_iter()
+            .map(|&x| zone_growth(&query_2d(kern, x, COMPRESSION)).unwrap())
+            .collect();
+        for ((x, a), b) in hs.iter().zip(&en).zip(&cf) {
+            let worst = (a.max_growth_rate - b.max_growth_rate)
+                .abs()
+                .max((a.pairing_growth_rate - b.pairing_growth_rate).abs())
+                .max((a.transverse_growth_rate - b.transverse_growth_rate).abs());
+            assert!(
+                worst <= 1e-12,
+                "{} h = {x}: engine {a:?}, closed form {b:?}",
+                kern.name()
+            );
+        }
+    }
+}
+
+/// The lattice sums of the compression scans, from derivatives cached per h (`SphSums`) and
+/// phases tabulated per scan (`PhaseGrid`), are `derived::sums` to the last bit (1D chain and 2D
+/// square lattice, every wave vector of the scans).
+#[test]
+fn tabulated_lattice_sums_are_derived_sums() {
+    for name in ["m4", "lucy", "gaussian"] {
+        for h in [1.05, 2.0, 3.0] {
+            let kp = KernelParams { kernel: k(name), h };
+            let chain = Lattice::<1>::chain();
+            let ks1: Vec<[f64; 1]> = query_1d(k(name), h, 0.0)
+                .kappas()
+                .into_iter()
+                .map(|x| [x])
+                .collect();
+            let s1 = SphSums::new(&chain, kp);
+            let g1 = PhaseGrid::new(&chain, &ks1, s1.reach());
+            for (i, &kv) in ks1.iter().enumerate() {
+                let want = sums(&chain, ShapeFamily::Sph, kp, kv).unwrap();
+                let got = s1.with_phases(g1.row(i));
+                assert_eq!(
+                    format!("{got:?}"),
+                    format!("{want:?}"),
+                    "{name} h={h} {kv:?}"
+                );
+            }
+            let q = query_2d(k(name), h, 0.0);
+            let ks2 = q.kgrid();
+            let s2 = SphSums::new(&q.lattice, kp);
+            let g2 = PhaseGrid::new(&q.lattice, &ks2, s2.reach());
+            for (i, &kv) in ks2.iter().enumerate() {
+                let want = sums(&q.lattice, ShapeFamily::Sph, kp, kv).unwrap();
+                let got = s2.with_phases(g2.row(i));
+                assert_eq!(
+                    format!("{got:?}"),
+                    format!("{want:?}"),
+                    "{name} h={h} {kv:?}"
+                );
+            }
+        }
+    }
+}
+
+fn every_kernel_and_dimension() -> Vec<(&'static dyn Kernel, usize)> {
+    kernel::all()
+        .iter()
+        .flat_map(|&kern| (1..=3).map(move |d| (kern, d)))
+        .collect()
+}
+
+/// The guide's W* column (`wstar_scan::sign_criterion_fast`: a Chebyshev proxy of the samples
+/// with a rigorous bound, the samples evaluated where the bound cannot decide) is the full scan
+/// of `sign_criterion_with` to the last bit, for every kernel and dimension at the guide's step
+/// — all the guide can ask.
+#[test]
+fn wstar_fast_scan_is_the_full_scan() {
+    every_kernel_and_dimension()
+        .par_iter()
+        .for_each(|&(kern, d)| {
+            let full = sign_criterion_with(kern, d, WSTAR_K_STEP);
+            let fast = sign_criterion_fast(kern, d, WSTAR_K_STEP);
+            assert_eq!(format!("{fast:?}"), format!("{full:?}"), "{d}D");
+        });
+}
+
+/// The proxy's bound holds, with room to spare: |w̃_i − w_i| ≤ ε_i / 10 at every sample
+/// (w_i = `Transform::at`, the full scan's sample), every kernel and dimension, at step 0.02 (runs
+/// of 200 samples, long enough to be proxied).
+#[test]
+fn wstar_proxy_is_within_its_bound() {
+    let step = 0.02;
+    let ks = scan_grid(step);
+    every_kernel_and_dimension()
+        .par_iter()
+        .for_each(|&(kern, d)| {
+            let p = proxy_scan(kern, d, step).expect("finite proxy");
+            let t = Transform::new(kern, d);
+            let proxied = p.bounds.iter().filter(|&&e| e > 0.0).count();
+            assert!(proxied > ks.len() / 2, "{} {d}D: {proxied}", kern.name());
+            for (i, &kk) in ks.iter().enumerate() {
+                let (w, e) = (t.at(kk), p.bounds[i]);
+                assert!(
+                    (p.values[i] - w).abs() <= 0.1 * e || p.values[i] == w,
+                    "{} {d}D k = {kk}: proxy {} sample {w} bound {e:e}",
+                    kern.name(),
+                    p.values[i]
+                );
+            }
+        });
+}
+
+/// The quadrature rule with its kernel factors cached per panel layout (`RadialRule`, the W*
+/// scan's evaluations) is `radial_integral` to the last bit, at wave numbers in every layout
+/// and at the layout changes.
+#[test]
+fn cached_quadrature_rule_is_radial_integral() {
+    for (kern, d) in every_kernel_and_dimension() {
+        let g = move |q: f64| kern.f(d, q);
+        let z = kern.zeta();
+        for kk in [
+            0.0, 0.37, 4.0, 4.01, 7.99, 8.0, 8.01, 12.5, 33.3, 39.99, 40.0, 61.7,
+        ] {
+            let layout = panel_layout(z, kk);
+            let (got, want) = match d {
+                1 => (
+                    RadialRule::<1>::new(&g, z, &layout).eval(kk),
+                    radial_integral::<1>(&g, z, kk),
+                ),
+                2 => (
+                    RadialRule::<2>::new(&g, z, &layout).eval(kk),
+                    radial_integral::<2>(&g, z, kk),
+                ),
+                _ => (
+                    RadialRule::<3>::new(&g, z, &layout).eval(kk),
+                    radial_integral::<3>(&g, z, kk),
+                ),
+            };
+            assert_eq!(
+                got.to_bits(),
+                want.to_bits(),
+                "{} {d}D k = {kk}",
+                kern.name()
+            );
+        }
+    }
 }
 
 /// Interval bookkeeping.

@@ -1,7 +1,6 @@
 //! The kernel guide's settings: which kernels, the h/Δx step of its scans, and the fixed
 //! parameters of every column.
 
-use crate::budget::Budget;
 use crate::error::{Error, Result, field};
 use crate::kernel::{self, Kernel};
 use crate::studies::config::no_duplicates;
@@ -28,7 +27,8 @@ pub const COMPRESSION: f64 = -0.01;
 pub const KAPPAS_1D: usize = 256;
 /// Wave vectors per direction of the 2D scan (16² − 1, the trade-off study's 2D grid).
 pub const GRID_2D: usize = 16;
-/// Largest support R/Δx of the 2D scan.
+/// Largest support R/Δx of the 2D scan (the bound the engine's patch, ~R⁴ work per h, once
+/// set; the closed form would go further at little cost, but the column is defined on this range).
 pub const MAX_SUPPORT_2D: f64 = 6.0;
 /// Largest tension of the onset scan.
 pub const TENSION_CAP: f64 = 0.999;
@@ -50,8 +50,6 @@ pub struct GuideConfig {
     pub kernels: Vec<&'static dyn Kernel>,
     /// Step of the h/Δx scans.
     pub h_step: f64,
-    /// The budget the 2D linearisations must stay within.
-    pub budget: Budget,
 }
 
 impl Default for GuideConfig {
@@ -59,7 +57,6 @@ impl Default for GuideConfig {
         Self {
             kernels: kernel::all().to_vec(),
             h_step: DEFAULT_H_STEP,
-            budget: Budget::default(),
         }
     }
 }

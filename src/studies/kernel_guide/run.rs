@@ -1,22 +1,18 @@
 //! Computing the kernel guide: per kernel, the critical CFL and phase errors, the h/Δx intervals
 //! stable in compression (1D, 2D), the tensile onset and the W* sign.
 
+use super::compression::{compression_scan, query_1d};
 use super::config::{
-    COMPRESSION, GRID_2D, GUIDE_FORMS, GUIDE_H, GuideConfig, KAPPAS_1D, MAX_SUPPORT_2D,
-    ONSET_BISECTIONS, REFERENCE_TENSION, SAFETY, SCAN_H, TENSION_CAP, TENSION_FLOOR, WSTAR_K_MAX,
-    WSTAR_K_STEP,
+    COMPRESSION, GRID_2D, GUIDE_FORMS, GUIDE_H, GuideConfig, MAX_SUPPORT_2D, ONSET_BISECTIONS,
+    REFERENCE_TENSION, SAFETY, SCAN_H, TENSION_CAP, TENSION_FLOOR, WSTAR_K_MAX, WSTAR_K_STEP,
 };
-use super::report::{
-    CompressionScan, Interval, KernelGuide, KernelGuideRow, Positivity, TensileOnset, TimeStepCell,
-};
-use crate::analysis::{MaterialSpec, Query};
-use crate::budget::Budget;
+use super::report::{KernelGuide, KernelGuideRow, Positivity, TensileOnset, TimeStepCell};
+use crate::analysis::Query;
 use crate::error::Result;
 use crate::forms::FormKind;
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
-use crate::shape::ShapeFamily;
-use crate::studies::pairing::wstar;
+use crate::studies::pairing::wstar_scan::sign_criterion_fast;
 use crate::studies::tradeoff::cfl::CFL_POINTS;
 use crate::studies::tradeoff::integrators::{IntegratorRow, analyse};
 use crate::vonneumann::classify::GROWTH_TOL;
@@ -47,12 +43,11 @@ pub fn time_step_cell(form: FormKind, k: &'static dyn Kernel, h: f64) -> Result<
     })
 }
 
-/// The largest growth rate (c/Δx) of 1D classical SPH (`sph` shapes, elastic bar) at σ̄ over
-/// [`KAPPAS_1D`] κ points.
+/// The largest growth rate (c/Δx) of 1D classical SPH ([`query_1d`]: `sph` shapes, elastic
+/// bar, [`KAPPAS_1D`](super::KAPPAS_1D) κ points) at σ̄, by the engine (the chain
+/// linearisation).
 pub fn max_growth_1d(k: &'static dyn Kernel, h: f64, stress: f64) -> Result<f64> {
-    let mut q = Query::<1>::new(FormKind::Classical, k, h, stress);
-    q.shape = ShapeFamily::Sph;
-    q.grid = KAPPAS_1D;
+    let q = query_1d(k, h, stress);
     let lin: Linearisation = q.chain()?;
     let mut g: f64 = 0.0;
     for kap in q.kappas() {
@@ -64,77 +59,6 @@ pub fn max_growth_1d(k: &'static dyn Kernel, h: f64, stress: f64) -> Result<f64>
 /// Whether [`max_growth_1d`] exceeds [`GROWTH_TOL`].
 pub fn grows_1d(k: &'static dyn Kernel, h: f64, stress: f64) -> Result<bool> {
     Ok(max_growth_1d(k, h, stress)? > GROWTH_TOL)
-}
-
-/// The 2D question of the scan: classical, `sph`, hydro, square lattice, [`GRID_2D`]².
-pub fn query_2d(k: &'static dyn Kernel, h: f64, stress: f64) -> Query<2> {
-    let mut q = Query::<2>::new(FormKind::Classical, k, h, stress);
-    q.shape = ShapeFamily::Sph;
-    q.material = MaterialSpec::Hydro;
-    q.grid = GRID_2D;
-    q
-}
-
-/// Merges the grid values where `ok` into closed intervals.
-pub fn intervals(h: &[f64], ok: &[bool]) -> Vec<Interval> {
-    let mut out: Vec<Interval> = Vec::new();
-    let mut open: Option<Interval> = None;
-    for (&x, &good) in h.iter().zip(ok) {
-        if !good {
-            out.extend(open.take());
-        } else if let Some(iv) = open.as_mut() {
-            iv.to = x;
-        } else {
-            open = Some(Interval { from: x, to: x });
-        }
-    }
-    out.extend(open);
-    out
-}
-
-/// The compression scan of `k` in `dim` ∈ {1, 2} over `h` (module docs); the 2D
-/// linearisations within `budget`.
-pub fn compression_scan(
-    k: &'static dyn Kernel,
-    dim: u8,
-    h: &[f64],
-    budget: &Budget,
-) -> Result<CompressionScan> {
-    let hs: Vec<f64> = h
-        .iter()
-        .copied()
-        .filter(|&x| k.zeta() * x > 1.0 && (dim == 1 || k.zeta() * x <= MAX_SUPPORT_2D + 1e-9))
-        .collect();
-    let res: Vec<(bool, bool)> = hs
-        .par_iter()
-        .map(|&x| -> Result<(bool, bool)> {
-            if dim == 1 {
-                let g = grows_1d(k, x, COMPRESSION)?;
-                Ok((!g, !g))
-            } else {
-                let q = Query::<2> {
-                    budget: *budget,
-                    ..query_2d(k, x, COMPRESSION)
-                };
-                let z = crate::studies::pairing::zone_growth(&q)?;
-                Ok((z.max_growth_rate == 0.0, z.pairing_growth_rate == 0.0))
-            }
-        })
-        .collect::<Result<_>>()?;
-    let stable: Vec<bool> = res.iter().map(|r| r.0).collect();
-    let no_pair: Vec<bool> = res.iter().map(|r| r.1).collect();
-    Ok(CompressionScan {
-        dim,
-        material: if dim == 1 { "elastic" } else { "hydro" }.into(),
-        stress: COMPRESSION,
-        scanned: hs.first().map(|&a| Interval {
-            from: a,
-            to: *hs.last().unwrap_or(&a),
-        }),
-        computed: hs.len(),
-        stable: intervals(&hs, &stable),
-        no_pairing: intervals(&hs, &no_pair),
-    })
 }
 
 /// The tensile onset of 1D classical SPH at `h`: growth at [`TENSION_FLOOR`] means `any`;
@@ -177,12 +101,8 @@ pub fn tensile_onset(k: &'static dyn Kernel, h: f64) -> Result<TensileOnset> {
     })
 }
 
-/// One kernel's row (the 2D scans within `budget`).
-pub fn kernel_row(
-    k: &'static dyn Kernel,
-    h_grid: &[f64],
-    budget: &Budget,
-) -> Result<KernelGuideRow> {
+/// One kernel's row.
+pub fn kernel_row(k: &'static dyn Kernel, h_grid: &[f64]) -> Result<KernelGuideRow> {
     let mut ts_jobs = Vec::new();
     for f in GUIDE_FORMS {
         for h in GUIDE_H {
@@ -195,7 +115,7 @@ pub fn kernel_row(
         .collect::<Result<Vec<_>>>()?;
     let compression = [1u8, 2]
         .par_iter()
-        .map(|&d| compression_scan(k, d, h_grid, budget))
+        .map(|&d| compression_scan(k, d, h_grid))
         .collect::<Result<Vec<_>>>()?;
     let tension = GUIDE_H
         .par_iter()
@@ -205,7 +125,7 @@ pub fn kernel_row(
         .par_iter()
         .map(|&d| Positivity {
             dim: d,
-            sign: wstar::sign_criterion_with(k, d as usize, WSTAR_K_STEP),
+            sign: sign_criterion_fast(k, d as usize, WSTAR_K_STEP),
         })
         .collect();
     Ok(KernelGuideRow {
@@ -225,7 +145,7 @@ pub fn kernel_guide(cfg: &GuideConfig) -> Result<KernelGuide> {
     let rows = cfg
         .kernels
         .par_iter()
-        .map(|&k| kernel_row(k, &h, &cfg.budget))
+        .map(|&k| kernel_row(k, &h))
         .collect::<Result<Vec<_>>>()?;
     Ok(KernelGuide {
         integrator: Integrator::Kdk.name().into(),

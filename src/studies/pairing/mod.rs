@@ -27,6 +27,7 @@ pub mod report;
 mod run;
 mod shard;
 pub mod wstar;
+pub mod wstar_scan;
 mod zone;
 
 pub use config::{
@@ -36,4 +37,4 @@ pub use config::{
 pub use report::{Onset, PairingReport, PairingRow, figure_svg, figure_title, table};
 pub use run::{evaluate_row, neighbour_count, onsets, row_query, run};
 pub use shard::PairingStudy;
-pub use zone::{DEGENERACY_TOL, LONGITUDINAL, ZoneGrowth, zone_growth};
+pub use zone::{DEGENERACY_TOL, LONGITUDINAL, ZoneGrowth, zone_growth, zone_growth_of};

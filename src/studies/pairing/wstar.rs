@@ -39,9 +39,9 @@ pub const NEGATIVE_TOL: f64 = 1e-12;
 /// 2D: the Hankel transform, 3D: Dehnen & Aly's criterion).
 #[derive(Clone, Debug)]
 pub struct Transform {
-    kernel: &'static dyn Kernel,
-    dim: usize,
-    norm: f64,
+    pub(super) kernel: &'static dyn Kernel,
+    pub(super) dim: usize,
+    pub(super) norm: f64,
 }
 
 impl Transform {
@@ -57,7 +57,7 @@ impl Transform {
     }
 
     /// ∫₀^ζ q^{D−1} f(q) φ_D(kq) dq.
-    fn raw(&self, k: f64) -> f64 {
+    pub(super) fn raw(&self, k: f64) -> f64 {
         let (kern, d) = (self.kernel, self.dim);
         let g = |q: f64| kern.f(d, q);
         match d {
@@ -132,45 +132,89 @@ pub fn sign_criterion_in(kernel: &'static dyn Kernel, dim: usize) -> WStarSign {
     sign_criterion_with(kernel, dim, K_STEP)
 }
 
-/// [`sign_criterion_in`] with scan step `k_step` (units 1/h; clamped into [1e-4, 1]).
-pub fn sign_criterion_with(kernel: &'static dyn Kernel, dim: usize, k_step: f64) -> WStarSign {
-    let t = Transform::new(kernel, dim);
+/// The scan grid of [`sign_criterion_with`]: k = i·`k_step`, i = 0 ..= round([`K_MAX`]/step),
+/// with `k_step` clamped into [1e-4, 1] ([`K_STEP`] if not finite).
+pub fn scan_grid(k_step: f64) -> Vec<f64> {
     let k_step = if k_step.is_finite() {
         k_step.clamp(1e-4, 1.0)
     } else {
         K_STEP
     };
     let n = (K_MAX / k_step).round() as usize;
-    let ks: Vec<f64> = (0..=n).map(|i| i as f64 * k_step).collect();
+    (0..=n).map(|i| i as f64 * k_step).collect()
+}
+
+/// What the scan decides from its samples w_i = W*(k_i) (then refined by [`refine`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Decisions {
+    /// The first index of the smallest sample (`total_cmp`).
+    pub(super) imin: usize,
+    /// w_imin.
+    pub(super) wmin: f64,
+    /// With i the first index with w_i < −[`NEGATIVE_TOL`]: the last j < i with w_j ≥ 0 (0 if
+    /// none) and whether w_{j+1} < 0.
+    pub(super) first: Option<(usize, bool)>,
+}
+
+/// [`sign_criterion_in`] with scan step `k_step` (units 1/h; clamped into [1e-4, 1]): every
+/// sample evaluated, the slow and obviously correct scan. [`sign_criterion_fast`] gives the
+/// same result to the last bit with a fraction of the evaluations.
+///
+/// [`sign_criterion_fast`]: super::wstar_scan::sign_criterion_fast
+pub fn sign_criterion_with(kernel: &'static dyn Kernel, dim: usize, k_step: f64) -> WStarSign {
+    let t = Transform::new(kernel, dim);
+    let ks = scan_grid(k_step);
     let w: Vec<f64> = ks.iter().map(|&k| t.at(k)).collect();
     let imin = (0..w.len())
         .min_by(|&a, &b| w[a].total_cmp(&w[b]))
         .unwrap_or(0);
+    let first = w.iter().position(|&v| v < -NEGATIVE_TOL).map(|i| {
+        // the last non-negative sample before i
+        let j = (0..i).rev().find(|&j| w[j] >= 0.0).unwrap_or(0);
+        (j, w[j + 1] < 0.0)
+    });
+    let d = Decisions {
+        imin,
+        wmin: w[imin],
+        first,
+    };
+    refine(kernel, &ks, d, |k| t.at(k))
+}
+
+/// The result of the scan from its decisions: the minimum refined by golden section on
+/// [k_{imin−1}, k_{imin+1}], the first zero bisected on the sign of W* (`at`, W*(k)/W*(0)).
+pub(super) fn refine(
+    kernel: &'static dyn Kernel,
+    ks: &[f64],
+    d: Decisions,
+    mut at: impl FnMut(f64) -> f64,
+) -> WStarSign {
+    let n = ks.len() - 1;
+    let imin = d.imin;
     // golden section on [k_{i−1}, k_{i+1}]
     let (mut lo, mut hi) = (ks[imin.saturating_sub(1)], ks[(imin + 1).min(n)]);
     let g = 0.5 * (5f64.sqrt() - 1.0);
     for _ in 0..80 {
         let (c, d) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if t.at(c) < t.at(d) {
+        if at(c) < at(d) {
             hi = d;
         } else {
             lo = c;
         }
     }
     let kmin = 0.5 * (lo + hi);
-    let (k_at_min, min) = if t.at(kmin) < w[imin] {
-        (kmin, t.at(kmin))
+    let (k_at_min, min) = if at(kmin) < d.wmin {
+        (kmin, at(kmin))
     } else {
-        (ks[imin], w[imin])
+        (ks[imin], d.wmin)
     };
-    let first = w.iter().position(|&v| v < -NEGATIVE_TOL).map(|i| {
-        // the last non-negative sample before i, then bisect on the sign
-        let j = (0..i).rev().find(|&j| w[j] >= 0.0).unwrap_or(0);
+    let first = d.first.map(|(j, bracketed)| {
+        // bisect on the sign between the last non-negative sample and the next
         let (mut a, mut b) = (ks[j], ks[j + 1]);
-        if w[j + 1] < 0.0 {
+        if bracketed {
             for _ in 0..200 {
                 let m = 0.5 * (a + b);
-                if t.at(m) >= 0.0 {
+                if at(m) >= 0.0 {
                     a = m;
                 } else {
                     b = m;

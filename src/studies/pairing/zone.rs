@@ -5,6 +5,7 @@ use crate::analysis::Query;
 use crate::error::{Error, Result};
 use crate::vonneumann::classify::GROWTH_TOL;
 use crate::vonneumann::linearise::Bloch;
+use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -82,7 +83,11 @@ pub const DEGENERACY_TOL: f64 = 1e-9;
 /// `pairing_at_the_symmetric_points_r_and_m_of_sc`). A single member of the eigenspace, such as
 /// the polarisation `query` prints at R (|ê·k̂|² = 1/3), says nothing about the eigenspace.
 pub(super) fn scan_k<const D: usize>(lin: &Bloch<D>, k: [f64; D]) -> Result<Scan> {
-    let d = lin.dynamical(k);
+    scan_dynamical(&lin.dynamical(k), k)
+}
+
+/// [`scan_k`] of the normalised dynamical matrix `d` at k.
+fn scan_dynamical<const D: usize>(d: &[[Complex64; D]; D], k: [f64; D]) -> Result<Scan> {
     let big = d.iter().flatten().map(|c| c.norm()).fold(0.0f64, f64::max);
     let m = nalgebra::DMatrix::from_fn(D, D, |a, b| 0.5 * (d[a][b].re + d[b][a].re));
     let asym = (0..D * D)
@@ -164,12 +169,61 @@ pub fn zone_growth<const D: usize>(q: &Query<D>) -> Result<ZoneGrowth> {
         .par_iter()
         .map(|&k| scan_k(&lin, k))
         .try_reduce(Scan::default, |x, y| Ok(x.merge(y)))?;
-    if !scan.all.growth.is_finite() {
-        return Err(Error::NonFinite("pairing growth rate"));
+    scan.growth()
+}
+
+/// [`zone_growth`] over given modes: each wave vector with its normalised dynamical matrix
+/// D(k)Δx²/c² (a closed form, for instance), by the same eigenspace rule; serial (the caller
+/// parallelises over its questions). A mode whose symmetric part is positive definite by a
+/// margin (`surely_stable`) has no growth to report and is not diagonalised: the result is
+/// the same.
+pub fn zone_growth_of<const D: usize>(
+    modes: impl IntoIterator<Item = ([f64; D], [[Complex64; D]; D])>,
+) -> Result<ZoneGrowth> {
+    let mut scan = Scan::default();
+    for (k, d) in modes {
+        if !surely_stable(&d) {
+            scan = scan.merge(scan_dynamical(&d, k)?);
+        }
     }
-    Ok(ZoneGrowth {
-        max_growth_rate: scan.all.rate(),
-        pairing_growth_rate: scan.long.rate(),
-        transverse_growth_rate: scan.trans.rate(),
-    })
+    scan.growth()
+}
+
+/// Whether every eigenvalue of the symmetric part of `d` is ≥ 0 with a margin of 64u times the
+/// sum of its entries' moduli (u = 2⁻⁵³), above the rounding of the symmetric eigendecomposition:
+/// then the eigenvalues [`scan_dynamical`] computes are > −[`GROWTH_TOL`]² (γ² = −ω²) for any
+/// matrix of entries below ~1e3, and it would report no growth. 2 × 2: the smallest eigenvalue
+/// in closed form; otherwise Gershgorin's lower bound. False for a non-finite entry.
+fn surely_stable<const D: usize>(d: &[[Complex64; D]; D]) -> bool {
+    let m = |a: usize, b: usize| 0.5 * (d[a][b].re + d[b][a].re);
+    let size: f64 = (0..D * D).map(|i| m(i / D, i % D).abs()).sum();
+    let lower = if D == 2 {
+        let (a, b, c) = (m(0, 0), m(0, 1), m(1, 1));
+        0.5 * (a + c) - (0.25 * (a - c) * (a - c) + b * b).sqrt()
+    } else {
+        (0..D)
+            .map(|a| {
+                m(a, a)
+                    - (0..D)
+                        .filter(|&b| b != a)
+                        .map(|b| m(a, b).abs())
+                        .sum::<f64>()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    size.is_finite() && lower - 64.0 * (f64::EPSILON / 2.0) * size >= 0.0
+}
+
+impl Scan {
+    /// The growth rates of the scan (an error if the fastest is not finite).
+    fn growth(&self) -> Result<ZoneGrowth> {
+        if !self.all.growth.is_finite() {
+            return Err(Error::NonFinite("pairing growth rate"));
+        }
+        Ok(ZoneGrowth {
+            max_growth_rate: self.all.rate(),
+            pairing_growth_rate: self.long.rate(),
+            transverse_growth_rate: self.trans.rate(),
+        })
+    }
 }

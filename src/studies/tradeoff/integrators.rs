@@ -265,7 +265,8 @@ pub fn analyse(
     for &kap in &ks {
         grows |= lin.growth(kap)? > GROWTH_TOL;
     }
-    let rep = IntegratorReport::of(&lin, &ks, integ, None, h)?;
+    // J(κ) once per mode, not once per mode and Δt of the bisection: the same report
+    let rep = IntegratorReport::of(&lin.mode_table(&ks), &ks, integ, None, h)?;
     row.critical_dt = rep.critical_dt.filter(|d| d.is_finite() && !grows);
     row.weak = rep.weak_instability;
     row.weak_growth_rate = rep.weak_instability.then_some(rep.spurious_growth_rate);

@@ -17,7 +17,7 @@ use crate::error::Result;
 use crate::forms::{Comp, FieldKind, FormKind, MassOperator, Model, ModelParams, State};
 use crate::integrator::Integrator;
 use crate::scalar::{DualN, Scalar};
-use crate::vonneumann::amplification::Modes;
+use crate::vonneumann::amplification::{ModeSystem, Modes};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -532,6 +532,74 @@ impl Modes for Linearisation {
     }
     fn eigenvalues(&self, kappa: f64) -> Result<Vec<Complex64>> {
         Linearisation::eigenvalues(self, kappa)
+    }
+}
+
+/// The mode systems (J(κ) with its position, velocity and auxiliary rows) of a κ grid, built
+/// once, as [`Modes`]: a time-step bisection asks the amplification matrices of the same modes
+/// at ~50 Δt, and [`Linearisation`]'s own [`Modes`] rebuilds J(κ) (a Fourier sum) for each. The
+/// same numbers bit for bit (the same J, the same arithmetic); a κ outside the grid is computed
+/// as [`Linearisation`] computes it.
+pub struct ModeTable<'a> {
+    lin: &'a Linearisation,
+    index: std::collections::HashMap<u64, usize>,
+    systems: Vec<ModeSystem>,
+}
+
+impl Linearisation {
+    /// The [`ModeTable`] of `kappas`.
+    pub fn mode_table(&self, kappas: &[f64]) -> ModeTable<'_> {
+        let c = &self.core;
+        ModeTable {
+            lin: self,
+            index: kappas
+                .iter()
+                .enumerate()
+                .map(|(i, k)| (k.to_bits(), i))
+                .collect(),
+            systems: kappas
+                .iter()
+                .map(|&k| {
+                    ModeSystem::new(self.jacobian(k), c.ix.clone(), c.iv.clone(), c.iq.clone())
+                })
+                .collect(),
+        }
+    }
+}
+
+impl ModeTable<'_> {
+    fn system(&self, kappa: f64) -> Option<&ModeSystem> {
+        self.index.get(&kappa.to_bits()).map(|&i| &self.systems[i])
+    }
+
+    /// Δt (units of Δx/c) in the units of J⁻¹.
+    fn dt(&self, dt: f64) -> f64 {
+        dt * self.lin.dx / self.lin.c
+    }
+}
+
+impl Modes for ModeTable<'_> {
+    type K = f64;
+    fn is_dissipative(&self) -> bool {
+        self.lin.dissipative
+    }
+    fn omega2_top(&self, kappa: f64) -> f64 {
+        self.lin.omega2_top(kappa)
+    }
+    fn amplification_with(&self, kappa: f64, dt: f64, integ: Integrator) -> DMatrix<Complex64> {
+        match self.system(kappa) {
+            Some(m) => m.amplification_with(integ, self.dt(dt)),
+            None => self.lin.amplification_with(kappa, dt, integ),
+        }
+    }
+    fn growth_per_step(&self, kappa: f64, dt: f64, integ: Integrator) -> Result<f64> {
+        match self.system(kappa) {
+            Some(m) => m.growth_per_step(integ, self.dt(dt)),
+            None => Modes::growth_per_step(self.lin, kappa, dt, integ),
+        }
+    }
+    fn eigenvalues(&self, kappa: f64) -> Result<Vec<Complex64>> {
+        Linearisation::eigenvalues(self.lin, kappa)
     }
 }
 

@@ -9,5 +9,5 @@ pub mod chain;
 pub mod columns;
 
 pub use bloch::{Bloch, base_state, check_patch_budget, lattice_particles, periodic_lattice};
-pub use chain::{Dof, Lattice1D, Linearisation, PhaseTable, has_consistent_mass};
+pub use chain::{Dof, Lattice1D, Linearisation, ModeTable, PhaseTable, has_consistent_mass};
 pub use columns::{Phase, REST_RATE_TOL, ZERO_SUM_TOL, eigen, eigen_stalls_first_attempt};
