@@ -68,6 +68,9 @@ const DIMENSIONLESS: &[&str] = &[
     "amplitude_error_20ppw",
     "wave_l2_error",
     "order",
+    "grid_2d",
+    "kappa_points",
+    "safety",
     "index",
     "total_cells",
     "kappas",
@@ -132,6 +135,7 @@ fn every_json_output_names_its_units() {
         "art-stress --eps 0,0.3 --json",
         "tradeoff --forms classical --kernels m4 --h-points 1 --repeats 1 --json",
         "atlas --forms classical --kernels m4 --h-points 2 --stress-points 2 --kappas 16 --json",
+        "kernels --table --kernels m4 --h-step 0.5 --json",
     ];
     for args in cases {
         doc(&args.split(' ').collect::<Vec<_>>());

@@ -52,7 +52,10 @@ fn guide(a: &Args) -> Result<()> {
     }
     let g = kernel_guide(&cfg)?;
     if a.json {
-        println!("{}", serde_json::to_string(&g)?);
+        println!(
+            "{}",
+            crate::units::json(&g, crate::units::System::Normalised, false)?
+        );
     } else {
         print!("{}", markdown(&g));
     }

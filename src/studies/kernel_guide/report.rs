@@ -180,7 +180,9 @@ fn fmt_min(m: f64) -> String {
 pub fn markdown(g: &KernelGuide) -> String {
     let [h1, h2] = [g.h_values[0], g.h_values[1]];
     let mut s = format!(
-        "Kernel guide: every number measured by the engine (`sphstab kernels --table --json` gives them all). \
+        "Kernel guide (`sphstab kernels --table --json` gives every number): time steps, phase errors and tensile onsets \
+from the engine; the compression columns from the derived closed form of classical SPH on lattice sums \
+(`vonneumann::derived`, equal to the engine to 1e-12 where tested); W* by quadrature of the kernel's transform. \
 h = h/Δx in the kernel's own convention, support R = ζh; 1D periodic chain unless stated; no viscosity.\n\n\
 **Time step and accuracy** (1D, σ̄ = 0, `{}`, {} κ points in (0, π]): CFL = c Δt_crit/h (the cells of \
 `tradeoff --cfl-table`); phase error = (ω_num − ω)·T in radians per wavelength travelled (negative: the wave lags; \
