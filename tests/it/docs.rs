@@ -196,17 +196,15 @@ fn run_page(page: &Path) -> Vec<String> {
                 c.line,
                 out.status.code()
             )),
-            None => {}
-            Some((code, e)) => {
-                if out.status.code() != Some(*code) || stderr.trim_end() != e {
-                    failures.push(format!(
-                        "{name}: `{}` should fail with exit {code} and\n  {e}\nbut exited {:?} with\n  {}",
-                        c.line,
-                        out.status.code(),
-                        stderr.trim_end()
-                    ));
-                }
+            Some((code, e)) if out.status.code() != Some(*code) || stderr.trim_end() != e => {
+                failures.push(format!(
+                    "{name}: `{}` should fail with exit {code} and\n  {e}\nbut exited {:?} with\n  {}",
+                    c.line,
+                    out.status.code(),
+                    stderr.trim_end()
+                ))
             }
+            _ => {}
         }
         if let Some(shown) = &c.output
             && let Err(run) = shown_in(shown, &stdout)
