@@ -2,7 +2,7 @@
 //! dimension ([`SCHEMA_VERSION`]). A field that does not apply in a dimension is absent, never
 //! renamed; wave vectors are arrays of D components (1D: `[κΔx]`), branches are arrays of D
 //! values (1D: the one mechanical branch). The schema is documented field by field here and in
-//! the README (section "JSON output").
+//! docs/json.md.
 
 use super::common::{IntegratorReport, Setup};
 use super::query::{MaterialSpec, Query};

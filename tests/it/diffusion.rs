@@ -575,7 +575,7 @@ fn delta_sph_destabilises_classical_sph_in_compression() {
     );
     assert!((meas / gamma - 1.0).abs() < 1e-5, "{meas} vs {gamma}");
 
-    // 4. 2D, the README's statements (16² zone grid): an elastic lattice carries its stress
+    // 4. 2D, the statements of docs/delta-sph.md (16² zone grid): an elastic lattice carries its stress
     // as a state, so the sum form's σ/ρ² term is the 1D mechanism and δ-SPH adds growth under
     // compression; in a fluid the stress is the density, which the diffusion damps
     let grows_2d = |material: &str, delta: bool| {

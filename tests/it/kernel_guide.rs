@@ -287,7 +287,7 @@ fn compression_1d_closed_form_is_the_engine() {
 /// The 2D column: the closed form on the pairing study's zone scan gives the engine's
 /// `zone_growth` (the Bloch linearisation of the periodic patch) — all three rates to 1e-12
 /// c/Δx (8e-15 measured) at every fifth h of each kernel's 2D scan (the patch costs ~10 ms per h;
-/// the README block, the command's output at every h, is checked below).
+/// the docs/kernels.md block, the command's output at every h, is checked below).
 #[test]
 fn compression_2d_closed_form_is_the_engine() {
     let h = GuideConfig::default().h_grid();

@@ -47,7 +47,7 @@ fn small_box(form: FormKind, t_end: f64) -> SwegleReport {
     r
 }
 
-/// The sizes the help text and README state: the dense operator (the reference, and the
+/// The sizes the help text and docs/swegle.md state: the dense operator (the reference, and the
 /// prediction of a box in which the iterative search finds no growing mode) up to 12³ (6³ free
 /// particles, 648 ≤ 1,000 degrees of freedom), which is also the default 3D box; 2D unchanged
 /// (21, 28).
@@ -393,7 +393,7 @@ fn iterative_prediction_falls_back_and_keeps_the_budget() {
     }
 }
 
-/// The table of the README's "3D Swegle" line (classical m4 h = 1.2, f = 0.99, kick 1e-14,
+/// The table of the "3D Swegle" line of docs/results.md (classical m4 h = 1.2, f = 0.99, kick 1e-14,
 /// `--until-window`): measured against the box prediction at 12³ (dense), 13³, 17³ and 21³
 /// (iterative), each within 2%, with the fastest mode the centre kick can excite (the Krylov
 /// space of the run's initial velocity; at odd sizes the kick sits on every mirror plane of the

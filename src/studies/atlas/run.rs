@@ -174,7 +174,7 @@ pub fn run(cfg: &AtlasConfig, progress: impl Progress) -> Result<AtlasReport> {
 /// The work the atlas cannot avoid: for every cell, one Fourier term per κ point per lattice
 /// neighbour inside the kernel support (offsets j ≠ 0 with |j|Δx < R = ζh). At the 1 ns a term
 /// costs (a multiply-add with a tabulated phase and the loop around it), this many
-/// nanoseconds of CPU is the "lattice-sum limit" the README compares the atlas with; it
+/// nanoseconds of CPU is the "lattice-sum limit" docs/benchmarks.md compares the atlas with; it
 /// ignores the linearisation of each cell and the reduction to ω².
 pub fn lattice_sum_terms(rep: &AtlasReport) -> f64 {
     rep.cells
