@@ -166,9 +166,14 @@ fn copy_dir(from: &Path, to: &Path) {
 
 /// Runs the commands of one page in a scratch directory; returns the failures.
 fn run_page(page: &Path) -> Vec<String> {
-    let name = page.file_name().unwrap().to_string_lossy().to_string();
+    // README.md or docs/X.md: the scratch directory's name must tell README.md from docs/README.md
+    let name = page.strip_prefix(root()).unwrap().display().to_string();
     let text = std::fs::read_to_string(page).unwrap();
-    let dir = std::env::temp_dir().join(format!("sphstab-docs-{}-{name}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "sphstab-docs-{}-{}",
+        std::process::id(),
+        name.replace('/', "-")
+    ));
     let _ = std::fs::remove_dir_all(&dir);
     copy_dir(&root().join("analysis"), &dir.join("analysis"));
     copy_dir(&root().join("figures"), &dir.join("figures"));
