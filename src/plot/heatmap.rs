@@ -172,7 +172,7 @@ pub fn heatmap_svg(
         )?;
         root.present().map_err(plot_err)?;
     }
-    Ok(svg)
+    super::print::finish(&svg, super::print::Width::Single)
 }
 
 #[cfg(test)]

@@ -426,7 +426,7 @@ impl LinePlot {
             }
             root.present().map_err(plot_err)?;
         }
-        Ok(svg)
+        super::print::finish(&svg, super::print::Width::Double)
     }
 }
 

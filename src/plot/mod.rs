@@ -1,11 +1,13 @@
 //! Plots as pure functions returning SVG strings (plotters SVG backend, no system fonts), all
 //! drawn by one layer: the styles of [`style`] (Okabe–Ito colours, marker shapes, dash
 //! patterns; legend samples drawn by the same code as their series), the axes of [`axes`]
-//! (automatic ranges from the data, decade ticks on log axes), legends outside the data.
+//! (automatic ranges from the data, decade ticks on log axes), legends outside the data;
+//! the print geometry of [`print`] (85 or 170 mm wide, type in points, one font family).
 
 pub mod axes;
 mod heatmap;
 mod lines;
+pub mod print;
 mod scatter;
 mod stack;
 pub mod style;

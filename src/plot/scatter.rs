@@ -178,7 +178,7 @@ pub fn pareto_svg(
         .map_err(plot_err)?;
         root.present().map_err(plot_err)?;
     }
-    Ok(svg)
+    super::print::finish(&svg, super::print::Width::Double)
 }
 
 /// One curve of a multi-panel figure ([`panels_svg`]); curve i of every panel is drawn in the
@@ -353,7 +353,7 @@ pub fn panels_svg(
         )?;
         root.present().map_err(plot_err)?;
     }
-    Ok(svg)
+    super::print::finish(&svg, super::print::Width::Double)
 }
 
 /// One panel of [`scatter_panels_svg`]: caption and points (legend index, x, y).
@@ -482,7 +482,7 @@ pub fn scatter_panels_svg(
         )?;
         root.present().map_err(plot_err)?;
     }
-    Ok(svg)
+    super::print::finish(&svg, super::print::Width::Double)
 }
 
 #[cfg(test)]

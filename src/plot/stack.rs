@@ -6,23 +6,12 @@ use crate::error::{Error, Result};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-/// Width and height (pixels) of an SVG drawn by this module's plots: the `width` and `height`
-/// attributes of its root element.
+/// Width and height (canvas pixels) of an SVG drawn by this module's plots: its `viewBox`
+/// (see [`canvas_size`](super::print::canvas_size)), rounded to whole pixels.
 pub fn svg_size(svg: &str) -> Result<(u32, u32)> {
-    let bad = || Error::Incompatible("panel: not an SVG with width and height".into());
-    let head = svg
-        .strip_prefix("<svg ")
-        .and_then(|r| r.split('>').next())
-        .ok_or_else(bad)?;
-    let attr = |name: &str| -> Option<u32> {
-        let key = format!(" {name}=\"");
-        let i = format!(" {head}").find(&key)? + key.len() - 1;
-        head.get(i..)?.split('"').next()?.parse().ok()
-    };
-    Ok((
-        attr("width").ok_or_else(bad)?,
-        attr("height").ok_or_else(bad)?,
-    ))
+    let (w, h) = super::print::canvas_size(svg)
+        .map_err(|_| Error::Incompatible("panel: not an SVG with width and height".into()))?;
+    Ok((w.round() as u32, h.round() as u32))
 }
 
 /// One SVG of `title` (18 px, wrapped, centred) above `panels` stacked top to bottom, each
@@ -58,13 +47,20 @@ pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
         .ok_or_else(|| Error::Incompatible("title strip: unterminated SVG".into()))?
         .to_string();
     let mut y = strip;
-    for (p, &(_, h)) in panels.iter().zip(&sizes) {
-        let body = p.trim_end().strip_prefix("<svg ").unwrap_or(p);
+    for (p, &(w, h)) in panels.iter().zip(&sizes) {
+        // the panel nested at its canvas size (its print size is the figure's)
+        let px = super::print::set_root_size(
+            p,
+            &w.to_string(),
+            &h.to_string(),
+            &format!("0 0 {w} {h}"),
+        )?;
+        let body = px.trim_end().strip_prefix("<svg ").unwrap_or(&px);
         out.push_str(&format!("<svg x=\"0\" y=\"{y}\" {body}\n"));
         y += h;
     }
     out.push_str("</svg>\n");
-    Ok(out)
+    super::print::finish(&out, super::print::Width::Double)
 }
 
 #[cfg(test)]

@@ -285,7 +285,7 @@ pub fn text<DB: DrawingBackend>(
     size: u32,
     color: RGBColor,
 ) -> Result<()> {
-    let style = TextStyle::from(("sans-serif", size).into_font()).color(&color);
+    let style = TextStyle::from((super::print::FONT_FAMILY, size).into_font()).color(&color);
     area.draw(&Text::new(s.to_string(), px((x, y)), style))
         .map_err(plot_err)
 }
@@ -302,7 +302,7 @@ pub fn text_at<DB: DrawingBackend>(
     ),
     rotate: bool,
 ) -> Result<()> {
-    let mut style = TextStyle::from(("sans-serif", size).into_font())
+    let mut style = TextStyle::from((super::print::FONT_FAMILY, size).into_font())
         .pos(plotters::style::text_anchor::Pos::new(anchor.0, anchor.1));
     if rotate {
         style = style.transform(FontTransform::Rotate270);

@@ -62,6 +62,7 @@ mod docs;
 mod figures;
 mod kernel_guide;
 mod pairing;
+mod print;
 mod reproduction;
 mod shard;
 mod tradeoff;

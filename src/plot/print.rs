@@ -1,0 +1,184 @@
+//! The print geometry of every figure, in one place: page widths in millimetres, the drawing
+//! scale (canvas pixels per millimetre), type sizes and line widths in points at print size,
+//! one font family, and [`finish`], which turns a canvas-pixel SVG into one printed at 85 or
+//! 170 mm.
+//!
+//! A figure is drawn on a canvas of `width_mm · S × height_mm · S` pixels (S = [`PX_PER_MM`])
+//! and its root `<svg>` then carries `width="170mm"` and `viewBox="0 0 W H"`: plotters' SVG
+//! backend writes whole-pixel coordinates, which at S = 20 px/mm are 0.05 mm apart at print
+//! size, below what paper or a zoomed screen shows.
+
+use crate::error::{Error, Result};
+
+/// Canvas pixels per millimetre at print size.
+pub const PX_PER_MM: f64 = 20.0;
+
+/// Millimetres per point (1 pt = 1/72 inch).
+pub const MM_PER_PT: f64 = 25.4 / 72.0;
+
+/// Canvas pixels per point at print size (S · 25.4/72 ≈ 7.06 at S = 20).
+pub const PX_PER_PT: f64 = PX_PER_MM * MM_PER_PT;
+
+/// The one font family of every figure: DejaVu Sans where installed, else the metric-alike
+/// sans serifs every system has.
+pub const FONT_FAMILY: &str = "DejaVu Sans, Arial, Helvetica, sans-serif";
+
+/// Tick labels, pt.
+pub const TICK_PT: f64 = 7.0;
+/// Axis labels and titles, pt.
+pub const LABEL_PT: f64 = 8.0;
+/// Legend entries, pt.
+pub const LEGEND_PT: f64 = 7.0;
+/// Panel letters (a), (b), …, pt.
+pub const PANEL_LETTER_PT: f64 = 9.0;
+/// No text anywhere is smaller, pt.
+pub const MIN_TEXT_PT: f64 = 6.0;
+
+/// Lines of data series, pt.
+pub const SERIES_LINE_PT: f64 = 1.0;
+/// Frames, ticks and reference lines, pt.
+pub const FRAME_LINE_PT: f64 = 0.5;
+/// No line anywhere is thinner, pt.
+pub const MIN_LINE_PT: f64 = 0.5;
+
+/// The printed width of a figure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Width {
+    /// One journal column, 85 mm: a single small panel.
+    Single,
+    /// Two columns, 170 mm: multi-panel figures, studies, plots with a legend column.
+    Double,
+}
+
+impl Width {
+    /// Width in millimetres.
+    pub fn mm(self) -> f64 {
+        match self {
+            Width::Single => 85.0,
+            Width::Double => 170.0,
+        }
+    }
+
+    /// Width of the canvas in pixels (`mm · S`).
+    pub fn px(self) -> f64 {
+        self.mm() * PX_PER_MM
+    }
+}
+
+/// Canvas pixels of a length of `pt` points at print size.
+pub fn pt(pt: f64) -> f64 {
+    pt * PX_PER_PT
+}
+
+/// The size to give plotters for text of `pt` points: its SVG backend writes
+/// `font-size = size / 1.24`, so the written size is `pt · PX_PER_PT` canvas pixels.
+pub fn font_size(pt: f64) -> f64 {
+    pt * PX_PER_PT * 1.24
+}
+
+/// Line width (whole canvas pixels, as plotters takes it) of `pt` points, at least
+/// [`MIN_LINE_PT`].
+pub fn line_width(pt: f64) -> u32 {
+    (pt.max(MIN_LINE_PT) * PX_PER_PT).round() as u32
+}
+
+/// The opening tag of the root `<svg …>` element and the rest of the document.
+fn split_root(svg: &str) -> Result<(&str, &str)> {
+    let bad = || Error::Incompatible("not an SVG document with a root <svg> element".into());
+    let start = svg.find("<svg").ok_or_else(bad)?;
+    let end = start + svg[start..].find('>').ok_or_else(bad)?;
+    Ok((&svg[start..end], &svg[end..]))
+}
+
+/// The value of attribute `name` in an opening tag.
+pub fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
+    let key = format!(" {name}=\"");
+    let i = tag.find(&key)? + key.len();
+    tag[i..].split('"').next()
+}
+
+/// Width and height in canvas pixels of an SVG drawn by plotters or finished by [`finish`]:
+/// its `viewBox` when it has one, else its `width` and `height`.
+pub fn canvas_size(svg: &str) -> Result<(f64, f64)> {
+    let (tag, _) = split_root(svg)?;
+    let bad = || Error::Incompatible("SVG without a viewBox or pixel width and height".into());
+    if let Some(vb) = attr(tag, "viewBox") {
+        let v: Vec<f64> = vb
+            .split([' ', ','])
+            .filter(|s| !s.is_empty())
+            .map(str::parse)
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|_| bad())?;
+        return match v[..] {
+            [_, _, w, h] => Ok((w, h)),
+            _ => Err(bad()),
+        };
+    }
+    let num = |n: &str| -> Result<f64> {
+        attr(tag, n)
+            .and_then(|s| s.trim_end_matches("px").parse().ok())
+            .ok_or_else(bad)
+    };
+    Ok((num("width")?, num("height")?))
+}
+
+/// Rewrites the root element's `width`, `height` and `viewBox` (the other attributes, and
+/// everything else, unchanged).
+pub fn set_root_size(svg: &str, width: &str, height: &str, view_box: &str) -> Result<String> {
+    let (tag, rest) = split_root(svg)?;
+    let start = svg.len() - rest.len() - tag.len();
+    let mut kept = String::from("<svg");
+    // attributes as name="value" pairs; plotters writes no '"' inside values
+    let mut parts = tag["<svg".len()..].split('"');
+    while let (Some(name), Some(value)) = (parts.next(), parts.next()) {
+        let name = name.trim().trim_end_matches('=');
+        if !matches!(name, "width" | "height" | "viewBox") {
+            kept.push_str(&format!(" {name}=\"{value}\""));
+        }
+    }
+    Ok(format!(
+        "{}{kept} width=\"{width}\" height=\"{height}\" viewBox=\"{view_box}\"{rest}",
+        &svg[..start]
+    ))
+}
+
+/// The one post-processing step of every figure: sets the root `<svg>` to `width` millimetres
+/// wide, its height in proportion, with a `viewBox` of the canvas in pixels, so that the
+/// canvas pixels become sub-millimetre units at print size.
+pub fn finish(svg: &str, width: Width) -> Result<String> {
+    let (w, h) = canvas_size(svg)?;
+    let height_mm = width.mm() * h / w;
+    set_root_size(
+        svg,
+        &format!("{}mm", width.mm()),
+        &format!("{}mm", (height_mm * 100.0).round() / 100.0),
+        &format!("0 0 {w} {h}"),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finish_sets_millimetres_and_keeps_the_canvas_as_view_box() {
+        let svg = "<svg width=\"3400\" height=\"1700\" viewBox=\"0 0 3400 1700\" \
+                   xmlns=\"http://www.w3.org/2000/svg\">\n<rect x=\"0\"/>\n</svg>\n";
+        let out = finish(svg, Width::Double).unwrap();
+        assert!(out.starts_with(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"170mm\" height=\"85mm\" \
+             viewBox=\"0 0 3400 1700\">"
+        ));
+        assert!(out.ends_with("<rect x=\"0\"/>\n</svg>\n"));
+        assert_eq!(canvas_size(&out).unwrap(), (3400.0, 1700.0));
+        assert_eq!(finish(&out, Width::Double).unwrap(), out);
+    }
+
+    #[test]
+    fn sizes_convert_through_points() {
+        assert!((pt(1.0) - 20.0 * 25.4 / 72.0).abs() < 1e-12);
+        assert!((font_size(7.0) / 1.24 / PX_PER_MM / MM_PER_PT - 7.0).abs() < 1e-12);
+        assert!(line_width(0.1) as f64 >= MIN_LINE_PT * PX_PER_PT - 0.5);
+        assert_eq!(Width::Single.px(), 1700.0);
+    }
+}
