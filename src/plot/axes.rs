@@ -271,9 +271,9 @@ impl Frame {
     }
 
     /// Draws the grid, the box, ticks with labels and the two axis descriptions.
-    pub fn draw<DB: DrawingBackend>(
+    pub fn draw(
         &self,
-        area: &DrawingArea<DB, Shift>,
+        area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
         x_desc: &str,
         y_desc: &str,
         named_x: Option<&[(f64, String)]>,

@@ -69,7 +69,8 @@ pub fn heatmap_svg(
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (width as u32, height as u32)).into_drawing_area();
+            super::canvas::Canvas::new(&mut svg, super::print::Width::Single, (width, height))
+                .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (k, line) in title_lines.iter().enumerate() {
             text_at(

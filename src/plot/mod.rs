@@ -5,6 +5,7 @@
 //! the print geometry of [`print`] (85 or 170 mm wide, type in points, one font family).
 
 pub mod axes;
+pub mod canvas;
 mod heatmap;
 mod lines;
 pub mod print;

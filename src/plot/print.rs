@@ -29,6 +29,8 @@ pub const TICK_PT: f64 = 7.0;
 pub const LABEL_PT: f64 = 8.0;
 /// Legend entries, pt.
 pub const LEGEND_PT: f64 = 7.0;
+/// Figure titles, pt.
+pub const TITLE_PT: f64 = 9.0;
 /// Panel letters (a), (b), …, pt.
 pub const PANEL_LETTER_PT: f64 = 9.0;
 /// No text anywhere is smaller, pt.

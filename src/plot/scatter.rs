@@ -10,8 +10,8 @@ use crate::error::{Error, Result};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-fn title_lines<DB: DrawingBackend>(
-    root: &DrawingArea<DB, plotters::coord::Shift>,
+fn title_lines(
+    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
     title: &str,
     width: f64,
 ) -> Result<f64> {
@@ -105,7 +105,8 @@ pub fn pareto_svg(
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (width as u32, height as u32)).into_drawing_area();
+            super::canvas::Canvas::new(&mut svg, super::print::Width::Double, (width, height))
+                .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         title_lines(&root, title, width)?;
         frame.draw(&root, x_desc, y_desc, None)?;
@@ -211,8 +212,8 @@ pub fn panel_style(i: usize) -> Style {
     Style { width: 1, ..s }
 }
 
-fn legend_column<DB: DrawingBackend>(
-    root: &DrawingArea<DB, plotters::coord::Shift>,
+fn legend_column(
+    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
     legend: &[String],
     notes: &[Option<String>],
     style: impl Fn(usize) -> Style,
@@ -242,8 +243,8 @@ fn legend_column<DB: DrawingBackend>(
 }
 
 /// A panel's title above its frame, then the frame (grid, box, ticks, axis descriptions).
-fn draw_panel<DB: DrawingBackend>(
-    root: &DrawingArea<DB, plotters::coord::Shift>,
+fn draw_panel(
+    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
     frame: &Frame,
     title: &str,
     x_desc: &str,
@@ -314,7 +315,8 @@ pub fn panels_svg(
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (width as u32, height as u32)).into_drawing_area();
+            super::canvas::Canvas::new(&mut svg, super::print::Width::Double, (width, height))
+                .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         title_lines(&root, title, width)?;
         for (pi, panel) in panels.iter().enumerate() {
@@ -461,7 +463,8 @@ pub fn scatter_panels_svg(
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (width as u32, height as u32)).into_drawing_area();
+            super::canvas::Canvas::new(&mut svg, super::print::Width::Double, (width, height))
+                .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         title_lines(&root, title, width)?;
         for (col, panel) in panels.iter().enumerate() {

@@ -1,6 +1,8 @@
 //! Figures of several panels: a title strip and the panels' own SVGs stacked top to bottom,
 //! each panel kept whole (its frame, legend and caption) as a nested `<svg>`.
 
+use super::canvas::Canvas;
+use super::print::{TITLE_PT, Width, font_size, pt};
 use super::style::{plot_err, text_at, wrap};
 use crate::error::{Error, Result};
 use plotters::prelude::*;
@@ -21,20 +23,30 @@ pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
         .iter()
         .map(|p| svg_size(p))
         .collect::<Result<Vec<_>>>()?;
-    let width = sizes.iter().map(|s| s.0).max().unwrap_or(600);
-    let lines = wrap(title, ((f64::from(width) - 40.0) / (0.56 * 18.0)) as usize);
-    let strip = (12.0 + 23.0 * lines.len() as f64 + 6.0) as u32;
+    // the panels are at print resolution (zoom 1): the title is set in points
+    let width = sizes.iter().map(|s| s.0).max().unwrap_or(3400);
+    let fs = font_size(TITLE_PT);
+    let lines = wrap(
+        title,
+        ((f64::from(width) - pt(12.0)) / (0.56 * fs)) as usize,
+    );
+    let strip = (pt(4.0) + fs * lines.len() as f64 + pt(2.0)).round() as u32;
     let height = strip + sizes.iter().map(|s| s.1).sum::<u32>();
     let mut head = String::new();
     {
-        let root = SVGBackend::with_string(&mut head, (width, height)).into_drawing_area();
+        let root = Canvas::new(
+            &mut head,
+            Width::Double,
+            (f64::from(width), f64::from(height)),
+        )
+        .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (k, line) in lines.iter().enumerate() {
             text_at(
                 &root,
                 line,
-                (f64::from(width) / 2.0, 12.0 + 23.0 * k as f64),
-                18,
+                (f64::from(width) / 2.0, pt(4.0) + fs * k as f64),
+                fs.round() as u32,
                 (HPos::Center, VPos::Top),
                 false,
             )?;

@@ -2,6 +2,7 @@
 //! patterns, and the drawing of a style (line, marker, legend sample) — one definition, so a
 //! legend sample is drawn exactly like its series.
 
+use super::canvas::{Fine, FineKind};
 use crate::error::{Error, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -170,16 +171,29 @@ fn px(p: (f64, f64)) -> (i32, i32) {
     (p.0.round() as i32, p.1.round() as i32)
 }
 
+/// Draws a [`Fine`] element: fractional layout pixels, kept to the canvas pixel.
+fn fine(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
+    pts: Vec<(f64, f64)>,
+    color: RGBColor,
+    kind: FineKind,
+) -> Result<()> {
+    area.draw(&Fine { pts, color, kind }).map_err(plot_err)
+}
+
 /// Draws a polyline (pixels) in `style` (its dash pattern, no markers).
-pub fn draw_line<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
+pub fn draw_line(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
     pts: &[(f64, f64)],
     style: &Style,
 ) -> Result<()> {
     for piece in dash_polyline(pts, style.dash.pattern()) {
-        let v: Vec<(i32, i32)> = piece.into_iter().map(px).collect();
-        area.draw(&PathElement::new(v, style.color.stroke_width(style.width)))
-            .map_err(plot_err)?;
+        fine(
+            area,
+            piece,
+            style.color,
+            FineKind::Path(f64::from(style.width)),
+        )?;
     }
     Ok(())
 }
@@ -216,8 +230,8 @@ fn marker_polygon(m: Marker, r: f64) -> Option<Vec<(f64, f64)>> {
 }
 
 /// Draws the marker of `style` at pixel `at` (radius ~4 px), filled or hollow.
-pub fn draw_marker<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
+pub fn draw_marker(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
     at: (f64, f64),
     style: &Style,
 ) -> Result<()> {
@@ -225,28 +239,21 @@ pub fn draw_marker<DB: DrawingBackend>(
     let r = 4.0;
     match marker_polygon(style.marker, r) {
         None => {
-            let s = if style.filled {
-                c.filled()
-            } else {
-                c.stroke_width(2)
-            };
-            area.draw(&Circle::new(px(at), r as i32, s))
-                .map_err(plot_err)?;
+            let stroke = (!style.filled).then_some(2.0);
+            fine(area, vec![at], c, FineKind::Circle(r, stroke))?;
         }
         Some(poly) => {
-            let v: Vec<(i32, i32)> = poly
+            let v: Vec<(f64, f64)> = poly
                 .into_iter()
-                .map(|(x, y)| px((at.0 + x, at.1 + y)))
+                .map(|(x, y)| (at.0 + x, at.1 + y))
                 .collect();
             if style.filled {
-                area.draw(&Polygon::new(v, c.filled())).map_err(plot_err)?;
+                fine(area, v, c, FineKind::Fill)?;
             } else {
                 let mut closed = v.clone();
                 closed.push(v[0]);
-                area.draw(&Polygon::new(v, WHITE.filled()))
-                    .map_err(plot_err)?;
-                area.draw(&PathElement::new(closed, c.stroke_width(2)))
-                    .map_err(plot_err)?;
+                fine(area, v, WHITE, FineKind::Fill)?;
+                fine(area, closed, c, FineKind::Path(2.0))?;
             }
         }
     }
@@ -256,8 +263,8 @@ pub fn draw_marker<DB: DrawingBackend>(
 /// Draws a legend sample `w` pixels wide starting at `(x, y)`: the line of `style` (when
 /// `line`) with the dash pattern of its series ([`sample_pieces`]) and the marker in the middle
 /// (when `marker`).
-pub fn draw_sample<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
+pub fn draw_sample(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
     (x, y): (f64, f64),
     w: f64,
     style: &Style,
@@ -266,9 +273,12 @@ pub fn draw_sample<DB: DrawingBackend>(
 ) -> Result<()> {
     if line {
         for piece in sample_pieces(style, x, y, w) {
-            let v: Vec<(i32, i32)> = piece.into_iter().map(px).collect();
-            area.draw(&PathElement::new(v, style.color.stroke_width(style.width)))
-                .map_err(plot_err)?;
+            fine(
+                area,
+                piece,
+                style.color,
+                FineKind::Path(f64::from(style.width)),
+            )?;
         }
     }
     if marker {
@@ -278,8 +288,8 @@ pub fn draw_sample<DB: DrawingBackend>(
 }
 
 /// Draws text with its top-left corner at `(x, y)`.
-pub fn text<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
+pub fn text(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
     s: &str,
     (x, y): (f64, f64),
     size: u32,
@@ -291,8 +301,8 @@ pub fn text<DB: DrawingBackend>(
 }
 
 /// Draws text anchored at `(x, y)` by `h`, `v`, optionally rotated (270: reads upwards).
-pub fn text_at<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
+pub fn text_at(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
     s: &str,
     (x, y): (f64, f64),
     size: u32,

@@ -101,8 +101,12 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
     let x_scale = Scale::Linear(-0.02 * xmax, 1.03 * xmax);
     let mut svg = String::new();
     {
-        let root =
-            SVGBackend::with_string(&mut svg, (width as u32, height as u32)).into_drawing_area();
+        let root = crate::plot::canvas::Canvas::new(
+            &mut svg,
+            crate::plot::print::Width::Double,
+            (width, height),
+        )
+        .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (k, line) in lines.iter().enumerate() {
             text_at(
@@ -233,5 +237,5 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
         .map_err(plot_err)?;
         root.present().map_err(plot_err)?;
     }
-    Ok(svg)
+    crate::plot::print::finish(&svg, crate::plot::print::Width::Double)
 }
