@@ -3,7 +3,7 @@
 //! Every layout coordinate, line width and text size is multiplied by the zoom
 //! `canvas px / layout px`; curves and markers ([`Fine`]) keep their fractional layout
 //! coordinates up to the canvas pixel (0.05 mm at print size), so they are not staircases.
-//! No line is thinner than [`MIN_LINE_PT`](super::print::MIN_LINE_PT).
+//! No line is thinner than [`MIN_LINE_PT`].
 
 use super::print::{MIN_LINE_PT, Width, pt};
 use plotters::backend::DrawingBackend;
@@ -137,7 +137,13 @@ impl DrawingBackend for Canvas<'_> {
     ) -> Res {
         let st = self.zoomed(s);
         let (a, b) = (self.at(a), self.at(b));
-        self.inner.draw_rect(a, b, &st, fill)
+        if fill {
+            self.inner.draw_rect(a, b, &st, true)
+        } else {
+            // plotters writes an outlined rect without stroke-width: a closed path has one
+            let ring = [a, (b.0, a.1), b, (a.0, b.1), a];
+            self.inner.draw_path(ring, &st)
+        }
     }
     fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
         &mut self,
@@ -253,5 +259,35 @@ impl Drawable<Canvas<'_>> for Fine {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::plot::print::{MIN_LINE_PT, PX_PER_MM, pt};
+    use crate::plot::{Curve, LinePlot, svg_size};
+
+    #[test]
+    fn plots_are_drawn_at_print_resolution_with_lines_of_half_a_point() {
+        let c = Curve {
+            label: "a".into(),
+            x: (0..50).map(|i| f64::from(i) * 0.1).collect(),
+            y: (0..50).map(|i| (f64::from(i) * 0.1).sin()).collect(),
+            dashed: false,
+        };
+        let svg = LinePlot::new("t", "x", "y", vec![c]).svg().unwrap();
+        assert!(svg.starts_with("<svg") && svg[..200].contains("width=\"170mm\""));
+        assert_eq!(svg_size(&svg).unwrap().0, (170.0 * PX_PER_MM) as u32);
+        let widths: Vec<f64> = svg
+            .match_indices("stroke-width=\"")
+            .filter_map(|(i, m)| svg[i + m.len()..].split('"').next()?.parse().ok())
+            .filter(|&w: &f64| w > 0.0)
+            .collect();
+        assert!(!widths.is_empty());
+        for w in widths {
+            assert!(w >= pt(MIN_LINE_PT) - 0.5, "stroke {w} px");
+        }
+        // outlined rectangles carry their width (plotters writes none for <rect>)
+        assert!(!svg.contains("fill=\"none\" stroke=\"#000000\"/>"));
     }
 }

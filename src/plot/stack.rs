@@ -16,7 +16,7 @@ pub fn svg_size(svg: &str) -> Result<(u32, u32)> {
     Ok((w.round() as u32, h.round() as u32))
 }
 
-/// One SVG of `title` (18 px, wrapped, centred) above `panels` stacked top to bottom, each
+/// One SVG of `title` ([`TITLE_PT`], wrapped, centred) above `panels` stacked top to bottom, each
 /// left-aligned at its own size; the figure is as wide as the widest panel.
 pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
     let sizes = panels
