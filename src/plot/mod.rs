@@ -2,7 +2,7 @@
 //! drawn by one layer: the styles of [`style`] (Okabe–Ito colours, marker shapes, dash
 //! patterns; legend samples drawn by the same code as their series), the axes of [`axes`]
 //! (automatic ranges from the data, decade ticks on log axes), legends outside the data;
-//! the print geometry of [`print`] (85 or 170 mm wide, type in points, one font family) and the
+//! the print geometry of [`mod@print`] (85 or 170 mm wide, type in points, one font family) and the
 //! [`canvas`] every plot draws on (at 20 px/mm, curves at fractional coordinates).
 
 pub mod axes;
