@@ -338,6 +338,35 @@ fn readme_is_short_and_docs_cover_every_command() {
     }
 }
 
+/// Every relative link of README.md and docs/ points at a file that exists (anchors are not
+/// checked), so moving a page cannot leave a dead link behind.
+#[test]
+fn relative_links_resolve() {
+    let mut checked = 0;
+    for page in pages() {
+        let text = std::fs::read_to_string(&page).unwrap();
+        let base = page.parent().unwrap();
+        for (i, _) in text.match_indices("](") {
+            let rest = &text[i + 2..];
+            let Some(end) = rest.find(')') else { continue };
+            let target = rest[..end].split('#').next().unwrap();
+            if target.is_empty() || target.contains("://") || target.contains(' ') {
+                continue;
+            }
+            assert!(
+                base.join(target).exists(),
+                "{}: the link to {target} is dead",
+                page.display()
+            );
+            checked += 1;
+        }
+    }
+    assert!(
+        checked > 50,
+        "only {checked} relative links found: is the parser right?"
+    );
+}
+
 #[test]
 #[ignore = "minutes: run by .ci/run (cargo test --release --test it -- --ignored docs::)"]
 fn readme_commands_run_and_print_what_it_shows() {

@@ -4,7 +4,6 @@
 //! grid (m4, h = 1.2, f = 0.99, no runs); the published study is
 //! `--config analysis/art_stress.json`.
 
-use crate::units::{self, System};
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
@@ -226,19 +225,15 @@ pub fn output(
     json: bool,
     plot: Option<&Path>,
 ) -> Result<()> {
-    if let Some(path) = out {
-        crate::shard::write_json(path, &units::with_units(rep, System::Normalised)?)?;
-    }
-    if let Some(path) = plot {
-        study::write_plot(sphstab::studies::art_stress::figure_svg(rep), path)?;
-    }
-    if let Some(name) = &rep.config.output {
-        study::write_figure_and_data(rep, name, sphstab::studies::art_stress::figure_svg)?;
-    }
-    if json {
-        println!("{}", units::json(rep, System::Normalised, false)?);
-    } else {
-        print!("{}", sphstab::studies::art_stress::table(rep));
-    }
-    Ok(())
+    study::output(
+        rep,
+        study::Outputs {
+            out,
+            json,
+            plot,
+            config_out: rep.config.output.as_deref(),
+        },
+        sphstab::studies::art_stress::figure_svg,
+        sphstab::studies::art_stress::table,
+    )
 }

@@ -3,7 +3,6 @@
 //! Bare, a quick subset ([`PairingConfig::quick`], seconds); the full study (~47 min) is
 //! `--config analysis/pairing3d.json`.
 
-use crate::units::{self, System};
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
@@ -200,25 +199,23 @@ pub fn output(
     plot: Option<&Path>,
     config_out: Option<&str>,
 ) -> Result<()> {
-    if let Some(path) = out {
-        crate::shard::write_json(path, &units::with_units(rep, System::Normalised)?)?;
-    }
-    if let Some(path) = plot {
-        study::write_plot(sphstab::studies::pairing::figure_svg(rep), path)?;
-    }
-    if let Some(name) = config_out {
-        study::write_figure_and_data(rep, name, sphstab::studies::pairing::figure_svg)?;
-    }
-    if json {
-        println!("{}", units::json(rep, System::Normalised, false)?);
-    } else {
-        print!("{}", sphstab::studies::pairing::table(rep));
-        println!(
-            "{} rows in {:.1} s ({} threads)",
-            rep.rows.len(),
-            rep.runtime_s,
-            rep.threads
-        );
-    }
-    Ok(())
+    study::output(
+        rep,
+        study::Outputs {
+            out,
+            json,
+            plot,
+            config_out,
+        },
+        sphstab::studies::pairing::figure_svg,
+        |r| {
+            format!(
+                "{}{} rows in {:.1} s ({} threads)\n",
+                sphstab::studies::pairing::table(r),
+                r.rows.len(),
+                r.runtime_s,
+                r.threads
+            )
+        },
+    )
 }

@@ -88,6 +88,41 @@ pub fn write_figure_and_data<T: Serialize>(
     Ok(())
 }
 
+/// Where a study's report goes: `--out` (JSON with its units), `--plot`, a config's `output`
+/// (the figure and its data in figures/), then `--json` or the text on stdout.
+pub struct Outputs<'a> {
+    pub out: Option<&'a Path>,
+    pub json: bool,
+    pub plot: Option<&'a Path>,
+    pub config_out: Option<&'a str>,
+}
+
+/// Writes and prints a study's report (the one path of every study and of `merge`): `draw`
+/// makes its figure, `text` its table.
+pub fn output<T: Serialize>(
+    report: &T,
+    to: Outputs<'_>,
+    draw: impl Fn(&T) -> sphstab::error::Result<String>,
+    text: impl FnOnce(&T) -> String,
+) -> Result<()> {
+    use crate::units::{self, System};
+    if let Some(path) = to.out {
+        crate::shard::write_json(path, &units::with_units(report, System::Normalised)?)?;
+    }
+    if let Some(path) = to.plot {
+        write_plot(draw(report), path)?;
+    }
+    if let Some(name) = to.config_out {
+        write_figure_and_data(report, name, &draw)?;
+    }
+    if to.json {
+        println!("{}", units::json(report, System::Normalised, false)?);
+    } else {
+        print!("{}", text(report));
+    }
+    Ok(())
+}
+
 /// `--from FILE --plot FILE`: redraws a stored report with `draw`, refusing the other flags
 /// (`others`: whether `--config`, `--json` or a study flag was given).
 pub fn redraw<T: DeserializeOwned>(

@@ -235,35 +235,28 @@ pub fn output(
     plot: Option<&Path>,
     config_out: Option<&str>,
 ) -> Result<()> {
-    if let Some(path) = out {
-        crate::shard::write_json(path, &units::with_units(rep, System::Normalised)?)?;
-    }
-    if let Some(path) = plot {
-        study::write_plot(
-            sphstab::studies::tradeoff::figure_svg(rep, &title(rep)),
-            path,
-        )?;
-    }
-    if let Some(name) = config_out {
-        study::write_figure_and_data(rep, name, |r| {
-            sphstab::studies::tradeoff::figure_svg(r, &title(r))
-        })?;
-    }
-    if json {
-        println!("{}", units::json(rep, System::Normalised, false)?);
-    } else {
-        print!("{}", sphstab::studies::tradeoff::table(rep));
-        if !rep.integrator_rows.is_empty() {
-            println!();
-            print!("{}", sphstab::studies::tradeoff::integrator_table(rep));
-        }
-        println!(
-            "{} configurations in {:.1} s ({} threads); scene: {}",
-            rep.rows.len() + rep.integrator_rows.len(),
-            rep.runtime_s,
-            rep.threads,
-            rep.scene
-        );
-    }
-    Ok(())
+    study::output(
+        rep,
+        study::Outputs {
+            out,
+            json,
+            plot,
+            config_out,
+        },
+        |r| sphstab::studies::tradeoff::figure_svg(r, &title(r)),
+        |r| {
+            let mut t = sphstab::studies::tradeoff::table(r);
+            if !r.integrator_rows.is_empty() {
+                t += "\n";
+                t += &sphstab::studies::tradeoff::integrator_table(r);
+            }
+            t + &format!(
+                "{} configurations in {:.1} s ({} threads); scene: {}\n",
+                r.rows.len() + r.integrator_rows.len(),
+                r.runtime_s,
+                r.threads,
+                r.scene
+            )
+        },
+    )
 }
