@@ -55,7 +55,7 @@ pub struct AntiPlaneSeries {
 /// Ordinate description of the anti-plane figures.
 pub const OMEGA_DESC: &str = "ωΔx/c (frequency in units of c/Δx)";
 /// Abscissa description of the anti-plane figures.
-pub const KAPPA_THETA_DESC: &str = "wave number κΔx/π along θ (dimensionless; dotted: the cut-off, the first-zone boundary along θ)";
+pub const KAPPA_THETA_DESC: &str = "wave number κΔx/π along θ (dotted: the cut-off along θ)";
 
 impl AntiPlaneSeries {
     fn lattice(&self) -> Result<Lattice<2>> {

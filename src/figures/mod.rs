@@ -53,6 +53,7 @@ use crate::budget::Budget;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::kernel;
+use crate::plot::print::Width;
 use crate::plot::{Curve, KAPPA_DESC, LinePlot, OMEGA2_DESC, stack_svg};
 use crate::shape::{KernelParams, ShapeFamily, lattice_shape};
 use crate::vonneumann::closed_form as cf;
@@ -457,18 +458,18 @@ impl FigureConfig {
 }
 
 /// Renders a figure to an SVG string: the curves, the vertical range from the data unless
-/// `y_range` fixes it (curves leaving it are marked as clipped), the note as caption; panels
-/// stacked under the figure title, the note under the last. Anti-plane panels mark the
-/// cut-off of every θ.
+/// `y_range` fixes it (curves leaving it are marked as clipped). The title and the note are
+/// the caption ([`caption`]), not drawn: a figure of one panel is 170 mm wide with its legend
+/// right of the data; panels are 85 mm wide, two side by side, each with its letter and its
+/// legend under it. Anti-plane panels mark the cut-off of every θ.
 pub fn render(cfg: &FigureConfig) -> Result<String> {
     let specs = cfg.panel_specs();
     let data = panel_curves(cfg)?;
-    let n = specs.len();
+    let paneled = !cfg.panels.is_empty();
     let parts = specs
         .iter()
         .zip(data)
-        .enumerate()
-        .map(|(i, (p, curves))| {
+        .map(|(p, curves)| {
             let (x_desc, y_desc, x_marks) = if !p.antiplane.is_empty() {
                 (KAPPA_THETA_DESC, OMEGA_DESC, cutoff_marks(p.antiplane)?)
             } else if let Some(s) = p.swegle.first() {
@@ -487,24 +488,31 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
             LinePlot {
                 y_range: p.y_range,
                 zero_line: p.swegle.is_empty(),
-                notes: if i + 1 == n && !cfg.note.is_empty() {
-                    vec![cfg.note.clone()]
-                } else {
-                    Vec::new()
-                },
+                y_log: !p.swegle.is_empty(),
                 x_marks,
-                ..LinePlot::new(p.title, x_desc, y_desc, curves)
+                width: if paneled { Width::Single } else { Width::Double },
+                ..LinePlot::new(if paneled { p.title } else { "" }, x_desc, y_desc, curves)
             }
             .svg()
         })
         .collect::<Result<Vec<_>>>()?;
-    if cfg.panels.is_empty() {
+    if !paneled {
         return parts
             .into_iter()
             .next()
             .ok_or_else(|| Error::Incompatible("figure without curves".into()));
     }
-    stack_svg(&cfg.title, &parts)
+    stack_svg("", &parts)
+}
+
+/// The caption of a figure, set by the paper under it rather than drawn: the config's title
+/// and note.
+pub fn caption(cfg: &FigureConfig) -> String {
+    if cfg.note.is_empty() {
+        cfg.title.clone()
+    } else {
+        format!("{}. {}", cfg.title.trim_end_matches('.'), cfg.note)
+    }
 }
 
 #[cfg(test)]

@@ -38,10 +38,10 @@ impl SwegleHistory {
     pub(super) fn desc(self) -> &'static str {
         match self {
             SwegleHistory::Centre => {
-                "log10 |v| of the kicked centre particle (v in V21's units; kick 1e−10)"
+                "|v| of the kicked centre particle (V21 units)"
             }
-            SwegleHistory::Max => "log10 max |v| over the free particles (V21's units; kick 1e−10)",
-            SwegleHistory::Rms => "log10 RMS |v| over the free particles (V21's units; kick 1e−10)",
+            SwegleHistory::Max => "max |v| over the free particles (V21 units)",
+            SwegleHistory::Rms => "RMS |v| over the free particles (V21 units)",
         }
     }
 }
@@ -75,8 +75,7 @@ pub struct SwegleSeries {
 }
 
 /// Abscissa description of the Swegle figures.
-pub const SWEGLE_TIME_DESC: &str =
-    "time t c/Δx (units of Δx/c = 0.2020 V21 time units; 1 V21 time unit = 4.951 Δx/c)";
+pub const SWEGLE_TIME_DESC: &str = "time t c/Δx (1 V21 time unit = 4.951 Δx/c)";
 
 impl SwegleSeries {
     /// The run's configuration: [`SwegleConfig::new`] with this series' form, kernel, h, f,
@@ -128,9 +127,7 @@ impl SwegleSeries {
         let mut out = vec![Curve {
             label,
             x: tau.clone(),
-            y: y.iter()
-                .map(|v| if *v > 0.0 { v.log10() } else { f64::NAN })
-                .collect(),
+            y: y.clone(),
             dashed: false,
         }];
         if let (Some(f), true) = (fit, box_rate > crate::vonneumann::classify::GROWTH_TOL) {
@@ -154,7 +151,10 @@ impl SwegleSeries {
                     r.box_method
                 ),
                 x: ends.to_vec(),
-                y: ends.iter().map(|&a| yc + slope * (a - tc)).collect(),
+                y: ends
+                    .iter()
+                    .map(|&a| 10f64.powf(yc + slope * (a - tc)))
+                    .collect(),
                 dashed: true,
             });
         }

@@ -1,7 +1,8 @@
 //! Axes: automatic ranges, tick positions and labels (linear and log), and a [`Frame`] that
 //! maps data to pixels and draws the box, grid, ticks and axis descriptions.
 
-use super::style::{GREY, plot_err, text_at};
+use super::print::{FRAME_LINE_PT, LABEL_PT, TICK_PT};
+use super::style::{GREY, outline, stroke, text_at, text_width};
 use crate::error::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -135,6 +136,18 @@ pub fn tick_label(v: f64, step: f64) -> String {
     s.replace('-', "−")
 }
 
+/// A number to two significant digits, in scientific notation beyond [0.01, 10⁴), with a
+/// true minus: 1e−6, 2.9e−6, 0.5, 10.
+pub fn sci(v: f64) -> String {
+    if v != 0.0 && (v.abs() < 1e-2 || v.abs() >= 1e4) {
+        format!("{v:.1e}").replace(".0e", "e").replace('-', "−")
+    } else {
+        let s = format!("{v:.2}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.replace('-', "−")
+    }
+}
+
 /// Exponents e of the decades 10^e inside [lo, hi] (lo, hi > 0): the major ticks of a log axis.
 pub fn log_decades(lo: f64, hi: f64) -> Vec<i32> {
     let a = (lo.log10() - 1e-9).ceil() as i32;
@@ -244,10 +257,10 @@ impl Scale {
     }
 }
 
-/// A plotting box in pixels with the scales of its two axes.
+/// A plotting box in points with the scales of its two axes.
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {
-    /// Left, top, right, bottom (pixels).
+    /// Left, top, right, bottom (points).
     pub rect: (f64, f64, f64, f64),
     /// Horizontal scale.
     pub x: Scale,
@@ -270,7 +283,44 @@ impl Frame {
         p.0 >= l - tol && p.0 <= r + tol && p.1 >= t - tol && p.1 <= b + tol
     }
 
-    /// Draws the grid, the box, ticks with labels and the two axis descriptions.
+    /// Major and minor ticks of the two axes as [`Frame::draw`] places them (`named_x`
+    /// replaces the horizontal ones).
+    #[allow(clippy::type_complexity)]
+    fn ticks(
+        &self,
+        named_x: Option<&[(f64, String)]>,
+    ) -> ((Vec<(f64, String)>, Vec<f64>), (Vec<(f64, String)>, Vec<f64>)) {
+        let (l, t, r, b) = self.rect;
+        let per = |s: &Scale| {
+            if matches!(s, Scale::Log(..)) {
+                X_TICK_LOG_PT
+            } else {
+                X_TICK_PT
+            }
+        };
+        let (mut xmaj, mut xmin) = self.x.ticks(((r - l) / per(&self.x)) as usize);
+        if let Some(named) = named_x {
+            xmaj = named.to_vec();
+            xmin.clear();
+        }
+        ((xmaj, xmin), self.y.ticks(((b - t) / Y_TICK_PT) as usize))
+    }
+
+    /// Room (points) left of the box for the tick labels and the axis description `y_desc`
+    /// of `y` on a box `box_h` points high: what [`Frame::draw`] uses.
+    pub fn left_margin(y: Scale, box_h: f64, y_desc: &str) -> f64 {
+        let (maj, _) = y.ticks((box_h / Y_TICK_PT) as usize);
+        let w = maj
+            .iter()
+            .map(|(_, s)| text_width(s, TICK_PT))
+            .fold(0.0f64, f64::max);
+        let lines = desc_lines(y_desc, box_h).len() as f64;
+        TICK_LEN + TICK_GAP + w + DESC_GAP + LABEL_PT * (1.0 + 1.2 * (lines - 1.0)) + 1.0
+    }
+
+    /// Draws the grid, the box, ticks with labels and the two axis descriptions (ticks
+    /// [`TICK_PT`], descriptions [`LABEL_PT`]; the room they take: [`Frame::left_margin`] and
+    /// [`BOTTOM_MARGIN`]).
     pub fn draw(
         &self,
         area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
@@ -279,106 +329,125 @@ impl Frame {
         named_x: Option<&[(f64, String)]>,
     ) -> Result<()> {
         let (l, t, r, b) = self.rect;
-        let pi = |v: f64| v.round() as i32;
-        let grid = RGBColor(225, 225, 225);
-        let per = |s: &Scale| {
-            if matches!(s, Scale::Log(..)) {
-                42.0
-            } else {
-                80.0
-            }
-        };
-        let (mut xmaj, mut xmin) = self.x.ticks(((r - l) / per(&self.x)) as usize);
-        if let Some(named) = named_x {
-            xmaj = named.to_vec();
-            xmin.clear();
-        }
+        let grid = RGBColor(220, 220, 220);
+        let ((xmaj, xmin), (ymaj, ymin)) = self.ticks(named_x);
         let xgrid = if named_x.is_some() { GREY } else { grid };
-        let (ymaj, ymin) = self.y.ticks(((b - t) / 55.0) as usize);
         for &(v, _) in xmaj.iter().filter(|_| self.grid || named_x.is_some()) {
             let x = self.map(v, 1.0).0;
-            area.draw(&PathElement::new(
-                [(pi(x), pi(t)), (pi(x), pi(b))],
-                xgrid.stroke_width(1),
-            ))
-            .map_err(plot_err)?;
+            stroke(area, &[(x, t), (x, b)], xgrid, FRAME_LINE_PT)?;
         }
         for &(v, _) in ymaj.iter().filter(|_| self.grid) {
             let y = self.map(1.0, v).1;
-            area.draw(&PathElement::new(
-                [(pi(l), pi(y)), (pi(r), pi(y))],
-                grid.stroke_width(1),
-            ))
-            .map_err(plot_err)?;
+            stroke(area, &[(l, y), (r, y)], grid, FRAME_LINE_PT)?;
         }
-        area.draw(&Rectangle::new(
-            [(pi(l), pi(t)), (pi(r), pi(b))],
-            BLACK.stroke_width(1),
-        ))
-        .map_err(plot_err)?;
+        outline(area, self.rect, BLACK, FRAME_LINE_PT)?;
         for &(v, ref s) in &xmaj {
             let x = self.map(v, 1.0).0;
-            area.draw(&PathElement::new(
-                [(pi(x), pi(b)), (pi(x), pi(b) + 6)],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(plot_err)?;
-            text_at(area, s, (x, b + 9.0), 13, (HPos::Center, VPos::Top), false)?;
-        }
-        for &v in &xmin {
-            let x = self.map(v, 1.0).0;
-            area.draw(&PathElement::new(
-                [(pi(x), pi(b)), (pi(x), pi(b) + 3)],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(plot_err)?;
-        }
-        for &(v, ref s) in &ymaj {
-            let y = self.map(1.0, v).1;
-            area.draw(&PathElement::new(
-                [(pi(l) - 6, pi(y)), (pi(l), pi(y))],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(plot_err)?;
+            stroke(area, &[(x, b), (x, b + TICK_LEN)], BLACK, FRAME_LINE_PT)?;
             text_at(
                 area,
                 s,
-                (l - 9.0, y),
-                13,
+                (x, b + TICK_LEN + TICK_GAP),
+                TICK_PT,
+                (HPos::Center, VPos::Top),
+                false,
+            )?;
+        }
+        for &v in &xmin {
+            let x = self.map(v, 1.0).0;
+            stroke(area, &[(x, b), (x, b + MINOR_LEN)], BLACK, FRAME_LINE_PT)?;
+        }
+        for &(v, ref s) in &ymaj {
+            let y = self.map(1.0, v).1;
+            stroke(area, &[(l - TICK_LEN, y), (l, y)], BLACK, FRAME_LINE_PT)?;
+            text_at(
+                area,
+                s,
+                (l - TICK_LEN - TICK_GAP, y),
+                TICK_PT,
                 (HPos::Right, VPos::Center),
                 false,
             )?;
         }
         for &v in &ymin {
             let y = self.map(1.0, v).1;
-            area.draw(&PathElement::new(
-                [(pi(l) - 3, pi(y)), (pi(l), pi(y))],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(plot_err)?;
+            stroke(area, &[(l - MINOR_LEN, y), (l, y)], BLACK, FRAME_LINE_PT)?;
         }
-        text_at(
-            area,
-            x_desc,
-            ((l + r) / 2.0, b + 32.0),
-            14,
-            (HPos::Center, VPos::Top),
-            false,
-        )?;
+        for (k, line) in desc_lines(x_desc, r - l + 20.0).iter().enumerate() {
+            text_at(
+                area,
+                line,
+                (
+                    (l + r) / 2.0,
+                    b + TICK_LEN + TICK_GAP + TICK_PT + DESC_GAP + LABEL_PT * 1.2 * k as f64,
+                ),
+                LABEL_PT,
+                (HPos::Center, VPos::Top),
+                false,
+            )?;
+        }
         let ylab_w = ymaj
             .iter()
-            .map(|(_, s)| super::style::text_width(s, 13))
+            .map(|(_, s)| text_width(s, TICK_PT))
             .fold(0.0f64, f64::max);
-        text_at(
-            area,
-            y_desc,
-            (l - ylab_w - 22.0, (t + b) / 2.0),
-            14,
-            (HPos::Center, VPos::Bottom),
-            true,
-        )?;
+        let lines = desc_lines(y_desc, b - t);
+        let n = lines.len();
+        for (k, line) in lines.iter().enumerate() {
+            // the last line nearest the ticks
+            let off = LABEL_PT * 1.2 * (n - 1 - k) as f64;
+            text_at(
+                area,
+                line,
+                (
+                    l - TICK_LEN - TICK_GAP - ylab_w - DESC_GAP - off,
+                    (t + b) / 2.0,
+                ),
+                LABEL_PT,
+                (HPos::Center, VPos::Bottom),
+                true,
+            )?;
+        }
         Ok(())
     }
+}
+
+/// An axis description set along `len` points: one line when it fits, else broken into
+/// lines that do (at spaces, a parenthesis starting a line where it can).
+pub fn desc_lines(desc: &str, len: f64) -> Vec<String> {
+    if text_width(desc, LABEL_PT) <= len {
+        return vec![desc.to_string()];
+    }
+    let chars = ((len / (0.6 * LABEL_PT)) as usize).max(8);
+    if let Some(i) = desc.find(" (") {
+        let (a, b) = (&desc[..i], &desc[i + 1..]);
+        if a.chars().count() <= chars && b.chars().count() <= chars {
+            return vec![a.to_string(), b.to_string()];
+        }
+    }
+    super::style::wrap(desc, chars)
+}
+
+/// Length of a major tick, pt.
+pub const TICK_LEN: f64 = 3.0;
+/// Length of a minor tick, pt.
+pub const MINOR_LEN: f64 = 1.5;
+/// Gap between a tick and its label, pt.
+pub const TICK_GAP: f64 = 1.5;
+/// Gap between tick labels and the axis description, pt.
+pub const DESC_GAP: f64 = 2.5;
+/// Least room per labelled tick of a linear horizontal axis, pt.
+const X_TICK_PT: f64 = 40.0;
+/// Least room per labelled decade of a log horizontal axis, pt.
+const X_TICK_LOG_PT: f64 = 20.0;
+/// Least room per labelled tick of a vertical axis, pt.
+const Y_TICK_PT: f64 = 22.0;
+/// Room (points) under the box for the tick labels and a one-line axis description.
+pub const BOTTOM_MARGIN: f64 = TICK_LEN + TICK_GAP + TICK_PT + DESC_GAP + LABEL_PT * 1.2 + 1.0;
+
+/// Room (points) under a box `box_w` wide for the tick labels and the description `x_desc`
+/// ([`BOTTOM_MARGIN`] and a line more per further line of the description).
+pub fn bottom_margin(x_desc: &str, box_w: f64) -> f64 {
+    BOTTOM_MARGIN + LABEL_PT * 1.2 * (desc_lines(x_desc, box_w + 20.0).len() as f64 - 1.0)
 }
 
 /// Liang–Barsky clipping of a polyline (pixels) to `rect` (left, top, right, bottom): the
@@ -471,6 +540,15 @@ mod tests {
         let (maj, _) = Scale::log(1.5, 8.0).ticks(10);
         let v: Vec<&str> = maj.iter().map(|m| m.1.as_str()).collect();
         assert_eq!(v, vec!["2", "5"]);
+    }
+
+    #[test]
+    fn short_numbers() {
+        assert_eq!(sci(1e-6), "1e−6");
+        assert_eq!(sci(2.93847e-6), "2.9e−6");
+        assert_eq!(sci(0.5), "0.5");
+        assert_eq!(sci(10.0), "10");
+        assert_eq!(sci(-0.25), "−0.25");
     }
 
     #[test]

@@ -262,6 +262,57 @@ impl Drawable<Canvas<'_>> for Fine {
     }
 }
 
+/// Text at fractional layout coordinates (points), drawn to the canvas pixel: `size` points,
+/// the one font family of every figure.
+#[derive(Clone)]
+pub struct FineText {
+    /// The text.
+    pub text: String,
+    /// Anchor point (layout units).
+    pub at: (f64, f64),
+    /// Size in points.
+    pub size: f64,
+    /// Colour.
+    pub color: RGBColor,
+    /// Horizontal and vertical anchoring.
+    pub anchor: (
+        plotters::style::text_anchor::HPos,
+        plotters::style::text_anchor::VPos,
+    ),
+    /// Rotated to read upwards.
+    pub rotate: bool,
+}
+
+impl<'a> PointCollection<'a, BackendCoord> for &'a FineText {
+    type Point = &'a BackendCoord;
+    type IntoIter = std::iter::Once<&'a BackendCoord>;
+    fn point_iter(self) -> Self::IntoIter {
+        std::iter::once(&ORIGIN)
+    }
+}
+
+impl Drawable<Canvas<'_>> for FineText {
+    fn draw<I: Iterator<Item = BackendCoord>>(
+        &self,
+        mut pos: I,
+        c: &mut Canvas<'_>,
+        _: (u32, u32),
+    ) -> Res {
+        use plotters::style::{IntoFont, TextStyle};
+        let o = pos.next().unwrap_or(ORIGIN);
+        let at = c.fine((self.at.0 + f64::from(o.0), self.at.1 + f64::from(o.1)));
+        // plotters' SVG backend writes font-size = size / 1.24
+        let font = (super::print::FONT_FAMILY, self.size * 1.24 * c.zoom).into_font();
+        let mut style = TextStyle::from(font)
+            .color(&self.color)
+            .pos(Pos::new(self.anchor.0, self.anchor.1));
+        if self.rotate {
+            style = style.transform(FontTransform::Rotate270);
+        }
+        c.inner.draw_text(&self.text, &style, at)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use crate::plot::print::{MIN_LINE_PT, PX_PER_MM, pt};

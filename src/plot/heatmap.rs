@@ -1,7 +1,10 @@
-//! Heat maps with a colour bar.
+//! Heat maps with a colour bar, laid out in points on an 85 mm page.
 
-use super::axes::{Frame, Scale, nice_ticks, tick_label};
-use super::style::{plot_err, text_at, wrap};
+use super::axes::{
+    DESC_GAP, Frame, Scale, TICK_GAP, TICK_LEN, bottom_margin, nice_ticks, tick_label,
+};
+use super::print::{FRAME_LINE_PT, LABEL_PT, NOTE_PT, PAD, TICK_PT, TITLE_PT, Width, page_pt};
+use super::style::{fill_rect, outline, plot_err, stroke, text, text_at, text_width, wrap};
 use crate::error::{Error, Result};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
@@ -55,33 +58,52 @@ pub fn heatmap_svg(
         .flatten()
         .filter(|v| v.is_finite())
         .fold(0.0f64, |m, &v| m.max(v));
-    let width = 820.0;
-    let title_lines = wrap(title, ((width - 40.0) / (0.56 * 17.0)) as usize);
-    let top = 18.0 + 22.0 * title_lines.len() as f64 + 10.0;
-    let side = 540.0;
+    let page = page_pt(Width::Single);
+    let title_lines = if title.is_empty() {
+        Vec::new()
+    } else {
+        wrap(title, ((page - 2.0 * PAD) / (0.6 * TITLE_PT)) as usize)
+    };
+    let top = PAD + TITLE_PT * 1.25 * title_lines.len() as f64 + TICK_PT;
+    let zt = if zmax > 0.0 { zmax } else { 1.0 };
+    let ticks = nice_ticks(0.0, zt, 6);
+    let step = if ticks.len() > 1 {
+        ticks[1] - ticks[0]
+    } else {
+        zt
+    };
+    let bar_labels = ticks
+        .iter()
+        .map(|&v| text_width(&tick_label(v, step), TICK_PT))
+        .fold(0.0f64, f64::max);
+    let bar_w = 7.0;
+    let right = 8.0 + bar_w + TICK_LEN + TICK_GAP + bar_labels + DESC_GAP + LABEL_PT + PAD;
+    let side0 = page - PAD - 45.0 - right;
+    let left = PAD + Frame::left_margin(Scale::Linear(y0, y1), side0, y_desc);
+    let side = page - left - right;
     let frame = Frame {
-        rect: (95.0, top, 95.0 + side, top + side),
+        rect: (left, top, left + side, top + side),
         x: Scale::Linear(x0, x1),
         y: Scale::Linear(y0, y1),
         grid: false,
     };
-    let height = top + side + 70.0;
+    let height = top + side + bottom_margin(x_desc, side) + PAD;
     let mut svg = String::new();
     {
-        let root =
-            super::canvas::Canvas::new(&mut svg, super::print::Width::Single, (width, height))
-                .into_drawing_area();
+        let root = super::canvas::Canvas::new(&mut svg, Width::Single, (page, height))
+            .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (k, line) in title_lines.iter().enumerate() {
-            text_at(
+            text(
                 &root,
                 line,
-                (width / 2.0, 12.0 + 22.0 * k as f64),
-                17,
-                (HPos::Center, VPos::Top),
-                false,
+                (PAD, PAD + TITLE_PT * 1.25 * k as f64),
+                TITLE_PT,
+                BLACK,
             )?;
         }
+        // cells overlap by a hair so no seam shows between them
+        let eps = 0.05;
         for (i, &xi) in x.iter().enumerate() {
             for (j, &yj) in y.iter().enumerate() {
                 let v = z[i][j];
@@ -92,60 +114,33 @@ pub fn heatmap_svg(
                 };
                 let a = frame.map(xi - dx / 2.0, yj + dy / 2.0);
                 let b = frame.map(xi + dx / 2.0, yj - dy / 2.0);
-                root.draw(&Rectangle::new(
-                    [
-                        (a.0.floor() as i32, a.1.floor() as i32),
-                        (b.0.ceil() as i32, b.1.ceil() as i32),
-                    ],
-                    ramp(t).filled(),
-                ))
-                .map_err(plot_err)?;
+                fill_rect(&root, (a.0 - eps, a.1 - eps, b.0 + eps, b.1 + eps), ramp(t))?;
             }
         }
         frame.draw(&root, x_desc, y_desc, None)?;
         // the colour bar
-        let (bl, bt, bw, bh) = (95.0 + side + 40.0, top, 24.0, side);
-        let n = 200;
+        let (bl, bt, bh) = (left + side + 8.0, top, side);
+        let n = 100;
         for k in 0..n {
             let t = (k as f64 + 0.5) / n as f64;
             let ya = bt + bh * (1.0 - (k + 1) as f64 / n as f64);
             let yb = bt + bh * (1.0 - k as f64 / n as f64);
-            root.draw(&Rectangle::new(
-                [
-                    (bl as i32, ya.floor() as i32),
-                    ((bl + bw) as i32, yb.ceil() as i32),
-                ],
-                ramp(t).filled(),
-            ))
-            .map_err(plot_err)?;
+            fill_rect(&root, (bl, ya - eps, bl + bar_w, yb + eps), ramp(t))?;
         }
-        root.draw(&Rectangle::new(
-            [(bl as i32, bt as i32), ((bl + bw) as i32, (bt + bh) as i32)],
-            BLACK.stroke_width(1),
-        ))
-        .map_err(plot_err)?;
-        let zt = if zmax > 0.0 { zmax } else { 1.0 };
-        let ticks = nice_ticks(0.0, zt, 8);
-        let step = if ticks.len() > 1 {
-            ticks[1] - ticks[0]
-        } else {
-            zt
-        };
-        for v in ticks {
+        outline(&root, (bl, bt, bl + bar_w, bt + bh), BLACK, FRAME_LINE_PT)?;
+        for &v in &ticks {
             let yy = bt + bh * (1.0 - v / zt);
-            root.draw(&PathElement::new(
-                [
-                    ((bl + bw) as i32, yy.round() as i32),
-                    ((bl + bw + 5.0) as i32, yy.round() as i32),
-                ],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(plot_err)?;
+            stroke(
+                &root,
+                &[(bl + bar_w, yy), (bl + bar_w + TICK_LEN, yy)],
+                BLACK,
+                FRAME_LINE_PT,
+            )?;
             text_at(
                 &root,
                 &tick_label(v, step),
-                (bl + bw + 8.0, yy),
-                12,
+                (bl + bar_w + TICK_LEN + TICK_GAP, yy),
+                TICK_PT,
                 (HPos::Left, VPos::Center),
                 false,
             )?;
@@ -158,22 +153,233 @@ pub fn heatmap_svg(
         text_at(
             &root,
             &top_label,
-            (bl + bw / 2.0, bt - 4.0),
-            12,
-            (HPos::Center, VPos::Bottom),
+            (page - PAD, bt - 1.5),
+            TICK_PT,
+            (HPos::Right, VPos::Bottom),
             false,
         )?;
         text_at(
             &root,
             z_desc,
-            (bl + bw + 62.0, bt + bh / 2.0),
-            14,
-            (HPos::Center, VPos::Bottom),
+            (
+                bl + bar_w + TICK_LEN + TICK_GAP + bar_labels + DESC_GAP,
+                bt + bh / 2.0,
+            ),
+            LABEL_PT,
+            (HPos::Center, VPos::Top),
             true,
         )?;
         root.present().map_err(plot_err)?;
     }
-    super::print::finish(&svg, super::print::Width::Single)
+    super::print::finish(&svg, Width::Single)
+}
+
+/// One panel of [`strips_svg`]: its title and, per row, the samples (x, value); a value
+/// that is `None` (not computed) is drawn grey.
+#[derive(Clone, Debug)]
+pub struct StripPanel {
+    /// Panel title (after its letter).
+    pub title: String,
+    /// Per row label: samples (x > 0, value).
+    pub rows: Vec<Vec<(f64, Option<f64>)>>,
+}
+
+/// Grey of samples not computed.
+const MISSING: RGBColor = RGBColor(190, 190, 190);
+
+/// Lowest position on the colour ramp of an unstable value: visibly coloured, never white.
+const LEVEL_MIN: f64 = 0.15;
+
+/// Colour position of `v` on a log scale of two decades below `vmax`, from [`LEVEL_MIN`]
+/// (values below the two decades too) to 1; values at or below `stable_below` are stable:
+/// `None`, drawn white.
+fn log_level(v: f64, vmax: f64, stable_below: f64) -> Option<f64> {
+    (v > stable_below).then(|| {
+        let lo = (vmax * 1e-2).log10();
+        let u = ((v.log10() - lo) / (vmax.log10() - lo)).clamp(0.0, 1.0);
+        LEVEL_MIN + (1.0 - LEVEL_MIN) * u
+    })
+}
+
+/// Strip charts: in each panel one row per label, each sample (x on a log axis) a cell from
+/// halfway to its neighbours, coloured by its value on the heat-map scale (log, two decades
+/// below the maximum over all panels; white at or below `stable_below`, grey where not
+/// computed), so where a row turns from white to colour — an onset — reads at a glance.
+/// Panels `cols` to a row (lettered), row labels left of the first column, one colour bar.
+pub fn strips_svg(
+    x_desc: &str,
+    z_desc: &str,
+    labels: &[String],
+    panels: &[StripPanel],
+    cols: usize,
+    stable_below: f64,
+) -> Result<String> {
+    let cols = cols.max(1);
+    let xs = || {
+        panels
+            .iter()
+            .flat_map(|p| p.rows.iter().flatten().map(|q| q.0))
+            .filter(|x| x.is_finite() && *x > 0.0)
+    };
+    let (x0, x1) = xs().fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+    if !(x0.is_finite() && x1 > x0) {
+        return Err(Error::Incompatible("nothing to plot: no samples".into()));
+    }
+    let vmax = panels
+        .iter()
+        .flat_map(|p| p.rows.iter().flatten().filter_map(|q| q.1))
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, f64::max);
+    let vmax = if vmax > stable_below { vmax } else { 1.0 };
+    let page = page_pt(Width::Double);
+    let label_w = labels
+        .iter()
+        .map(|l| text_width(l, TICK_PT))
+        .fold(0.0f64, f64::max)
+        + 3.0;
+    let bar_w = 7.0;
+    let bar_room = 8.0 + bar_w + TICK_LEN + TICK_GAP + text_width("0.001", TICK_PT) + DESC_GAP + LABEL_PT + PAD;
+    let gap = 10.0;
+    let panel_w = (page - PAD - label_w - bar_room - gap * (cols - 1) as f64) / cols as f64;
+    let row_h = 9.0;
+    let box_h = row_h * labels.len() as f64;
+    let prow = panels.len().div_ceil(cols);
+    let cell_h = LABEL_PT * 1.5 + box_h + bottom_margin(x_desc, panel_w);
+    let height = PAD + cell_h * prow as f64 + PAD;
+    let xscale = Scale::log(x0 / 1.15, x1 * 1.15);
+    let mut svg = String::new();
+    {
+        let root = super::canvas::Canvas::new(&mut svg, Width::Double, (page, height))
+            .into_drawing_area();
+        root.fill(&WHITE).map_err(plot_err)?;
+        for (pi, panel) in panels.iter().enumerate() {
+            let (r, c) = (pi / cols, pi % cols);
+            let l = PAD + label_w + c as f64 * (panel_w + gap);
+            let t = PAD + r as f64 * cell_h + LABEL_PT * 1.5;
+            // rows are labelled, not ticked: an empty vertical range has no ticks (and only
+            // the horizontal mapping is used)
+            let frame = Frame {
+                rect: (l, t, l + panel_w, t + box_h),
+                x: xscale,
+                y: Scale::Linear(0.0, 0.0),
+                grid: false,
+            };
+            text(
+                &root,
+                &format!("{} {}", super::scatter::panel_letter(pi), panel.title),
+                (l, t - LABEL_PT * 1.35),
+                LABEL_PT,
+                BLACK,
+            )?;
+            for (k, row) in panel.rows.iter().enumerate() {
+                let (yt, yb) = (t + row_h * k as f64 + 0.8, t + row_h * (k + 1) as f64 - 0.8);
+                let mut pts: Vec<(f64, Option<f64>)> =
+                    row.iter().copied().filter(|q| q.0 > 0.0).collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                // repeated x (several h at one N_H): the largest value
+                pts.dedup_by(|b, a| {
+                    if a.0 == b.0 {
+                        a.1 = match (a.1, b.1) {
+                            (Some(p), Some(q)) => Some(p.max(q)),
+                            (p, q) => p.or(q),
+                        };
+                        true
+                    } else {
+                        false
+                    }
+                });
+                for (j, &(x, v)) in pts.iter().enumerate() {
+                    let lx = if j == 0 {
+                        x / 1.08
+                    } else {
+                        (x * pts[j - 1].0).sqrt()
+                    };
+                    let rx = if j + 1 == pts.len() {
+                        x * 1.08
+                    } else {
+                        (x * pts[j + 1].0).sqrt()
+                    };
+                    let color = match v {
+                        None => MISSING,
+                        Some(v) => log_level(v, vmax, stable_below).map_or(WHITE, ramp),
+                    };
+                    let (a, b) = (frame.map(lx, 0.0).0, frame.map(rx, 0.0).0);
+                    fill_rect(&root, (a - 0.05, yt, b + 0.05, yb), color)?;
+                }
+                if c == 0 {
+                    text_at(
+                        &root,
+                        &labels[k],
+                        (l - 3.0, (yt + yb) / 2.0),
+                        TICK_PT,
+                        (HPos::Right, VPos::Center),
+                        false,
+                    )?;
+                }
+                if k > 0 {
+                    stroke(
+                        &root,
+                        &[(l, t + row_h * k as f64), (l + panel_w, t + row_h * k as f64)],
+                        RGBColor(225, 225, 225),
+                        FRAME_LINE_PT,
+                    )?;
+                }
+            }
+            frame.draw(&root, x_desc, "", None)?;
+        }
+        // the colour bar: two decades below the maximum, log
+        let bl = page - bar_room + 8.0;
+        let (bt, bh) = (PAD + LABEL_PT * 1.5, (box_h * prow as f64).max(box_h).min(200.0));
+        let n = 100;
+        for k in 0..n {
+            let tt = (k as f64 + 0.5) / n as f64;
+            let ya = bt + bh * (1.0 - (k + 1) as f64 / n as f64);
+            let yb = bt + bh * (1.0 - k as f64 / n as f64);
+            fill_rect(
+                &root,
+                (bl, ya - 0.05, bl + bar_w, yb + 0.05),
+                ramp(LEVEL_MIN + (1.0 - LEVEL_MIN) * tt),
+            )?;
+        }
+        outline(&root, (bl, bt, bl + bar_w, bt + bh), BLACK, FRAME_LINE_PT)?;
+        let lo = vmax * 1e-2;
+        let (maj, _) = Scale::log(lo, vmax).ticks(4);
+        for (v, label) in maj {
+            let yy = bt + bh * (1.0 - (v.log10() - lo.log10()) / (vmax.log10() - lo.log10()));
+            stroke(
+                &root,
+                &[(bl + bar_w, yy), (bl + bar_w + TICK_LEN, yy)],
+                BLACK,
+                FRAME_LINE_PT,
+            )?;
+            text_at(
+                &root,
+                &label,
+                (bl + bar_w + TICK_LEN + TICK_GAP, yy),
+                TICK_PT,
+                (HPos::Left, VPos::Center),
+                false,
+            )?;
+        }
+        text_at(
+            &root,
+            &format!("white: stable (≤ {})", super::axes::sci(stable_below)),
+            (bl - 4.0, bt + bh + 2.0),
+            NOTE_PT,
+            (HPos::Left, VPos::Top),
+            false,
+        )?;
+        text_at(
+            &root,
+            z_desc,
+            (page - PAD - LABEL_PT, bt + bh / 2.0),
+            LABEL_PT,
+            (HPos::Center, VPos::Top),
+            true,
+        )?;
+        root.present().map_err(plot_err)?;
+    }
+    super::print::finish(&svg, Width::Double)
 }
 
 #[cfg(test)]

@@ -2,11 +2,16 @@
 //! outside the data, automatic vertical range ([`auto_range`]), clipping marked, coinciding
 //! curves named.
 
-use super::axes::{Frame, Scale, auto_range, clip_polyline};
-use super::style::{
-    Dash, GREY, Style, draw_line, draw_marker, draw_sample, plot_err, series_style, text,
-    text_width, wrap,
+use super::axes::{Frame, Scale, auto_range, bottom_margin, clip_polyline};
+use super::print::{
+    FRAME_LINE_PT, LEGEND_LINE, LEGEND_PT, NOTE_LINE, NOTE_PT, PAD, SAMPLE_W, TICK_PT, TITLE_PT,
+    Width, page_pt,
 };
+use super::style::{
+    Dash, GREY, Style, draw_line, draw_marker, draw_sample, fill_polygon, fill_rect, outline,
+    panel_styles, plot_err, series_style, stroke, text, text_at, text_width, wrap,
+};
+use plotters::style::text_anchor::{HPos, VPos};
 use crate::error::{Error, Result};
 use plotters::prelude::*;
 
@@ -32,13 +37,14 @@ pub const MARKERS_PER_CURVE: usize = 10;
 /// A line plot; [`LinePlot::svg`] draws it.
 #[derive(Clone, Debug, Default)]
 pub struct LinePlot {
-    /// Title (wrapped to the figure width).
+    /// Title (wrapped to the figure width; empty: none, as in figures whose caption is set
+    /// by the paper).
     pub title: String,
     /// Abscissa description with unit.
     pub x_desc: String,
     /// Ordinate description with unit.
     pub y_desc: String,
-    /// Curves, styled by index ([`curve_style`]).
+    /// Curves, styled by meaning ([`curve_styles`]).
     pub curves: Vec<Curve>,
     /// Fixed vertical range (None: [`auto_range`] over the points within the horizontal
     /// range); curves leaving it are marked as clipped.
@@ -58,12 +64,22 @@ pub struct LinePlot {
     pub x_marks: Vec<(f64, String)>,
     /// Caption lines under the plot.
     pub notes: Vec<String>,
+    /// Printed width: 170 mm with the legend right of the data (default), 85 mm with the
+    /// legend under it.
+    pub width: Width,
+    /// Logarithmic vertical axis (decades labelled; values ≤ 0 leave gaps); `y_range` is then
+    /// in data units too.
+    pub y_log: bool,
 }
 
-/// Style of curve `i` of a line plot: [`series_style`] with a dashed line for dashed curves.
-/// The legend draws its sample with this same style.
-pub fn curve_style(i: usize, c: &Curve) -> Style {
-    series_style(i, if c.dashed { Dash::Dashed } else { Dash::Solid })
+/// Styles of the curves of a line plot, by meaning ([`panel_styles`]: a curve labelled by a
+/// form, kernel, integrator or reference name has that name's style in every figure; the others
+/// take the remaining colours), dashed curves dashed. The legend draws its samples with these
+/// same styles.
+pub fn curve_styles(curves: &[Curve]) -> Vec<Style> {
+    let labels: Vec<&str> = curves.iter().map(|c| c.label.as_str()).collect();
+    let dashed: Vec<bool> = curves.iter().map(|c| c.dashed).collect();
+    panel_styles(&labels, &dashed)
 }
 
 /// A legend entry: sample style, label and an optional note (coincidence, clipping).
@@ -81,6 +97,7 @@ pub struct LegendEntry {
 /// the series' style; notes name coinciding curves and where a curve is clipped).
 pub fn legend_entries(curves: &[Curve], lo: f64, hi: f64) -> Vec<LegendEntry> {
     let tol = COINCIDE_TOL * (hi - lo);
+    let styles = curve_styles(curves);
     curves
         .iter()
         .enumerate()
@@ -100,7 +117,7 @@ pub fn legend_entries(curves: &[Curve], lo: f64, hi: f64) -> Vec<LegendEntry> {
                 notes.push(format!("clipped ▼: reaches {}", sig(a)));
             }
             LegendEntry {
-                style: curve_style(j, c),
+                style: styles[j],
                 label: c.label.clone(),
                 note: (!notes.is_empty()).then(|| notes.join("; ")),
             }
@@ -130,11 +147,6 @@ fn coincide(a: &Curve, b: &Curve, tol: f64) -> bool {
         })
 }
 
-/// Plot width (pixels) of the data box.
-const BOX_W: f64 = 700.0;
-/// Plot height (pixels) of the data box.
-const BOX_H: f64 = 440.0;
-
 impl LinePlot {
     /// A plot of `curves` with automatic range, no zero line, no extras.
     pub fn new(title: &str, x_desc: &str, y_desc: &str, curves: Vec<Curve>) -> Self {
@@ -147,13 +159,38 @@ impl LinePlot {
         }
     }
 
-    /// The vertical range drawn (with 4 % padding when automatic).
+    /// The vertical range drawn (with 4 % padding when automatic), in axis units: log10 of
+    /// the data on a log axis.
     pub fn y_limits(&self) -> (f64, f64) {
-        if let Some(r) = self.y_range {
-            return r;
+        self.limits_of(&self.axis_curves())
+    }
+
+    /// The curves in axis units: log10 of the ordinates on a log axis (gaps at values ≤ 0).
+    fn axis_curves(&self) -> Vec<Curve> {
+        if !self.y_log {
+            return self.curves.clone();
         }
-        let inside: Vec<Vec<f64>> = self
-            .curves
+        self.curves
+            .iter()
+            .map(|c| Curve {
+                y: c.y
+                    .iter()
+                    .map(|&v| if v > 0.0 { v.log10() } else { f64::NAN })
+                    .collect(),
+                ..c.clone()
+            })
+            .collect()
+    }
+
+    fn limits_of(&self, curves: &[Curve]) -> (f64, f64) {
+        if let Some((a, b)) = self.y_range {
+            return if self.y_log {
+                (a.log10(), b.log10())
+            } else {
+                (a, b)
+            };
+        }
+        let inside: Vec<Vec<f64>> = curves
             .iter()
             .map(|c| {
                 c.x.iter()
@@ -164,12 +201,14 @@ impl LinePlot {
             })
             .collect();
         let ys: Vec<&[f64]> = inside.iter().map(Vec::as_slice).collect();
-        let r = auto_range(&ys, self.zero_line);
+        let r = auto_range(&ys, self.zero_line && !self.y_log);
         let pad = 0.04 * (r.hi - r.lo);
         (r.lo - pad, r.hi + pad)
     }
 
-    /// Renders the plot to an SVG string.
+    /// Renders the plot to an SVG string, laid out in points at its printed [`Width`]:
+    /// the title (if any) above the data box, the legend right of it (170 mm) or under it
+    /// (85 mm), notes under everything.
     pub fn svg(&self) -> Result<String> {
         let xs = self
             .curves
@@ -193,133 +232,152 @@ impl LinePlot {
             x0
         };
         let (x0, x1) = self.x_range.unwrap_or((x0, x1));
-        let (lo, hi) = self.y_limits();
-        let entries = legend_entries(&self.curves, lo, hi);
-        // legend column width from its longest label (wrapped beyond 46 characters)
+        let axis_curves = self.axis_curves();
+        let (lo, hi) = self.limits_of(&axis_curves);
+        let entries = legend_entries(&axis_curves, lo, hi);
+        let y_scale = if self.y_log {
+            Scale::Log(lo, hi)
+        } else {
+            Scale::Linear(lo, hi)
+        };
+        let page = page_pt(self.width);
+        let right = self.width == Width::Double;
+        // the legend: a column right of the box (170 mm) or a block under it (85 mm)
+        let max_chars = if right {
+            LEGEND_CHARS
+        } else {
+            ((page - 2.0 * PAD - SAMPLE_W - 4.0) / (0.6 * LEGEND_PT)) as usize
+        };
         let longest = entries
             .iter()
             .map(|e| {
-                let note = e.note.as_ref().map_or(0, |n| n.chars().count() * 11 / 13);
+                let note = e.note.as_ref().map_or(0, |n| {
+                    (n.chars().count() as f64 * NOTE_PT / LEGEND_PT).ceil() as usize
+                });
                 e.label.chars().count().max(note)
             })
             .chain(self.band.iter().map(|b| b.2.chars().count()))
             .max()
             .unwrap_or(10)
-            .min(46);
-        let legend_w = 60.0 + text_width(&"x".repeat(longest), 13);
-        let left = 95.0;
-        let width = left + BOX_W + 25.0 + legend_w + 15.0;
-        let title = wrap(&self.title, ((width - 40.0) / (0.56 * 18.0)) as usize);
-        let top0 = 18.0 + 23.0 * title.len() as f64 + 8.0;
+            .min(max_chars);
+        let text_w = text_width(&"x".repeat(longest), LEGEND_PT);
+        let legend_w = SAMPLE_W + 4.0 + text_w + 2.0 * PAD;
+        let label_chars = ((legend_w - SAMPLE_W - 4.0 - 2.0 * PAD) / (0.6 * LEGEND_PT)) as usize;
+        let note_chars = ((legend_w - SAMPLE_W - 4.0 - 2.0 * PAD) / (0.6 * NOTE_PT)) as usize;
+        let mut lh = PAD;
+        for e in &entries {
+            lh += LEGEND_LINE * wrap(&e.label, label_chars).len() as f64;
+            if let Some(n) = &e.note {
+                lh += NOTE_LINE * wrap(n, note_chars).len() as f64;
+            }
+            lh += 1.5;
+        }
+        if self.band.is_some() {
+            lh += LEGEND_LINE + 1.5;
+        }
+        lh += PAD - 1.5;
+        let title = if self.title.is_empty() {
+            Vec::new()
+        } else {
+            wrap(&self.title, ((page - 2.0 * PAD) / (0.6 * TITLE_PT)) as usize)
+        };
+        let top0 = PAD + TITLE_PT * 1.25 * title.len() as f64;
         // mark labels: one row above the box, a further row wherever two would overlap
-        let map_x = |v: f64| left + (v - x0) / (x1 - x0) * BOX_W;
+        let box_w0 = if right {
+            page - legend_w - 3.0 * PAD - 45.0
+        } else {
+            page - 2.0 * PAD - 45.0
+        };
+        let box_h = (box_w0 * if right { 0.62 } else { 0.72 }).clamp(110.0, 230.0);
+        let left = PAD + Frame::left_margin(y_scale, box_h, &self.y_desc);
+        // room right of the box for half a tick label
+        let box_w = if right {
+            page - left - legend_w - 2.0 * PAD - 6.0
+        } else {
+            page - left - PAD - 6.0
+        };
+        let map_x = |v: f64| left + (v - x0) / (x1 - x0) * box_w;
         let mut rows_end: Vec<f64> = Vec::new();
-        let mut marks: Vec<(f64, &str, usize)> = Vec::new();
+        let mut marks: Vec<(f64, f64, &str, usize)> = Vec::new();
         let mut sorted: Vec<&(f64, String)> = self.x_marks.iter().collect();
         sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
         for (v, label) in sorted {
-            let (px, w) = (map_x(*v), text_width(label, 12));
+            let w = text_width(label, TICK_PT);
+            // a label stays on the page
+            let px = map_x(*v).clamp(PAD + w / 2.0, page - PAD - w / 2.0);
             let row = rows_end
                 .iter()
-                .position(|&end| px - w / 2.0 > end + 6.0)
+                .position(|&end| px - w / 2.0 > end + 3.0)
                 .unwrap_or(rows_end.len());
             if row == rows_end.len() {
-                rows_end.push(0.0);
+                rows_end.push(f64::NEG_INFINITY);
             }
             rows_end[row] = px + w / 2.0;
-            marks.push((px, label, row));
+            marks.push((map_x(*v), px, label, row));
         }
-        let top = top0 + 16.0 * rows_end.len() as f64;
-        let bottom = top + BOX_H;
+        let mark_row = TICK_PT * 1.25;
+        let top = top0 + mark_row * rows_end.len() as f64 + TICK_PT * 0.6;
+        let bottom = top + box_h;
         let frame = Frame {
-            rect: (left, top, left + BOX_W, bottom),
+            rect: (left, top, left + box_w, bottom),
             x: Scale::Linear(x0, x1),
-            y: Scale::Linear(lo, hi),
+            y: y_scale,
             grid: true,
         };
-        let note_chars = ((width - 40.0) / (0.56 * 13.0)) as usize;
+        let under = bottom + bottom_margin(&self.x_desc, box_w);
+        let legend_at = if right {
+            (page - PAD - legend_w, top)
+        } else {
+            (PAD, under + 2.0)
+        };
+        let after_legend = if right { under } else { legend_at.1 + lh };
         let notes: Vec<String> = self
             .notes
             .iter()
-            .flat_map(|n| wrap(n, note_chars))
+            .flat_map(|n| wrap(n, ((page - 2.0 * PAD) / (0.6 * NOTE_PT)) as usize))
             .collect();
-        let mut height = bottom + 62.0 + 18.0 * notes.len() as f64;
-        // legend height
-        let label_chars = ((legend_w - 55.0) / (0.56 * 13.0)) as usize;
-        let note_chars_l = ((legend_w - 55.0) / (0.56 * 11.0)) as usize;
-        let mut lh = 0.0;
-        for e in &entries {
-            lh += 17.0 * wrap(&e.label, label_chars).len() as f64 + 5.0;
-            if let Some(n) = &e.note {
-                lh += 14.0 * wrap(n, note_chars_l).len() as f64;
-            }
-        }
-        if self.band.is_some() {
-            lh += 22.0;
-        }
-        height = height.max(top + lh + 20.0);
+        let notes_top = after_legend.max(if right { top + lh } else { 0.0 }) + 2.0;
+        let height = notes_top + NOTE_LINE * notes.len() as f64 + PAD;
         let mut svg = String::new();
         {
-            let root =
-                super::canvas::Canvas::new(&mut svg, super::print::Width::Double, (width, height))
-                    .into_drawing_area();
+            let root = super::canvas::Canvas::new(&mut svg, self.width, (page, height))
+                .into_drawing_area();
             root.fill(&WHITE).map_err(plot_err)?;
             for (k, line) in title.iter().enumerate() {
-                super::style::text_at(
+                text(
                     &root,
                     line,
-                    (width / 2.0, 12.0 + 23.0 * k as f64),
-                    18,
-                    (
-                        plotters::style::text_anchor::HPos::Center,
-                        plotters::style::text_anchor::VPos::Top,
-                    ),
-                    false,
+                    (PAD, PAD + TITLE_PT * 1.25 * k as f64),
+                    TITLE_PT,
+                    BLACK,
                 )?;
             }
             let (l, t, r, b) = frame.rect;
             if let Some((a, c, _)) = &self.band {
-                let (pa, pc) = (frame.map(*a, lo).0, frame.map(*c, lo).0);
-                root.draw(&Rectangle::new(
-                    [(pa.max(l) as i32, t as i32), (pc.min(r) as i32, b as i32)],
-                    RGBColor(235, 235, 235).filled(),
-                ))
-                .map_err(plot_err)?;
+                let (pa, pc) = (frame.map(*a, 1.0).0, frame.map(*c, 1.0).0);
+                fill_rect(&root, (pa.max(l), t, pc.min(r), b), BAND)?;
             }
-            draw_frame(
-                &root,
-                &frame,
-                &self.x_desc,
-                &self.y_desc,
-                self.x_ticks.as_deref(),
-            )?;
-            for &(px, label, row) in &marks {
+            frame.draw(&root, &self.x_desc, &self.y_desc, self.x_ticks.as_deref())?;
+            for &(mx, px, label, row) in &marks {
                 let dots = Style {
                     color: GREY,
                     dash: Dash::Dotted,
-                    width: 1,
+                    width: FRAME_LINE_PT,
                     ..series_style(0, Dash::Dotted)
                 };
-                draw_line(&root, &[(px, t), (px, b)], &dots)?;
-                super::style::text_at(
+                draw_line(&root, &[(mx, t), (mx, b)], &dots)?;
+                text_at(
                     &root,
                     label,
-                    (px, top0 + 16.0 * (rows_end.len() - 1 - row) as f64),
-                    12,
-                    (
-                        plotters::style::text_anchor::HPos::Center,
-                        plotters::style::text_anchor::VPos::Top,
-                    ),
+                    (px, top0 + mark_row * (rows_end.len() - 1 - row) as f64),
+                    TICK_PT,
+                    (HPos::Center, VPos::Top),
                     false,
                 )?;
             }
-            if self.zero_line && lo < 0.0 && hi > 0.0 {
+            if self.zero_line && !self.y_log && lo < 0.0 && hi > 0.0 {
                 let y = frame.map(x0, 0.0).1;
-                root.draw(&PathElement::new(
-                    [(l as i32, y.round() as i32), (r as i32, y.round() as i32)],
-                    GREY.stroke_width(1),
-                ))
-                .map_err(plot_err)?;
+                stroke(&root, &[(l, y), (r, y)], GREY, FRAME_LINE_PT)?;
             }
             let n = self.curves.len();
             for (i, (c, e)) in self.curves.iter().zip(&entries).enumerate() {
@@ -327,7 +385,7 @@ impl LinePlot {
                     c.x.iter()
                         .zip(&c.y)
                         .map(|(&x, &y)| {
-                            if x.is_finite() && y.is_finite() {
+                            if x.is_finite() && y_scale.accepts(y) {
                                 frame.map(x, y)
                             } else {
                                 (f64::NAN, f64::NAN)
@@ -341,22 +399,21 @@ impl LinePlot {
                 // clipping marks where a piece ends on the top or bottom edge
                 for p in &pieces {
                     for q in [p[0], p[p.len() - 1]] {
-                        let edge = if (q.1 - t).abs() < 0.5 {
+                        let edge = if (q.1 - t).abs() < 0.05 {
                             Some(-1.0)
-                        } else if (q.1 - b).abs() < 0.5 {
+                        } else if (q.1 - b).abs() < 0.05 {
                             Some(1.0)
                         } else {
                             None
                         };
                         if let Some(s) = edge {
                             // an arrowhead inside the box pointing out through the edge
-                            let base = (q.1 - s * 9.0).round() as i32;
-                            let (ax, ay) = (q.0.round() as i32, q.1.round() as i32);
-                            root.draw(&Polygon::new(
-                                vec![(ax, ay), (ax - 5, base), (ax + 5, base)],
-                                e.style.color.filled(),
-                            ))
-                            .map_err(plot_err)?;
+                            let base = q.1 - s * 4.0;
+                            fill_polygon(
+                                &root,
+                                &[q, (q.0 - 2.2, base), (q.0 + 2.2, base)],
+                                e.style.color,
+                            )?;
                         }
                     }
                 }
@@ -375,72 +432,69 @@ impl LinePlot {
                 };
                 for k in idx {
                     let p = pts[k];
-                    if p.0.is_finite() && frame.contains(p, 0.5) {
+                    if p.0.is_finite() && frame.contains(p, 0.05) {
                         draw_marker(&root, p, &e.style)?;
                     }
                 }
             }
-            // legend column, outside the data
-            let lx = r + 25.0;
-            let mut y = t + 4.0;
-            root.draw(&Rectangle::new(
-                [
-                    ((lx - 8.0) as i32, (t - 2.0) as i32),
-                    ((lx + legend_w) as i32, (t + lh + 6.0) as i32),
-                ],
-                GREY.stroke_width(1),
-            ))
-            .map_err(plot_err)?;
+            // the legend, outside the data
+            let (lx, ly) = legend_at;
+            outline(
+                &root,
+                (lx, ly, lx + legend_w, ly + lh),
+                GREY,
+                FRAME_LINE_PT,
+            )?;
+            let tx = lx + PAD + SAMPLE_W + 4.0;
+            let mut y = ly + PAD;
             for e in &entries {
-                draw_sample(&root, (lx, y + 7.0), 36.0, &e.style, true, true)?;
+                draw_sample(
+                    &root,
+                    (lx + PAD, y + LEGEND_PT * 0.55),
+                    SAMPLE_W,
+                    &e.style,
+                    true,
+                    true,
+                )?;
                 for line in wrap(&e.label, label_chars) {
-                    text(&root, &line, (lx + 44.0, y), 13, BLACK)?;
-                    y += 17.0;
+                    text(&root, &line, (tx, y), LEGEND_PT, BLACK)?;
+                    y += LEGEND_LINE;
                 }
                 if let Some(nt) = &e.note {
-                    for line in wrap(nt, note_chars_l) {
-                        text(&root, &line, (lx + 44.0, y), 11, GREY)?;
-                        y += 14.0;
+                    for line in wrap(nt, note_chars) {
+                        text(&root, &line, (tx, y), NOTE_PT, GREY)?;
+                        y += NOTE_LINE;
                     }
                 }
-                y += 5.0;
+                y += 1.5;
             }
             if let Some((_, _, label)) = &self.band {
-                root.draw(&Rectangle::new(
-                    [
-                        (lx as i32, (y + 1.0) as i32),
-                        ((lx + 36.0) as i32, (y + 13.0) as i32),
-                    ],
-                    RGBColor(225, 225, 225).filled(),
-                ))
-                .map_err(plot_err)?;
-                text(&root, label, (lx + 44.0, y), 13, BLACK)?;
+                fill_rect(
+                    &root,
+                    (lx + PAD, y + 0.5, lx + PAD + SAMPLE_W, y + LEGEND_PT),
+                    BAND,
+                )?;
+                text(&root, label, (tx, y), LEGEND_PT, BLACK)?;
             }
             for (k, line) in notes.iter().enumerate() {
                 text(
                     &root,
                     line,
-                    (20.0, bottom + 58.0 + 18.0 * k as f64),
-                    13,
+                    (PAD, notes_top + NOTE_LINE * k as f64),
+                    NOTE_PT,
                     GREY,
                 )?;
             }
             root.present().map_err(plot_err)?;
         }
-        super::print::finish(&svg, super::print::Width::Double)
+        super::print::finish(&svg, self.width)
     }
 }
 
-/// The frame of a line plot, with named abscissae when given (vertical lines at each).
-fn draw_frame(
-    area: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
-    frame: &Frame,
-    x_desc: &str,
-    y_desc: &str,
-    named: Option<&[(f64, String)]>,
-) -> Result<()> {
-    frame.draw(area, x_desc, y_desc, named)
-}
+/// Fill of a shaded abscissa band (and of its legend sample).
+const BAND: RGBColor = RGBColor(228, 228, 228);
+/// Longest legend line of a 170 mm plot, characters (longer labels wrap).
+const LEGEND_CHARS: usize = 34;
 
 /// A line plot of several curves (automatic range when `y_range` is None) with a zero line.
 pub fn lines_svg(
@@ -459,12 +513,12 @@ pub fn lines_svg(
 }
 
 /// Abscissa description of every 1D dispersion plot.
-pub const KAPPA_DESC: &str = "wave number κΔx/π (dimensionless; 1 is the cut-off κ = π/Δx)";
+pub const KAPPA_DESC: &str = "wave number κΔx/π (1: the cut-off κ = π/Δx)";
 /// Ordinate description of every dispersion plot.
-pub const OMEGA2_DESC: &str = "ω²Δx²/c² (squared frequency in units of c²/Δx²; < 0: growth)";
+pub const OMEGA2_DESC: &str = "squared frequency ω²Δx²/c² (< 0: growth)";
 
 /// Axis description of every damping plot.
-pub const DAMPING_DESC: &str = "Re s Δx/c (damping rate in units of c/Δx; < 0: damped)";
+pub const DAMPING_DESC: &str = "damping rate Re s Δx/c (< 0: damped)";
 
 /// The plot of damping curves Re s(x) of branches with labels (a null, an ambiguous
 /// matching, leaves a gap); `x_ticks` names abscissae (symmetry points of a path).
@@ -515,8 +569,8 @@ mod tests {
             curve("b", vec![0.0, 2.0, 1.0], true),
         ];
         let e = legend_entries(&cs, -1.0, 3.0);
-        for (i, (c, e)) in cs.iter().zip(&e).enumerate() {
-            assert_eq!(e.style, curve_style(i, c));
+        for (e, s) in e.iter().zip(curve_styles(&cs)) {
+            assert_eq!(e.style, s);
         }
         assert_eq!(e[1].style.dash, Dash::Dashed);
         assert_eq!(e[0].style.dash, Dash::Solid);

@@ -14,13 +14,15 @@ mod scatter;
 mod stack;
 pub mod style;
 
-pub use heatmap::{heatmap_svg, ramp};
+pub use heatmap::{StripPanel, heatmap_svg, ramp, strips_svg};
 pub use lines::{
     COINCIDE_TOL, Curve, DAMPING_DESC, KAPPA_DESC, LegendEntry, LinePlot, MARKERS_PER_CURVE,
-    OMEGA2_DESC, curve_style, damping_plot, legend_entries, lines_svg,
+    OMEGA2_DESC, curve_styles, damping_plot, legend_entries, lines_svg,
 };
 pub use scatter::{
-    COINCIDE_PX, FRONT_STYLE, Panel, PanelCurve, ScatterPanel, coinciding_groups, group_style,
-    panel_style, panels_svg, pareto_svg, scatter_panels_svg,
+    COINCIDE_PX, Entry, FRONT_STYLE, Grid, ScatterPanel, coinciding_groups, colour_layers,
+    draw_panel, draw_title, legend_block, legend_block_height, legend_column, legend_styles,
+    legend_width, panel_letter, pareto_svg,
+    scatter_panels_svg, title_block,
 };
 pub use stack::{stack_svg, svg_size};

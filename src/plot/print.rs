@@ -3,10 +3,12 @@
 //! one font family, and [`finish`], which turns a canvas-pixel SVG into one printed at 85 or
 //! 170 mm.
 //!
-//! A figure is drawn on a canvas of `width_mm · S × height_mm · S` pixels (S = [`PX_PER_MM`])
-//! and its root `<svg>` then carries `width="170mm"` and `viewBox="0 0 W H"`: plotters' SVG
-//! backend writes whole-pixel coordinates, which at S = 20 px/mm are 0.05 mm apart at print
-//! size, below what paper or a zoomed screen shows.
+//! Every plot is laid out in points on a page of the printed width ([`page_pt`]: 481.9 pt for
+//! 170 mm, 240.9 pt for 85 mm), so a type size or line width given here is what prints. It is
+//! drawn on a canvas of `width_mm · S × height_mm · S` pixels (S = [`PX_PER_MM`]) and its root
+//! `<svg>` then carries `width="170mm"` and `viewBox="0 0 W H"`: plotters' SVG backend writes
+//! whole-pixel coordinates, which at S = 20 px/mm are 0.05 mm apart at print size, below what
+//! paper or a zoomed screen shows.
 
 use crate::error::{Error, Result};
 
@@ -33,8 +35,19 @@ pub const LEGEND_PT: f64 = 7.0;
 pub const TITLE_PT: f64 = 9.0;
 /// Panel letters (a), (b), …, pt.
 pub const PANEL_LETTER_PT: f64 = 9.0;
+/// Legend notes (coincidence, clipping) and caption lines, pt.
+pub const NOTE_PT: f64 = 6.5;
 /// No text anywhere is smaller, pt.
 pub const MIN_TEXT_PT: f64 = 6.0;
+
+/// Line pitch of legend entries, pt.
+pub const LEGEND_LINE: f64 = LEGEND_PT * 1.3;
+/// Line pitch of notes, pt.
+pub const NOTE_LINE: f64 = NOTE_PT * 1.3;
+/// Margin round a figure and inside a legend frame, pt.
+pub const PAD: f64 = 4.0;
+/// Length of a legend sample, pt.
+pub const SAMPLE_W: f64 = 16.0;
 
 /// Lines of data series, pt.
 pub const SERIES_LINE_PT: f64 = 1.0;
@@ -44,11 +57,12 @@ pub const FRAME_LINE_PT: f64 = 0.5;
 pub const MIN_LINE_PT: f64 = 0.5;
 
 /// The printed width of a figure.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Width {
-    /// One journal column, 85 mm: a single small panel.
+    /// One journal column, 85 mm: a single small panel, legend under the data.
     Single,
     /// Two columns, 170 mm: multi-panel figures, studies, plots with a legend column.
+    #[default]
     Double,
 }
 
@@ -72,16 +86,10 @@ pub fn pt(pt: f64) -> f64 {
     pt * PX_PER_PT
 }
 
-/// The size to give plotters for text of `pt` points: its SVG backend writes
-/// `font-size = size / 1.24`, so the written size is `pt · PX_PER_PT` canvas pixels.
-pub fn font_size(pt: f64) -> f64 {
-    pt * PX_PER_PT * 1.24
-}
-
-/// Line width (whole canvas pixels, as plotters takes it) of `pt` points, at least
-/// [`MIN_LINE_PT`].
-pub fn line_width(pt: f64) -> u32 {
-    (pt.max(MIN_LINE_PT) * PX_PER_PT).round() as u32
+/// The width in points of a page `width` wide: every plot is laid out in points on a page
+/// this wide (the layout unit is the point at print size).
+pub fn page_pt(width: Width) -> f64 {
+    width.mm() / MM_PER_PT
 }
 
 /// The opening tag of the root `<svg …>` element and the rest of the document.
@@ -179,8 +187,7 @@ mod tests {
     #[test]
     fn sizes_convert_through_points() {
         assert!((pt(1.0) - 20.0 * 25.4 / 72.0).abs() < 1e-12);
-        assert!((font_size(7.0) / 1.24 / PX_PER_MM / MM_PER_PT - 7.0).abs() < 1e-12);
-        assert!(line_width(0.1) as f64 >= MIN_LINE_PT * PX_PER_PT - 0.5);
+        assert!((page_pt(Width::Double) - 170.0 * 72.0 / 25.4).abs() < 1e-9);
         assert_eq!(Width::Single.px(), 1700.0);
     }
 }

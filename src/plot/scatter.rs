@@ -1,41 +1,69 @@
-//! Scatter plots on log–log axes (the trade-off Pareto figure, the integrator panels) and
-//! multi-panel line figures (the pairing study), in the shared styles.
+//! Scatter plots on log–log axes (the trade-off Pareto figure, the integrator panels), in
+//! the shared styles, laid out in points on a 170 mm page: panels in a grid, one legend column on the right. Series are styled by meaning
+//! ([`panel_styles`]); where more series than the seven colours would share a panel, the
+//! series are split into layers of distinct colours, one row of panels per layer.
 
-use super::axes::{Frame, Scale};
+use super::axes::{BOTTOM_MARGIN, Frame, Scale};
+use super::print::{
+    FRAME_LINE_PT, LABEL_PT, LEGEND_LINE, LEGEND_PT, NOTE_LINE, NOTE_PT, PAD, SAMPLE_W, TITLE_PT, Width,
+    page_pt,
+};
 use super::style::{
-    Dash, GREY, Style, draw_line, draw_marker, draw_sample, plot_err, series_style, text, text_at,
+    Dash, GREY, Style, draw_line, draw_marker, draw_sample, outline, panel_styles, plot_err, text,
     text_width, wrap,
 };
 use crate::error::{Error, Result};
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, VPos};
 
-fn title_lines(
+/// Height (points) of a title of `title` on a 170 mm page, and its lines.
+pub fn title_block(title: &str) -> (f64, Vec<String>) {
+    if title.is_empty() {
+        return (PAD, Vec::new());
+    }
+    let lines = wrap(
+        title,
+        ((page_pt(Width::Double) - 2.0 * PAD) / (0.6 * TITLE_PT)) as usize,
+    );
+    (PAD + TITLE_PT * 1.25 * lines.len() as f64, lines)
+}
+
+/// Draws the lines of [`title_block`] at the top left.
+pub fn draw_title(
     root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
-    title: &str,
-    width: f64,
-) -> Result<f64> {
-    let lines = wrap(title, ((width - 40.0) / (0.56 * 18.0)) as usize);
+    lines: &[String],
+) -> Result<()> {
     for (k, line) in lines.iter().enumerate() {
-        text_at(
+        text(
             root,
             line,
-            (width / 2.0, 10.0 + 23.0 * k as f64),
-            18,
-            (HPos::Center, VPos::Top),
-            false,
+            (PAD, PAD + TITLE_PT * 1.25 * k as f64),
+            TITLE_PT,
+            BLACK,
         )?;
     }
-    Ok(16.0 + 23.0 * lines.len() as f64)
+    Ok(())
 }
 
-fn title_height(title: &str, width: f64) -> f64 {
-    16.0 + 23.0 * wrap(title, ((width - 40.0) / (0.56 * 18.0)) as usize).len() as f64
+/// Styles of the legend entries of a scatter or panel figure, by meaning ([`panel_styles`]).
+pub fn legend_styles(legend: &[String]) -> Vec<Style> {
+    let labels: Vec<&str> = legend.iter().map(String::as_str).collect();
+    panel_styles(&labels, &[])
 }
 
-/// Style of group `g` of a scatter figure: [`series_style`] (colour and marker shape per group).
-pub fn group_style(g: usize) -> Style {
-    series_style(g, Dash::Solid)
+/// Splits legend entries into layers in which no two share a colour (in legend order, each
+/// entry into the first layer without its colour): one row of panels per layer.
+pub fn colour_layers(styles: &[Style]) -> Vec<Vec<usize>> {
+    let mut layers: Vec<Vec<usize>> = Vec::new();
+    for (i, s) in styles.iter().enumerate() {
+        match layers
+            .iter_mut()
+            .find(|l| l.iter().all(|&j| styles[j].color != s.color))
+        {
+            Some(l) => l.push(i),
+            None => layers.push(vec![i]),
+        }
+    }
+    layers
 }
 
 /// Style of the Pareto front line (and of its legend sample).
@@ -44,12 +72,219 @@ pub const FRONT_STYLE: Style = Style {
     dash: Dash::Dashed,
     marker: super::style::Marker::Circle,
     filled: true,
-    width: 1,
+    width: FRAME_LINE_PT * 1.5,
 };
 
+/// Width (points) of a legend column for `labels` (and notes), capped.
+pub fn legend_width(labels: &[&str], notes: &[&str]) -> f64 {
+    let w = labels
+        .iter()
+        .map(|l| text_width(l, LEGEND_PT))
+        .chain(notes.iter().map(|n| text_width(n, NOTE_PT)))
+        .fold(0.0f64, f64::max)
+        .min(text_width(&"x".repeat(LEGEND_CHARS), LEGEND_PT));
+    SAMPLE_W + 4.0 + w + 2.0 * PAD
+}
+
+/// Longest legend line, characters (longer labels wrap).
+const LEGEND_CHARS: usize = 30;
+
+/// One legend entry: how it is drawn.
+pub struct Entry<'a> {
+    /// The series' style.
+    pub style: Style,
+    /// Label.
+    pub label: &'a str,
+    /// Second line, smaller and grey.
+    pub note: Option<&'a str>,
+    /// The sample shows the line.
+    pub line: bool,
+    /// The sample shows the marker.
+    pub marker: bool,
+}
+
+/// Draws a framed legend column at `(lx, top)`, `w` wide; returns its bottom.
+pub fn legend_column(
+    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
+    entries: &[Entry<'_>],
+    (lx, top): (f64, f64),
+    w: f64,
+) -> Result<f64> {
+    let chars = ((w - SAMPLE_W - 4.0 - 2.0 * PAD) / (0.6 * LEGEND_PT)) as usize;
+    let nchars = ((w - SAMPLE_W - 4.0 - 2.0 * PAD) / (0.6 * NOTE_PT)) as usize;
+    let tx = lx + PAD + SAMPLE_W + 4.0;
+    let mut y = top + PAD;
+    for e in entries {
+        draw_sample(
+            root,
+            (lx + PAD, y + LEGEND_PT * 0.55),
+            SAMPLE_W,
+            &e.style,
+            e.line,
+            e.marker,
+        )?;
+        for line in wrap(e.label, chars) {
+            text(root, &line, (tx, y), LEGEND_PT, BLACK)?;
+            y += LEGEND_LINE;
+        }
+        if let Some(n) = e.note {
+            for line in wrap(n, nchars) {
+                text(root, &line, (tx, y), NOTE_PT, GREY)?;
+                y += NOTE_LINE;
+            }
+        }
+        y += 1.5;
+    }
+    let bottom = y + PAD - 1.5;
+    outline(root, (lx, top, lx + w, bottom), GREY, FRAME_LINE_PT)?;
+    Ok(bottom)
+}
+
+/// Height (points) of [`legend_block`] for `entries` across `width` points.
+pub fn legend_block_height(entries: &[Entry<'_>], width: f64) -> f64 {
+    let (_, rows, _) = block_shape(entries, width);
+    2.0 * PAD + rows as f64 * block_pitch(entries) - 1.5
+}
+
+/// Row pitch of a legend block: a label line, and a note line when any entry has a note.
+fn block_pitch(entries: &[Entry<'_>]) -> f64 {
+    let note = if entries.iter().any(|e| e.note.is_some()) {
+        NOTE_LINE
+    } else {
+        0.0
+    };
+    LEGEND_LINE + note + 1.5
+}
+
+/// Columns, rows and column width of a legend block of `entries` across `width` points.
+fn block_shape(entries: &[Entry<'_>], width: f64) -> (usize, usize, f64) {
+    let col_w = entries
+        .iter()
+        .map(|e| {
+            text_width(e.label, LEGEND_PT).max(e.note.map_or(0.0, |n| text_width(n, NOTE_PT)))
+        })
+        .fold(0.0f64, f64::max)
+        + SAMPLE_W
+        + 4.0
+        + 8.0;
+    let cols = (((width - 2.0 * PAD) / col_w).floor() as usize).clamp(1, entries.len().max(1));
+    let rows = entries.len().div_ceil(cols);
+    (cols, rows, (width - 2.0 * PAD) / cols as f64)
+}
+
+/// Draws a framed legend block of `entries` in columns (filled column by column) at
+/// `(x, top)`, `width` wide; returns its bottom. Notes take one line under their label.
+pub fn legend_block(
+    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
+    entries: &[Entry<'_>],
+    (x, top): (f64, f64),
+    width: f64,
+) -> Result<f64> {
+    let (_, rows, col_w) = block_shape(entries, width);
+    let pitch = block_pitch(entries);
+    for (i, e) in entries.iter().enumerate() {
+        let (c, r) = (i / rows, i % rows);
+        let (lx, y) = (x + PAD + c as f64 * col_w, top + PAD + r as f64 * pitch);
+        draw_sample(
+            root,
+            (lx, y + LEGEND_PT * 0.55),
+            SAMPLE_W,
+            &e.style,
+            e.line,
+            e.marker,
+        )?;
+        text(root, e.label, (lx + SAMPLE_W + 4.0, y), LEGEND_PT, BLACK)?;
+        if let Some(n) = e.note {
+            text(root, n, (lx + SAMPLE_W + 4.0, y + LEGEND_LINE), NOTE_PT, GREY)?;
+        }
+    }
+    let bottom = top + legend_block_height(entries, width);
+    outline(root, (x, top, x + width, bottom), GREY, FRAME_LINE_PT)?;
+    Ok(bottom)
+}
+
+/// A grid of panels left of a legend column on a 170 mm page.
+#[derive(Clone, Copy, Debug)]
+pub struct Grid {
+    /// Top of the first row, pt.
+    pub top: f64,
+    /// Width and height of one cell, pt.
+    pub cell: (f64, f64),
+    /// Room left of each frame for its ticks and axis description, pt.
+    pub left: f64,
+}
+
+impl Grid {
+    /// `cols` cells per row under `top`, left of a legend `legend_w` wide; cell height
+    /// `aspect` × width (110–260 pt).
+    pub fn new(top: f64, cols: usize, legend_w: f64, aspect: f64) -> Self {
+        let cw = (page_pt(Width::Double) - legend_w - 2.0 * PAD) / cols.max(1) as f64;
+        Grid {
+            top,
+            cell: (cw, (cw * aspect).clamp(110.0, 260.0)),
+            left: 40.0,
+        }
+    }
+
+    /// Room left of each frame for the ticks of `y` and the description `y_desc`.
+    pub fn fit_left(&mut self, y: Scale, y_desc: &str) {
+        let box_h = self.cell.1 - TITLE_PT * 1.4 - BOTTOM_MARGIN - LABEL_PT * 1.2 - 2.0;
+        self.left = Frame::left_margin(y, box_h, y_desc) + 2.0;
+    }
+
+    /// The frame of cell (col, row): a title line above it, ticks and description under it.
+    pub fn frame(&self, col: usize, row: usize, x: Scale, y: Scale) -> Frame {
+        let (cx, cy) = (
+            PAD + col as f64 * self.cell.0,
+            self.top + row as f64 * self.cell.1,
+        );
+        Frame {
+            rect: (
+                cx + self.left,
+                cy + TITLE_PT * 1.4,
+                cx + self.cell.0 - 6.0,
+                cy + self.cell.1 - BOTTOM_MARGIN - LABEL_PT * 1.2 - 2.0,
+            ),
+            x,
+            y,
+            grid: true,
+        }
+    }
+
+    /// Left edge of the legend column right of `cols` cells.
+    pub fn legend_x(&self, cols: usize) -> f64 {
+        PAD + cols as f64 * self.cell.0 + PAD
+    }
+}
+
+/// A panel's title (its letter first) above its frame, then the frame.
+pub fn draw_panel(
+    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
+    frame: &Frame,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<()> {
+    text(
+        root,
+        title,
+        (frame.rect.0 - 30.0, frame.rect.1 - TITLE_PT * 1.3),
+        TITLE_PT,
+        BLACK,
+    )?;
+    frame.draw(root, x_desc, y_desc, None)
+}
+
+/// The panel letter of panel `i`: (a), (b), …
+pub fn panel_letter(i: usize) -> String {
+    let c = (b'a' + (i % 26) as u8) as char;
+    format!("({c})")
+}
+
 /// A log–log scatter of (group, x, y, filled) points: colour and marker shape per group
-/// (legend), filled markers for `filled`, hollow otherwise (`fill_meaning` = the legend text of
-/// filled and hollow); the lower-left Pareto front of the filled points is a dashed staircase.
+/// (legend, by meaning), filled markers for `filled`, hollow otherwise (`fill_meaning` = the
+/// legend text of filled and hollow); the lower-left Pareto front of the filled points is a
+/// dashed staircase.
 pub fn pareto_svg(
     title: &str,
     x_desc: &str,
@@ -66,12 +301,13 @@ pub fn pareto_svg(
             "nothing to plot: no configuration has both a cost and an error".into(),
         ));
     }
-    let mut groups: Vec<&str> = Vec::new();
+    let mut groups: Vec<String> = Vec::new();
     for p in &pts {
-        if !groups.contains(&p.0.as_str()) {
-            groups.push(&p.0);
+        if !groups.contains(&p.0) {
+            groups.push(p.0.clone());
         }
     }
+    let styles = legend_styles(&groups);
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for p in &pts {
         x0 = x0.min(p.1);
@@ -79,36 +315,23 @@ pub fn pareto_svg(
         y0 = y0.min(p.2);
         y1 = y1.max(p.2);
     }
-    let legend_w = 60.0
-        + groups
-            .iter()
-            .map(|g| text_width(g, 13))
-            .chain(
-                [
-                    fill_meaning.0,
-                    fill_meaning.1,
-                    "Pareto front of the filled points",
-                ]
-                .map(|s| text_width(s, 13)),
-            )
-            .fold(0.0f64, f64::max)
-            .min(300.0);
-    let width = 100.0 + 700.0 + 30.0 + legend_w + 15.0;
-    let th = title_height(title, width);
-    let frame = Frame {
-        rect: (100.0, th + 8.0, 800.0, th + 8.0 + 480.0),
-        x: Scale::log(x0 / 1.2, x1 * 1.2),
-        y: Scale::log(y0 / 1.5, y1 * 1.5),
-        grid: true,
-    };
-    let height = frame.rect.3 + 65.0;
+    let front_label = "Pareto front of the filled points";
+    let mut labels: Vec<&str> = groups.iter().map(String::as_str).collect();
+    labels.extend([fill_meaning.0, fill_meaning.1, front_label]);
+    let legend_w = legend_width(&labels, &[]);
+    let (th, tlines) = title_block(title);
+    let mut grid = Grid::new(th, 1, legend_w, 0.62);
+    let ys = Scale::log(y0 / 1.5, y1 * 1.5);
+    grid.fit_left(ys, y_desc);
+    let frame = grid.frame(0, 0, Scale::log(x0 / 1.2, x1 * 1.2), ys);
+    let height = th + grid.cell.1 + PAD;
     let mut svg = String::new();
     {
         let root =
-            super::canvas::Canvas::new(&mut svg, super::print::Width::Double, (width, height))
+            super::canvas::Canvas::new(&mut svg, Width::Double, (page_pt(Width::Double), height))
                 .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
-        title_lines(&root, title, width)?;
+        draw_title(&root, &tlines)?;
         frame.draw(&root, x_desc, y_desc, None)?;
         // Pareto front of the filled points: sorted by cost, running minimum of the error
         let mut front: Vec<(f64, f64)> = pts.iter().filter(|p| p.3).map(|p| (p.1, p.2)).collect();
@@ -132,230 +355,51 @@ pub fn pareto_svg(
             for (gi, g) in groups.iter().enumerate() {
                 let style = Style {
                     filled,
-                    ..group_style(gi)
+                    ..styles[gi]
                 };
                 for p in pts.iter().filter(|p| p.0 == *g && p.3 == filled) {
                     draw_marker(&root, frame.map(p.1, p.2), &style)?;
                 }
             }
         }
-        let lx = frame.rect.2 + 30.0;
-        let mut y = frame.rect.1 + 6.0;
-        for (gi, g) in groups.iter().enumerate() {
-            draw_sample(&root, (lx, y + 7.0), 30.0, &group_style(gi), false, true)?;
-            text(&root, g, (lx + 40.0, y), 13, BLACK)?;
-            y += 21.0;
-        }
-        y += 8.0;
         let black = |filled| Style {
             color: BLACK,
             filled,
-            ..group_style(0)
+            ..styles[0]
         };
-        draw_sample(&root, (lx, y + 7.0), 30.0, &black(true), false, true)?;
-        text(&root, fill_meaning.0, (lx + 40.0, y), 13, BLACK)?;
-        y += 21.0;
-        draw_sample(&root, (lx, y + 7.0), 30.0, &black(false), false, true)?;
-        text(&root, fill_meaning.1, (lx + 40.0, y), 13, BLACK)?;
-        y += 21.0;
+        let mut entries: Vec<Entry<'_>> = groups
+            .iter()
+            .zip(&styles)
+            .map(|(g, s)| Entry {
+                style: *s,
+                label: g,
+                note: None,
+                line: false,
+                marker: true,
+            })
+            .collect();
+        for (filled, label) in [(true, fill_meaning.0), (false, fill_meaning.1)] {
+            entries.push(Entry {
+                style: black(filled),
+                label,
+                note: None,
+                line: false,
+                marker: true,
+            });
+        }
         if stairs.len() > 1 {
-            draw_sample(&root, (lx, y + 7.0), 30.0, &FRONT_STYLE, true, false)?;
-            text(
-                &root,
-                "Pareto front of the filled points",
-                (lx + 40.0, y),
-                13,
-                BLACK,
-            )?;
-            y += 21.0;
+            entries.push(Entry {
+                style: FRONT_STYLE,
+                label: front_label,
+                note: None,
+                line: true,
+                marker: false,
+            });
         }
-        root.draw(&Rectangle::new(
-            [
-                ((lx - 8.0) as i32, frame.rect.1 as i32),
-                ((lx + legend_w) as i32, (y + 4.0) as i32),
-            ],
-            GREY.stroke_width(1),
-        ))
-        .map_err(plot_err)?;
+        legend_column(&root, &entries, (grid.legend_x(1), frame.rect.1), legend_w)?;
         root.present().map_err(plot_err)?;
     }
-    super::print::finish(&svg, super::print::Width::Double)
-}
-
-/// One curve of a multi-panel figure ([`panels_svg`]); curve i of every panel is drawn in the
-/// style of legend entry i.
-#[derive(Clone, Debug)]
-pub struct PanelCurve {
-    /// Abscissae.
-    pub x: Vec<f64>,
-    /// Ordinates.
-    pub y: Vec<f64>,
-}
-
-/// One panel of [`panels_svg`].
-#[derive(Clone, Debug)]
-pub struct Panel {
-    /// Panel caption.
-    pub title: String,
-    /// Curves, indexed like the legend (an empty curve draws nothing).
-    pub curves: Vec<PanelCurve>,
-}
-
-/// Panel size (pixels).
-const PANEL_W: f64 = 400.0;
-/// Panel height (pixels).
-const PANEL_H: f64 = 330.0;
-
-/// Style of legend entry i of [`panels_svg`]: [`series_style`], dashed from the eighth on.
-pub fn panel_style(i: usize) -> Style {
-    let s = series_style(i, if i >= 7 { Dash::Dashed } else { Dash::Solid });
-    Style { width: 1, ..s }
-}
-
-fn legend_column(
-    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
-    legend: &[String],
-    notes: &[Option<String>],
-    style: impl Fn(usize) -> Style,
-    line: bool,
-    (lx, top): (f64, f64),
-    w: f64,
-) -> Result<()> {
-    let mut y = top + 6.0;
-    for (i, label) in legend.iter().enumerate() {
-        draw_sample(root, (lx, y + 7.0), 36.0, &style(i), line, true)?;
-        text(root, label, (lx + 44.0, y), 13, BLACK)?;
-        y += 22.0;
-        if let Some(Some(n)) = notes.get(i) {
-            text(root, n, (lx + 44.0, y - 5.0), 11, GREY)?;
-            y += 13.0;
-        }
-    }
-    root.draw(&Rectangle::new(
-        [
-            ((lx - 8.0) as i32, top as i32),
-            ((lx + w) as i32, (y + 4.0) as i32),
-        ],
-        GREY.stroke_width(1),
-    ))
-    .map_err(plot_err)?;
-    Ok(())
-}
-
-/// A panel's title above its frame, then the frame (grid, box, ticks, axis descriptions).
-fn draw_panel(
-    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
-    frame: &Frame,
-    title: &str,
-    x_desc: &str,
-    y_desc: &str,
-) -> Result<()> {
-    text_at(
-        root,
-        title,
-        ((frame.rect.0 + frame.rect.2) / 2.0, frame.rect.1 - 5.0),
-        14,
-        (HPos::Center, VPos::Bottom),
-        false,
-    )?;
-    frame.draw(root, x_desc, y_desc, None)
-}
-
-fn panel_frame(col: usize, row: usize, top: f64, x: Scale, y: Scale) -> Frame {
-    let (cx, cy) = (col as f64 * PANEL_W, top + row as f64 * PANEL_H);
-    Frame {
-        rect: (
-            cx + 78.0,
-            cy + 26.0,
-            cx + PANEL_W - 14.0,
-            cy + PANEL_H - 58.0,
-        ),
-        x,
-        y,
-        grid: true,
-    }
-}
-
-/// A grid of panels (`cols` per row) sharing the x axis (log scale, positive x only) and, per
-/// row, the y range (from 0), with one legend column on the right: curve i is drawn in
-/// [`panel_style`] (colour-blind-safe colour, marker shape, dashed from the eighth on) at every
-/// point — distinguishable in greyscale.
-pub fn panels_svg(
-    title: &str,
-    x_desc: &str,
-    y_desc: &str,
-    legend: &[String],
-    panels: &[Panel],
-    cols: usize,
-) -> Result<String> {
-    let cols = cols.max(1);
-    let rows = panels.len().div_ceil(cols).max(1);
-    let pts = || {
-        panels.iter().flat_map(|p| {
-            p.curves
-                .iter()
-                .flat_map(|c| c.x.iter().copied().zip(c.y.iter().copied()))
-        })
-    };
-    let (x0, x1) = pts()
-        .filter(|(x, y)| x.is_finite() && *x > 0.0 && y.is_finite())
-        .fold((f64::INFINITY, 0.0f64), |(a, b), (x, _)| {
-            (a.min(x), b.max(x))
-        });
-    if !(x0.is_finite() && x1 > 0.0) {
-        return Err(Error::Incompatible(
-            "nothing to plot: no finite points".into(),
-        ));
-    }
-    let xs = Scale::log(x0 / 1.15, x1 * 1.15);
-    let legend_w = 60.0 + legend.iter().map(|l| text_width(l, 13)).fold(0.0, f64::max);
-    let width = PANEL_W * cols as f64 + 30.0 + legend_w;
-    let th = title_height(title, width);
-    let height = th + PANEL_H * rows as f64 + 5.0;
-    let mut svg = String::new();
-    {
-        let root =
-            super::canvas::Canvas::new(&mut svg, super::print::Width::Double, (width, height))
-                .into_drawing_area();
-        root.fill(&WHITE).map_err(plot_err)?;
-        title_lines(&root, title, width)?;
-        for (pi, panel) in panels.iter().enumerate() {
-            let (row, col) = (pi / cols, pi % cols);
-            let ymax = panels[row * cols..((row + 1) * cols).min(panels.len())]
-                .iter()
-                .flat_map(|p| p.curves.iter().flat_map(|c| c.y.iter().copied()))
-                .filter(|y| y.is_finite())
-                .fold(0.0f64, f64::max);
-            let ymax = if ymax > 0.0 { 1.06 * ymax } else { 1.0 };
-            let frame = panel_frame(col, row, th, xs, Scale::Linear(-0.02 * ymax, ymax));
-            draw_panel(&root, &frame, &panel.title, x_desc, y_desc)?;
-            for (i, c) in panel.curves.iter().enumerate() {
-                let style = panel_style(i);
-                let line: Vec<(f64, f64)> =
-                    c.x.iter()
-                        .copied()
-                        .zip(c.y.iter().copied())
-                        .filter(|(x, y)| x.is_finite() && *x > 0.0 && y.is_finite())
-                        .map(|(x, y)| frame.map(x, y))
-                        .collect();
-                draw_line(&root, &line, &style)?;
-                for p in line {
-                    draw_marker(&root, p, &style)?;
-                }
-            }
-        }
-        legend_column(
-            &root,
-            legend,
-            &[],
-            panel_style,
-            true,
-            (PANEL_W * cols as f64 + 20.0, th + 26.0),
-            legend_w,
-        )?;
-        root.present().map_err(plot_err)?;
-    }
-    super::print::finish(&svg, super::print::Width::Double)
+    super::print::finish(&svg, Width::Double)
 }
 
 /// One panel of [`scatter_panels_svg`]: caption and points (legend index, x, y).
@@ -367,8 +411,8 @@ pub struct ScatterPanel {
     pub points: Vec<(usize, f64, f64)>,
 }
 
-/// A marker is hidden when a marker drawn after it lies within this many pixels.
-pub const COINCIDE_PX: f64 = 4.0;
+/// A marker is hidden when a marker drawn after it lies within this many points.
+pub const COINCIDE_PX: f64 = 1.5;
 
 /// Legend notes of a scatter figure (groups are drawn in legend order): entry i is "hidden
 /// under" entry j > i when every marker of i has a marker of a later entry within
@@ -414,10 +458,10 @@ pub fn coinciding_groups(
         .collect()
 }
 
-/// A row of log–log scatter panels sharing both axis ranges, with one legend column on the
-/// right: the points of legend entry i in [`group_style`] (colour and marker shape; filled for
-/// the first ten entries, hollow for the next ten). Points that are not finite and positive
-/// are left out.
+/// A row of log–log scatter panels sharing both axis ranges over the page width, the legend
+/// in columns under them: the points of legend entry i in its style by meaning ([`legend_styles`]). Where two
+/// entries share a colour, the row is drawn once per colour layer ([`colour_layers`]). Points
+/// that are not finite and positive are left out; panels are lettered (a), (b), ….
 pub fn scatter_panels_svg(
     title: &str,
     x_desc: &str,
@@ -447,45 +491,53 @@ pub fn scatter_panels_svg(
         Scale::log(x0 / 1.3, x1 * 1.3),
         Scale::log(y0 / 1.3, y1 * 1.3),
     );
+    let styles = legend_styles(legend);
+    let layers = colour_layers(&styles);
     let cols = panels.len().max(1);
-    let th0 = title_height(title, PANEL_W * cols as f64 + 200.0);
-    let frames: Vec<Frame> = (0..cols).map(|c| panel_frame(c, 0, th0, xs, ys)).collect();
+    let (th, tlines) = title_block(title);
+    let page = page_pt(Width::Double);
+    // the panels over the full width, the legend in columns under them
+    let mut grid = Grid::new(th, cols, 0.0, 0.85);
+    grid.fit_left(ys, y_desc);
+    let frames: Vec<Frame> = (0..cols).map(|c| grid.frame(c, 0, xs, ys)).collect();
     let notes = coinciding_groups(legend, panels, &frames);
-    let legend_w = 60.0
-        + legend
-            .iter()
-            .map(|l| text_width(l, 13))
-            .chain(notes.iter().flatten().map(|n| text_width(n, 11)))
-            .fold(0.0, f64::max);
-    let width = PANEL_W * cols as f64 + 30.0 + legend_w;
-    let th = title_height(title, width);
-    let height = th + PANEL_H + 5.0;
+    let entries: Vec<Entry<'_>> = legend
+        .iter()
+        .zip(&styles)
+        .zip(&notes)
+        .map(|((l, s), n)| Entry {
+            style: *s,
+            label: l,
+            note: n.as_deref(),
+            line: false,
+            marker: true,
+        })
+        .collect();
+    let legend_top = th + grid.cell.1 * layers.len() as f64 + 2.0;
+    let legend_w = page - 2.0 * PAD;
+    let height = legend_top + legend_block_height(&entries, legend_w) + PAD;
     let mut svg = String::new();
     {
-        let root =
-            super::canvas::Canvas::new(&mut svg, super::print::Width::Double, (width, height))
-                .into_drawing_area();
+        let root = super::canvas::Canvas::new(&mut svg, Width::Double, (page, height))
+            .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
-        title_lines(&root, title, width)?;
-        for (col, panel) in panels.iter().enumerate() {
-            let frame = panel_frame(col, 0, th, xs, ys);
-            draw_panel(&root, &frame, &panel.title, x_desc, y_desc)?;
-            for p in panel.points.iter().filter(ok) {
-                draw_marker(&root, frame.map(p.1, p.2), &group_style(p.0))?;
+        draw_title(&root, &tlines)?;
+        let mut letter = 0;
+        for (row, layer) in layers.iter().enumerate() {
+            for (col, panel) in panels.iter().enumerate() {
+                let frame = grid.frame(col, row, xs, ys);
+                let t = format!("{} {}", panel_letter(letter), panel.title);
+                letter += 1;
+                draw_panel(&root, &frame, &t, x_desc, y_desc)?;
+                for p in panel.points.iter().filter(ok).filter(|p| layer.contains(&p.0)) {
+                    draw_marker(&root, frame.map(p.1, p.2), &styles[p.0])?;
+                }
             }
         }
-        legend_column(
-            &root,
-            legend,
-            &notes,
-            group_style,
-            false,
-            (PANEL_W * cols as f64 + 20.0, th + 26.0),
-            legend_w,
-        )?;
+        legend_block(&root, &entries, (PAD, legend_top), legend_w)?;
         root.present().map_err(plot_err)?;
     }
-    super::print::finish(&svg, super::print::Width::Double)
+    super::print::finish(&svg, Width::Double)
 }
 
 #[cfg(test)]
@@ -505,7 +557,7 @@ mod tests {
                 (2, 100.0, 0.05),
             ],
         }];
-        let f = panel_frame(0, 0, 0.0, Scale::log(10.0, 1e4), Scale::log(0.01, 1.0));
+        let f = Grid::new(0.0, 1, 100.0, 0.9).frame(0, 0, Scale::log(10.0, 1e4), Scale::log(0.01, 1.0));
         let n = coinciding_groups(&legend, &panels, &[f]);
         assert_eq!(n, vec![Some("hidden under “dkd”".to_string()), None, None]);
         let svg = scatter_panels_svg("t", "x", "y", &legend, &panels).unwrap();

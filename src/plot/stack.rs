@@ -1,12 +1,12 @@
-//! Figures of several panels: a title strip and the panels' own SVGs stacked top to bottom,
-//! each panel kept whole (its frame, legend and caption) as a nested `<svg>`.
+//! Figures of several panels: a title strip and the panels' own SVGs in rows (two 85 mm
+//! panels side by side, or one 170 mm panel), each panel kept whole (its frame, legend and
+//! notes) as a nested `<svg>`.
 
 use super::canvas::Canvas;
-use super::print::{TITLE_PT, Width, font_size, pt};
-use super::style::{plot_err, text_at, wrap};
+use super::print::{PAD, TITLE_PT, Width, page_pt, pt};
+use super::style::{plot_err, text, wrap};
 use crate::error::{Error, Result};
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, VPos};
 
 /// Width and height (canvas pixels) of an SVG drawn by this module's plots: its `viewBox`
 /// (see [`canvas_size`](super::print::canvas_size)), rounded to whole pixels.
@@ -16,39 +16,62 @@ pub fn svg_size(svg: &str) -> Result<(u32, u32)> {
     Ok((w.round() as u32, h.round() as u32))
 }
 
-/// One SVG of `title` ([`TITLE_PT`], wrapped, centred) above `panels` stacked top to bottom, each
-/// left-aligned at its own size; the figure is as wide as the widest panel.
+/// One SVG of `title` ([`TITLE_PT`], wrapped; none when empty) above `panels` in rows:
+/// two 85 mm panels side by side, a 170 mm panel alone, each panel kept whole (its frame,
+/// legend and notes) as a nested `<svg>`. The figure is 170 mm wide unless it is one 85 mm
+/// panel.
 pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
     let sizes = panels
         .iter()
         .map(|p| svg_size(p))
         .collect::<Result<Vec<_>>>()?;
-    // the panels are at print resolution (zoom 1): the title is set in points
-    let width = sizes.iter().map(|s| s.0).max().unwrap_or(3400);
-    let fs = font_size(TITLE_PT);
-    let lines = wrap(
-        title,
-        ((f64::from(width) - pt(12.0)) / (0.56 * fs)) as usize,
-    );
-    let strip = (pt(4.0) + fs * lines.len() as f64 + pt(2.0)).round() as u32;
-    let height = strip + sizes.iter().map(|s| s.1).sum::<u32>();
+    let half = Width::Single.px().round() as u32;
+    // rows of panels: (first panel, count)
+    let mut rows: Vec<Vec<usize>> = Vec::new();
+    for (i, s) in sizes.iter().enumerate() {
+        match rows.last_mut() {
+            Some(r) if r.len() == 1 && sizes[r[0]].0 <= half && s.0 <= half => r.push(i),
+            _ => rows.push(vec![i]),
+        }
+    }
+    let width = if rows.iter().all(|r| r.len() == 1 && sizes[r[0]].0 <= half) {
+        Width::Single
+    } else {
+        Width::Double
+    };
+    let page = page_pt(width);
+    let lines = if title.is_empty() {
+        Vec::new()
+    } else {
+        wrap(title, ((page - 2.0 * PAD) / (0.6 * TITLE_PT)) as usize)
+    };
+    let strip_pt = if lines.is_empty() {
+        0.0
+    } else {
+        PAD + TITLE_PT * 1.25 * lines.len() as f64
+    };
+    let strip = pt(strip_pt).round() as u32;
+    let row_h: Vec<u32> = rows
+        .iter()
+        .map(|r| r.iter().map(|&i| sizes[i].1).max().unwrap_or(0))
+        .collect();
+    let height_px = strip + row_h.iter().sum::<u32>();
     let mut head = String::new();
     {
         let root = Canvas::new(
             &mut head,
-            Width::Double,
-            (f64::from(width), f64::from(height)),
+            width,
+            (page, f64::from(height_px) / pt(1.0)),
         )
         .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (k, line) in lines.iter().enumerate() {
-            text_at(
+            text(
                 &root,
                 line,
-                (f64::from(width) / 2.0, pt(4.0) + fs * k as f64),
-                fs.round() as u32,
-                (HPos::Center, VPos::Top),
-                false,
+                (PAD, PAD + TITLE_PT * 1.25 * k as f64),
+                TITLE_PT,
+                BLACK,
             )?;
         }
         root.present().map_err(plot_err)?;
@@ -59,20 +82,25 @@ pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
         .ok_or_else(|| Error::Incompatible("title strip: unterminated SVG".into()))?
         .to_string();
     let mut y = strip;
-    for (p, &(w, h)) in panels.iter().zip(&sizes) {
-        // the panel nested at its canvas size (its print size is the figure's)
-        let px = super::print::set_root_size(
-            p,
-            &w.to_string(),
-            &h.to_string(),
-            &format!("0 0 {w} {h}"),
-        )?;
-        let body = px.trim_end().strip_prefix("<svg ").unwrap_or(&px);
-        out.push_str(&format!("<svg x=\"0\" y=\"{y}\" {body}\n"));
+    for (r, h) in rows.iter().zip(&row_h) {
+        let mut x = 0;
+        for &i in r {
+            let (w, ph) = sizes[i];
+            // the panel nested at its canvas size (its print size is the figure's)
+            let px = super::print::set_root_size(
+                &panels[i],
+                &w.to_string(),
+                &ph.to_string(),
+                &format!("0 0 {w} {ph}"),
+            )?;
+            let body = px.trim_end().strip_prefix("<svg ").unwrap_or(&px);
+            out.push_str(&format!("<svg x=\"{x}\" y=\"{y}\" {body}\n"));
+            x += w;
+        }
         y += h;
     }
     out.push_str("</svg>\n");
-    super::print::finish(&out, super::print::Width::Double)
+    super::print::finish(&out, width)
 }
 
 #[cfg(test)]
@@ -80,19 +108,27 @@ mod tests {
     use super::*;
     use crate::plot::{Curve, LinePlot};
 
-    fn panel(t: &str) -> String {
+    fn panel(t: &str, width: Width) -> String {
         let c = Curve {
             label: "a".into(),
             x: vec![0.0, 1.0],
             y: vec![0.0, 1.0],
             dashed: false,
         };
-        LinePlot::new(t, "x", "y", vec![c]).svg().unwrap()
+        LinePlot {
+            width,
+            ..LinePlot::new(t, "x", "y", vec![c])
+        }
+        .svg()
+        .unwrap()
     }
 
     #[test]
     fn panels_keep_their_size_and_order() {
-        let (a, b) = (panel("(a) first"), panel("(b) second"));
+        let (a, b) = (
+            panel("(a) first", Width::Double),
+            panel("(b) second", Width::Double),
+        );
         let (wa, ha) = svg_size(&a).unwrap();
         let s = stack_svg("both", &[a, b]).unwrap();
         let (w, h) = svg_size(&s).unwrap();
@@ -103,5 +139,16 @@ mod tests {
         assert_eq!(s.matches("<svg ").count(), 3);
         assert_eq!(s.matches("</svg>").count(), 3);
         assert!(svg_size("<rect/>").is_err());
+        // 85 mm panels side by side, a third under them; no title strip without a title
+        let p: Vec<String> = ["(a)", "(b)", "(c)"]
+            .iter()
+            .map(|t| panel(t, Width::Single))
+            .collect();
+        let (ws, hs) = svg_size(&p[0]).unwrap();
+        let s = stack_svg("", &p).unwrap();
+        assert_eq!(svg_size(&s).unwrap(), (2 * ws, 2 * hs));
+        assert!(s.contains(&format!("<svg x=\"{ws}\" y=\"0\"")));
+        assert!(s.contains(&format!("<svg x=\"0\" y=\"{hs}\"")));
+        assert!(s[..200].contains("width=\"170mm\""));
     }
 }

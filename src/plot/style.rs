@@ -1,6 +1,8 @@
 //! Series styles shared by every figure: the Okabe–Ito colours, marker shapes and dash
-//! patterns, and the drawing of a style (line, marker, legend sample) — one definition, so a
-//! legend sample is drawn exactly like its series.
+//! patterns, the one style of every form, kernel and integrator name ([`named_style`], the same
+//! in every figure), and the drawing of a style (line, marker, legend sample) and of text — one
+//! definition, so a legend sample is drawn exactly like its series. Every length is in points
+//! at print size (the layout unit of every plot, see [`mod@super::print`]).
 
 use super::canvas::{Fine, FineKind};
 use crate::error::{Error, Result};
@@ -23,27 +25,30 @@ pub const OKABE_ITO: [RGBColor; 7] = [
 /// Grey of reference lines, frames of legends and clipped-curve notes.
 pub const GREY: RGBColor = RGBColor(110, 110, 110);
 
+/// Colour of reference curves (continuum, analytic and exact solutions): dark grey, dashed.
+pub const REFERENCE: RGBColor = RGBColor(80, 80, 80);
+
 /// Dash pattern of a line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Dash {
     /// Continuous.
     Solid,
-    /// 9 px on, 5 px off.
+    /// 3.5 pt on, 2 pt off.
     Dashed,
-    /// 2 px on, 4 px off.
+    /// 1 pt on, 1.5 pt off.
     Dotted,
-    /// 9 on, 4 off, 2 on, 4 off.
+    /// 3.5 on, 1.5 off, 1 on, 1.5 off.
     DashDot,
 }
 
 impl Dash {
-    /// On/off lengths in pixels (empty: solid).
+    /// On/off lengths in points (empty: solid).
     pub fn pattern(self) -> &'static [f64] {
         match self {
             Dash::Solid => &[],
-            Dash::Dashed => &[9.0, 5.0],
-            Dash::Dotted => &[2.0, 4.0],
-            Dash::DashDot => &[9.0, 4.0, 2.0, 4.0],
+            Dash::Dashed => &[3.5, 2.0],
+            Dash::Dotted => &[1.0, 1.5],
+            Dash::DashDot => &[3.5, 1.5, 1.0, 1.5],
         }
     }
 }
@@ -98,8 +103,8 @@ pub struct Style {
     pub marker: Marker,
     /// Filled (else hollow) marker.
     pub filled: bool,
-    /// Line width in pixels.
-    pub width: u32,
+    /// Line width in points.
+    pub width: f64,
 }
 
 /// Style of series `i`: colour `i mod 7`, marker `i mod 10`, filled for the first ten and
@@ -111,8 +116,178 @@ pub fn series_style(i: usize, dash: Dash) -> Style {
         dash,
         marker: MARKERS[i % MARKERS.len()],
         filled: (i / MARKERS.len()).is_multiple_of(2),
-        width: 2,
+        width: super::print::SERIES_LINE_PT,
     }
+}
+
+/// The names that carry one fixed style in every figure, by category: every form, kernel
+/// and integrator of the library (in their listing order).
+pub fn named_categories() -> [Vec<&'static str>; 3] {
+    [
+        crate::forms::FormKind::ALL.iter().map(|f| f.1).collect(),
+        crate::kernel::all().iter().map(|k| k.name()).collect(),
+        crate::integrator::INTEGRATOR_NAMES.to_vec(),
+    ]
+}
+
+/// Names of reference curves: drawn dashed in [`REFERENCE`] grey.
+pub const REFERENCE_NAMES: [&str; 4] = ["continuum", "analytic", "exact", "reference"];
+
+/// The style of a form, kernel or integrator name, the same in every figure: the name's
+/// index i in its category ([`named_categories`]) gives colour `i mod 7` and marker `i mod 10`,
+/// filled for i < 7 and hollow after (so two names of a category never share colour, marker
+/// and fill). Reference names ([`REFERENCE_NAMES`]) are dashed dark grey. None: not a name.
+pub fn named_style(name: &str) -> Option<Style> {
+    if REFERENCE_NAMES.contains(&name) {
+        return Some(Style {
+            color: REFERENCE,
+            dash: Dash::Dashed,
+            marker: Marker::Circle,
+            filled: false,
+            width: super::print::SERIES_LINE_PT,
+        });
+    }
+    named_categories().iter().find_map(|names| {
+        let i = names.iter().position(|n| *n == name)?;
+        Some(Style {
+            color: OKABE_ITO[i % OKABE_ITO.len()],
+            dash: Dash::Solid,
+            marker: MARKERS[i % MARKERS.len()],
+            filled: i < OKABE_ITO.len(),
+            width: super::print::SERIES_LINE_PT,
+        })
+    })
+}
+
+/// The name a legend label stands for: its first word (up to a space, comma, colon, bar or
+/// parenthesis; after "form = " or another one-word key) when that is a form, kernel,
+/// integrator or reference name.
+pub fn label_name(label: &str) -> Option<&str> {
+    // "form = classical": the value names the series
+    let label = match label.split_once(" = ") {
+        Some((k, v)) if !k.contains(' ') => v,
+        _ => label,
+    };
+    let first = label
+        .split([' ', ',', ':', '(', '|'])
+        .next()
+        .unwrap_or_default()
+        .trim();
+    named_style(first).map(|_| first)
+}
+
+/// The part of a label before its first ": " — series of one stem (a run and its fitted
+/// or predicted line, the branches of one form) share a colour.
+fn stem(label: &str) -> &str {
+    label.split_once(": ").map_or(label, |p| p.0)
+}
+
+/// Styles of the series of one panel, by meaning. A series whose label names a form, kernel,
+/// integrator or reference ([`label_name`]) has that name's [`named_style`], where the names
+/// tell the series apart: several series of one name keep its colour and differ in dash
+/// pattern and marker, but when every named series has the same name (a study of one form
+/// over another parameter) the name is not what the panel compares and they are styled as
+/// unnamed. Unnamed series take, by stem ([`stem`]: a run and its prediction share one), the
+/// Okabe–Ito colours no named series of the panel uses, with the marker cycle; within a stem
+/// they differ in dash pattern. `dashed[i]`: series i is a reference or prediction.
+pub fn panel_styles(labels: &[&str], dashed: &[bool]) -> Vec<Style> {
+    let mut names: Vec<Option<&str>> = labels.iter().map(|l| label_name(l)).collect();
+    let compared: Vec<&str> = {
+        let mut d: Vec<&str> = names
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|n| !REFERENCE_NAMES.contains(n))
+            .collect();
+        d.sort_unstable();
+        d.dedup();
+        d
+    };
+    if let [only] = compared[..] {
+        if names.iter().filter(|n| **n == Some(only)).count() > 1 {
+            for n in names.iter_mut().filter(|n| **n == Some(only)) {
+                *n = None;
+            }
+        }
+    }
+    let used: Vec<RGBColor> = names
+        .iter()
+        .flatten()
+        .filter_map(|n| named_style(n))
+        .map(|s| s.color)
+        .collect();
+    let free: Vec<RGBColor> = OKABE_ITO
+        .iter()
+        .copied()
+        .filter(|c| !used.contains(c))
+        .collect();
+    let free = if free.is_empty() {
+        OKABE_ITO.to_vec()
+    } else {
+        free
+    };
+    let variants = [Dash::Dashed, Dash::Dotted, Dash::DashDot];
+    let dash0 = |i: usize| {
+        if dashed.get(i).copied().unwrap_or(false) {
+            Dash::Dashed
+        } else {
+            Dash::Solid
+        }
+    };
+    let mut stems: Vec<&str> = Vec::new();
+    let mut out: Vec<Style> = Vec::with_capacity(labels.len());
+    for i in 0..labels.len() {
+        let style = match names[i] {
+            Some(n) => {
+                let base = named_style(n).expect("a name");
+                let k = names[..i].iter().filter(|m| **m == Some(n)).count();
+                if REFERENCE_NAMES.contains(&n) && k == 0 {
+                    base
+                } else if k == 0 {
+                    Style {
+                        dash: dash0(i),
+                        ..base
+                    }
+                } else {
+                    let m = MARKERS.iter().position(|x| *x == base.marker).unwrap_or(0);
+                    Style {
+                        dash: variants[(k - 1) % variants.len()],
+                        marker: MARKERS[(m + k) % MARKERS.len()],
+                        ..base
+                    }
+                }
+            }
+            None => {
+                let st = stem(labels[i]);
+                let g = stems.iter().position(|s| *s == st).unwrap_or_else(|| {
+                    stems.push(st);
+                    stems.len() - 1
+                });
+                let base = Style {
+                    color: free[g % free.len()],
+                    dash: dash0(i),
+                    marker: MARKERS[g % MARKERS.len()],
+                    filled: (g / MARKERS.len()).is_multiple_of(2),
+                    width: super::print::SERIES_LINE_PT,
+                };
+                // a second series of the stem with the same dash: the next variant
+                let same = (0..i)
+                    .filter(|&j| names[j].is_none() && stem(labels[j]) == st)
+                    .filter(|&j| out[j].dash == base.dash)
+                    .count();
+                if same == 0 {
+                    base
+                } else {
+                    Style {
+                        dash: variants[(same - 1) % variants.len()],
+                        ..base
+                    }
+                }
+            }
+        };
+        out.push(style);
+    }
+    out
 }
 
 pub(crate) fn plot_err<E: std::fmt::Debug>(_: E) -> Error {
@@ -167,10 +342,6 @@ pub fn sample_pieces(style: &Style, x: f64, y: f64, w: f64) -> Vec<Vec<(f64, f64
     dash_polyline(&[(x, y), (x + w, y)], style.dash.pattern())
 }
 
-fn px(p: (f64, f64)) -> (i32, i32) {
-    (p.0.round() as i32, p.1.round() as i32)
-}
-
 /// Draws a [`Fine`] element: fractional layout pixels, kept to the canvas pixel.
 fn fine(
     area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
@@ -192,7 +363,7 @@ pub fn draw_line(
             area,
             piece,
             style.color,
-            FineKind::Path(f64::from(style.width)),
+            FineKind::Path(style.width),
         )?;
     }
     Ok(())
@@ -229,17 +400,21 @@ fn marker_polygon(m: Marker, r: f64) -> Option<Vec<(f64, f64)>> {
     })
 }
 
-/// Draws the marker of `style` at pixel `at` (radius ~4 px), filled or hollow.
+/// Marker radius, pt.
+pub const MARKER_R: f64 = 2.0;
+
+/// Draws the marker of `style` at `at` (radius [`MARKER_R`]), filled or hollow.
 pub fn draw_marker(
     area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
     at: (f64, f64),
     style: &Style,
 ) -> Result<()> {
     let c = style.color;
-    let r = 4.0;
+    let r = MARKER_R;
+    let hollow = 0.6;
     match marker_polygon(style.marker, r) {
         None => {
-            let stroke = (!style.filled).then_some(2.0);
+            let stroke = (!style.filled).then_some(hollow);
             fine(area, vec![at], c, FineKind::Circle(r, stroke))?;
         }
         Some(poly) => {
@@ -253,7 +428,7 @@ pub fn draw_marker(
                 let mut closed = v.clone();
                 closed.push(v[0]);
                 fine(area, v, WHITE, FineKind::Fill)?;
-                fine(area, closed, c, FineKind::Path(2.0))?;
+                fine(area, closed, c, FineKind::Path(hollow))?;
             }
         }
     }
@@ -277,7 +452,7 @@ pub fn draw_sample(
                 area,
                 piece,
                 style.color,
-                FineKind::Path(f64::from(style.width)),
+                FineKind::Path(style.width),
             )?;
         }
     }
@@ -287,43 +462,116 @@ pub fn draw_sample(
     Ok(())
 }
 
-/// Draws text with its top-left corner at `(x, y)`.
+/// Draws text of `size` points with its top-left corner at `(x, y)`.
 pub fn text(
     area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
     s: &str,
     (x, y): (f64, f64),
-    size: u32,
+    size: f64,
     color: RGBColor,
 ) -> Result<()> {
-    let style = TextStyle::from((super::print::FONT_FAMILY, size).into_font()).color(&color);
-    area.draw(&Text::new(s.to_string(), px((x, y)), style))
-        .map_err(plot_err)
+    text_styled(
+        area,
+        s,
+        (x, y),
+        size,
+        color,
+        (
+            plotters::style::text_anchor::HPos::Left,
+            plotters::style::text_anchor::VPos::Top,
+        ),
+        false,
+    )
 }
 
-/// Draws text anchored at `(x, y)` by `h`, `v`, optionally rotated (270: reads upwards).
+/// Draws black text of `size` points anchored at `(x, y)` by `h`, `v`, optionally rotated
+/// (270: reads upwards).
 pub fn text_at(
     area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
     s: &str,
     (x, y): (f64, f64),
-    size: u32,
+    size: f64,
     anchor: (
         plotters::style::text_anchor::HPos,
         plotters::style::text_anchor::VPos,
     ),
     rotate: bool,
 ) -> Result<()> {
-    let mut style = TextStyle::from((super::print::FONT_FAMILY, size).into_font())
-        .pos(plotters::style::text_anchor::Pos::new(anchor.0, anchor.1));
-    if rotate {
-        style = style.transform(FontTransform::Rotate270);
-    }
-    area.draw(&Text::new(s.to_string(), px((x, y)), style))
-        .map_err(plot_err)
+    text_styled(area, s, (x, y), size, BLACK, anchor, rotate)
 }
 
-/// Approximate width in pixels of `s` in a sans-serif font of `size` px.
-pub fn text_width(s: &str, size: u32) -> f64 {
-    s.chars().count() as f64 * 0.56 * size as f64
+/// Draws text of `size` points in `color` anchored at `(x, y)` (fractional points, kept to
+/// the canvas pixel), in the one font family of every figure.
+pub fn text_styled(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
+    s: &str,
+    at: (f64, f64),
+    size: f64,
+    color: RGBColor,
+    anchor: (
+        plotters::style::text_anchor::HPos,
+        plotters::style::text_anchor::VPos,
+    ),
+    rotate: bool,
+) -> Result<()> {
+    area.draw(&super::canvas::FineText {
+        text: s.to_string(),
+        at,
+        size,
+        color,
+        anchor,
+        rotate,
+    })
+    .map_err(plot_err)
+}
+
+/// A straight or broken line through `pts` (points) in `color`, `width` points wide.
+pub fn stroke(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
+    pts: &[(f64, f64)],
+    color: RGBColor,
+    width: f64,
+) -> Result<()> {
+    fine(area, pts.to_vec(), color, FineKind::Path(width))
+}
+
+/// The outline of the rectangle (left, top, right, bottom), `width` points wide.
+pub fn outline(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
+    (l, t, r, b): (f64, f64, f64, f64),
+    color: RGBColor,
+    width: f64,
+) -> Result<()> {
+    stroke(
+        area,
+        &[(l, t), (r, t), (r, b), (l, b), (l, t)],
+        color,
+        width,
+    )
+}
+
+/// The filled rectangle (left, top, right, bottom).
+pub fn fill_rect(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
+    (l, t, r, b): (f64, f64, f64, f64),
+    color: RGBColor,
+) -> Result<()> {
+    fine(area, vec![(l, t), (r, t), (r, b), (l, b)], color, FineKind::Fill)
+}
+
+/// The filled polygon through `pts` (points).
+pub fn fill_polygon(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
+    pts: &[(f64, f64)],
+    color: RGBColor,
+) -> Result<()> {
+    fine(area, pts.to_vec(), color, FineKind::Fill)
+}
+
+/// Approximate width in points of `s` set at `size` points (DejaVu Sans: 0.55–0.64 em per
+/// character; 0.6 em keeps labels from overlapping).
+pub fn text_width(s: &str, size: f64) -> f64 {
+    s.chars().count() as f64 * 0.6 * size
 }
 
 /// Breaks `s` into lines of at most `max` characters at spaces (a longer word stays whole).

@@ -118,7 +118,7 @@ fn committed_tradeoff_figures_are_drawn_from_their_stored_data() {
             assert_eq!((r.form.as_str(), r.kernel.as_str()), (f.name(), k.name()));
             assert!((r.h_over_dx - h).abs() < 1e-12);
         }
-        let svg = figure_svg(&rep, &sphstab_title(&rep)).unwrap();
+        let svg = figure_svg(&rep).unwrap();
         let committed = std::fs::read_to_string(root.join("figures").join(&out)).unwrap();
         assert!(
             svg == committed,
@@ -128,22 +128,6 @@ fn committed_tradeoff_figures_are_drawn_from_their_stored_data() {
         n += 1;
     }
     assert!(n >= 1);
-}
-
-/// The CLI's title (src/bin/sphstab/tradeoff.rs), repeated here because the binary's modules
-/// are not a library.
-fn sphstab_title(rep: &TradeoffReport) -> String {
-    if rep.integrator_rows.is_empty() {
-        format!(
-            "speed/accuracy trade-off, {}D: every form × kernel × h (filled: stable at σ̄ = ±0.01)",
-            rep.dim
-        )
-    } else {
-        format!(
-            "integrator trade-off, {}D, σ̄ = 0: cost per unit time vs phase error per wavelength (every kernel × h)",
-            rep.dim
-        )
-    }
 }
 
 #[test]

@@ -66,22 +66,6 @@ pub struct Args {
     out: Option<PathBuf>,
 }
 
-/// Title of the figure (the Pareto figure, or the integrator figure when the report has
-/// integrator rows).
-pub fn title(rep: &TradeoffReport) -> String {
-    if rep.integrator_rows.is_empty() {
-        format!(
-            "speed/accuracy trade-off, {}D: every form × kernel × h (filled: stable at σ̄ = ±0.01)",
-            rep.dim
-        )
-    } else {
-        format!(
-            "integrator trade-off, {}D, σ̄ = 0: cost per unit time vs phase error per wavelength (every kernel × h)",
-            rep.dim
-        )
-    }
-}
-
 impl Args {
     /// The study flags given on the command line.
     fn study_flags(&self) -> Vec<&'static str> {
@@ -168,7 +152,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
         let rep: TradeoffReport = study::read_report(from)?;
         return study::write_plot(
-            sphstab::studies::tradeoff::figure_svg(&rep, &title(&rep)),
+            sphstab::studies::tradeoff::figure_svg(&rep),
             study::plot_path(a.plot.as_ref())?,
         );
     }
@@ -243,7 +227,7 @@ pub fn output(
             plot,
             config_out,
         },
-        |r| sphstab::studies::tradeoff::figure_svg(r, &title(r)),
+        sphstab::studies::tradeoff::figure_svg,
         |r| {
             let mut t = sphstab::studies::tradeoff::table(r);
             if !r.integrator_rows.is_empty() {

@@ -3,16 +3,10 @@
 use super::report::ArtStressReport;
 use super::run::{max_relative_difference, trim};
 use crate::error::Result;
-use crate::plot::axes::{Frame, Scale, auto_range};
+use crate::plot::axes::{Scale, auto_range};
 use crate::plot::style::{
-    Dash, GREY, Style, draw_line, draw_marker, draw_sample, plot_err, series_style, text, text_at,
-    text_width, wrap,
+    Dash, GREY, Style, draw_line, draw_marker, plot_err, series_style, text,
 };
-use crate::solver::BoundaryDensity;
-
-/// Panel size (pixels).
-const PANEL_W: f64 = 430.0;
-const PANEL_H: f64 = 330.0;
 
 /// Legend entries: (label, style, line, marker).
 fn legend(r: &ArtStressReport) -> Vec<(String, Style, bool, bool)> {
@@ -63,28 +57,39 @@ fn legend(r: &ArtStressReport) -> Vec<(String, Style, bool, bool)> {
     v
 }
 
-/// The figure: one panel per (h, f) (rows h, columns f), growth rate against ε.
+/// The figure: one panel per (h, f) (rows h, columns f), growth rate against ε, lettered
+/// (a), (b), …; the configuration (form, kernel, n, boundary density) is the caption's.
 pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
+    use crate::plot::print::{NOTE_PT, PAD, Width, page_pt};
+    use crate::plot::{Entry, Grid, draw_panel, legend_block, legend_block_height, panel_letter};
     use plotters::prelude::*;
-    use plotters::style::text_anchor::{HPos, VPos};
     let cols = r.config.density_ratio.len().max(1);
     let rows = r.cases.len().div_ceil(cols).max(1);
     let leg = legend(r);
-    let legend_w = 60.0 + leg.iter().map(|l| text_width(&l.0, 13)).fold(0.0, f64::max);
-    let width = PANEL_W * cols as f64 + 30.0 + legend_w;
-    let title = format!(
-        "Artificial stress against the Swegle growth: {} {}, zero-shear material in tension, ε of R = −ε σ⁺/ρ² (n = {}); {} boundary density",
-        r.config.form,
-        r.config.kernel,
-        r.config.art_n,
-        match r.config.boundary_density {
-            BoundaryDensity::Frozen => "frozen",
-            BoundaryDensity::Evolve => "evolving",
-        }
-    );
-    let lines = wrap(&title, ((width - 40.0) / (0.56 * 18.0)) as usize);
-    let th = 16.0 + 23.0 * lines.len() as f64;
-    let height = th + PANEL_H * rows as f64 + 5.0;
+    let agree = max_relative_difference(r);
+    let agree_note = agree.map(|d| {
+        format!(
+            "on sphstab's (▲ in ◇): max rel. difference {}",
+            crate::plot::axes::sci(d)
+        )
+    });
+    let entries: Vec<Entry<'_>> = leg
+        .iter()
+        .enumerate()
+        .map(|(i, (label, style, line, marker))| Entry {
+            style: *style,
+            label,
+            note: if i == 4 { agree_note.as_deref() } else { None },
+            line: *line,
+            marker: *marker,
+        })
+        .collect();
+    let page = page_pt(Width::Double);
+    // panels over the page width, the legend in columns under them
+    let mut grid = Grid::new(PAD, cols.max(2), 0.0, 0.6);
+    grid.fit_left(Scale::Linear(0.0, 0.123), "growth rate γ (c/Δx)");
+    let legend_top = PAD + grid.cell.1 * rows as f64 + 2.0;
+    let height = legend_top + legend_block_height(&entries, page - 2.0 * PAD) + PAD;
     let xs: Vec<f64> = r
         .cases
         .iter()
@@ -101,23 +106,9 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
     let x_scale = Scale::Linear(-0.02 * xmax, 1.03 * xmax);
     let mut svg = String::new();
     {
-        let root = crate::plot::canvas::Canvas::new(
-            &mut svg,
-            crate::plot::print::Width::Double,
-            (width, height),
-        )
+        let root = crate::plot::canvas::Canvas::new(&mut svg, Width::Double, (page, height))
         .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
-        for (k, line) in lines.iter().enumerate() {
-            text_at(
-                &root,
-                line,
-                (width / 2.0, 10.0 + 23.0 * k as f64),
-                18,
-                (HPos::Center, VPos::Top),
-                false,
-            )?;
-        }
         for (ci, case) in r.cases.iter().enumerate() {
             let (row, col) = (ci / cols, ci % cols);
             let ys: Vec<f64> = case
@@ -129,36 +120,19 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
                 .collect();
             let yr = auto_range(&[&ys], true);
             let top = if yr.hi > 0.0 { yr.hi } else { 1.0 };
-            let (cx, cy) = (col as f64 * PANEL_W, th + row as f64 * PANEL_H);
-            let frame = Frame {
-                rect: (
-                    cx + 78.0,
-                    cy + 26.0,
-                    cx + PANEL_W - 14.0,
-                    cy + PANEL_H - 58.0,
-                ),
-                x: x_scale,
-                y: Scale::Linear(-0.02 * top, 1.06 * top),
-                grid: true,
-            };
-            text_at(
+            let frame = grid.frame(col, row, x_scale, Scale::Linear(-0.02 * top, 1.06 * top));
+            draw_panel(
                 &root,
+                &frame,
                 &format!(
-                    "h = {}Δx, f = {} (σ̄ = {})",
+                    "{} h = {}Δx, f = {} (σ̄ = {})",
+                    panel_letter(ci),
                     case.h,
                     case.density_ratio,
                     trim(case.sigma_bar)
                 ),
-                ((frame.rect.0 + frame.rect.2) / 2.0, frame.rect.1 - 5.0),
-                14,
-                (HPos::Center, VPos::Bottom),
-                false,
-            )?;
-            frame.draw(
-                &root,
                 &format!("artificial-stress ε (n = {})", r.config.art_n),
                 "growth rate γ (c/Δx)",
-                None,
             )?;
             let px = |x: f64, y: f64| frame.map(x, y);
             // infinite lattice: one line, markers filled where the fastest mode is longitudinal
@@ -189,7 +163,7 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
                     draw_marker(&root, px(p.eps, m), &leg[3].1)?;
                 }
             }
-            // runs that did not grow into the fit window, named under the panel
+            // runs that did not grow into the fit window, named in the panel
             let silent: Vec<String> = case
                 .runs
                 .iter()
@@ -200,42 +174,14 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
                 text(
                     &root,
                     &format!("no growth measured at ε = {}", silent.join(", ")),
-                    (frame.rect.0, frame.rect.3 + 34.0),
-                    11,
+                    (frame.rect.0 + 2.0, frame.rect.1 + 2.0),
+                    NOTE_PT,
                     GREY,
                 )?;
             }
         }
-        let (lx, top) = (PANEL_W * cols as f64 + 20.0, th + 26.0);
-        let mut y = top + 6.0;
-        let agree = max_relative_difference(r);
-        for (i, (label, style, line, marker)) in leg.iter().enumerate() {
-            draw_sample(&root, (lx, y + 7.0), 36.0, style, *line, *marker)?;
-            if i == 4 {
-                // sphstab's marker inside, as in the panels
-                draw_marker(&root, (lx + 18.0, y + 7.0), &leg[3].1)?;
-            }
-            text(&root, label, (lx + 44.0, y), 13, BLACK)?;
-            y += 22.0;
-            if let (4, Some(d)) = (i, agree) {
-                for line in [
-                    "coincides with sphstab's runs (▲ inside ◇):".to_string(),
-                    format!("max relative difference {d:.1e}"),
-                ] {
-                    text(&root, &line, (lx + 44.0, y - 5.0), 11, GREY)?;
-                    y += 13.0;
-                }
-            }
-        }
-        root.draw(&Rectangle::new(
-            [
-                ((lx - 8.0) as i32, top as i32),
-                ((lx + legend_w) as i32, (y + 4.0) as i32),
-            ],
-            GREY.stroke_width(1),
-        ))
-        .map_err(plot_err)?;
+        legend_block(&root, &entries, (PAD, legend_top), page - 2.0 * PAD)?;
         root.present().map_err(plot_err)?;
     }
-    crate::plot::print::finish(&svg, crate::plot::print::Width::Double)
+    crate::plot::print::finish(&svg, Width::Double)
 }

@@ -34,7 +34,7 @@ pub use config::{
     FULL_STUDY_CONFIG, H_LIMITS, LATTICES, MAX_H_VALUES, MAX_STRESSES, PairingConfig, Plan,
     QUICK_DESCRIPTION, STRESS_LIMITS, parse_config, plan,
 };
-pub use report::{Onset, PairingReport, PairingRow, figure_svg, figure_title, table};
+pub use report::{Onset, PairingReport, PairingRow, figure_svg, table};
 pub use run::{evaluate_row, neighbour_count, onsets, row_query, run};
 pub use shard::PairingStudy;
 pub use zone::{DEGENERACY_TOL, LONGITUDINAL, ZoneGrowth, zone_growth, zone_growth_of};

@@ -3,7 +3,7 @@
 
 use super::wstar::WStarSign;
 use crate::error::Result;
-use crate::plot::{Panel, PanelCurve, panels_svg};
+use crate::plot::{StripPanel, strips_svg};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
@@ -216,14 +216,6 @@ fn row_line(r: &PairingRow) -> String {
     )
 }
 
-/// Title of the figure.
-pub fn figure_title(rep: &PairingReport) -> String {
-    format!(
-        "Pairing in 3D: classical SPH, hydro, under pressure — largest growth over the zone ({}³ wave vectors) vs neighbour number",
-        rep.grid
-    )
-}
-
 /// Which growth rate a panel row shows.
 #[derive(Clone, Copy)]
 enum Quantity {
@@ -231,10 +223,12 @@ enum Quantity {
     Transverse,
 }
 
-/// The figure: growth rate (c/Δx) against N_H (log scale), one column per lattice; one row of
-/// panels per σ̄ (most negative first) with the pairing (longitudinal) growth, then one row with
-/// the transverse growth at the most negative σ̄; one curve per kernel (legend: its W* sign).
-/// Skipped rows are left out.
+/// The figure: one strip per kernel (label: its W* sign) against N_H (log), coloured by the
+/// largest growth rate (c/Δx; white: stable, grey: not computed), so the pairing onset — where
+/// a strip turns from white to colour — reads at a glance. One column of panels per lattice;
+/// one row per σ̄ (most negative first) with the pairing (longitudinal) growth, then one row
+/// with the transverse growth at the most negative σ̄. Where several h give one N_H, the
+/// largest growth is drawn.
 pub fn figure_svg(rep: &PairingReport) -> Result<String> {
     let mut lattices: Vec<&str> = Vec::new();
     for r in &rep.rows {
@@ -251,39 +245,38 @@ pub fn figure_svg(rep: &PairingReport) -> Result<String> {
     let mut panels = Vec::new();
     for &(what, s) in &rows {
         for &l in &lattices {
-            let curves = rep
+            let strips = rep
                 .kernels
                 .iter()
                 .map(|k| {
-                    let pts: Vec<(f64, f64)> = rep
-                        .rows
+                    rep.rows
                         .iter()
                         .filter(|r| r.kernel == k.kernel && r.lattice == l && r.stress == s)
-                        .filter_map(|r| {
+                        .filter(|r| r.n_h > 0)
+                        .map(|r| {
                             let g = match what {
                                 Quantity::Pairing => r.pairing_growth_rate,
                                 Quantity::Transverse => r.transverse_growth_rate,
                             };
-                            Some((r.n_h as f64, g?))
+                            (r.n_h as f64, if r.skipped.is_some() { None } else { g })
                         })
-                        .collect();
-                    PanelCurve {
-                        x: pts.iter().map(|p| p.0).collect(),
-                        y: pts.iter().map(|p| p.1).collect(),
-                    }
+                        .collect()
                 })
                 .collect();
             let label = match what {
-                Quantity::Pairing => "pairing (longitudinal)",
+                Quantity::Pairing => "pairing",
                 Quantity::Transverse => "transverse",
             };
-            panels.push(Panel {
-                title: format!("{l}: {label}, σ̄ = {}", crate::display::num(s)),
-                curves,
+            panels.push(StripPanel {
+                title: format!(
+                    "{l}, {label}, σ̄ = {}",
+                    crate::display::num(s).replace('-', "−")
+                ),
+                rows: strips,
             });
         }
     }
-    let legend: Vec<String> = rep
+    let labels: Vec<String> = rep
         .kernels
         .iter()
         .map(|k| {
@@ -294,12 +287,12 @@ pub fn figure_svg(rep: &PairingReport) -> Result<String> {
             )
         })
         .collect();
-    panels_svg(
-        &figure_title(rep),
+    strips_svg(
         "N_H (particles inside the support)",
-        "growth rate (c/Δx)",
-        &legend,
+        "largest growth rate (c/Δx)",
+        &labels,
         &panels,
         lattices.len(),
+        rep.growth_tol,
     )
 }

@@ -136,7 +136,7 @@ pub fn table(rep: &TradeoffReport) -> String {
 /// The Pareto figure: cost (ns per particle per Δx/c at the critical step) against the phase
 /// error at 10 points per wavelength, log–log, one marker per configuration, filled when stable
 /// at σ̄ = ±0.01, one colour per form; the Pareto front of the stable ones is drawn.
-pub fn pareto_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
+pub fn pareto_svg(rep: &TradeoffReport) -> Result<String> {
     let pts: Vec<(String, f64, f64, bool)> = rep
         .rows
         .iter()
@@ -148,9 +148,9 @@ pub fn pareto_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
         })
         .collect();
     crate::plot::pareto_svg(
-        title,
-        "cost: ns per particle per Δx/c of simulated time (at Δt_crit)",
-        "phase-velocity error |c_num/c − 1| at 10 ppw (dimensionless)",
+        "",
+        "cost (ns per particle per Δx/c, at Δt_crit)",
+        "phase-velocity error |c_num/c − 1|, 10 ppw",
         &pts,
         (
             "filled: stable at σ̄ = ±0.01",
@@ -221,7 +221,7 @@ pub fn integrator_table(rep: &TradeoffReport) -> String {
 /// The integrator figure: per form, cost per unit simulated time (ns per particle per Δx/c at
 /// the Δt used) against |phase error| per wavelength travelled at 10 points per wavelength,
 /// log–log, one marker per integrator, every kernel and h of the grid.
-pub fn integrators_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
+pub fn integrators_svg(rep: &TradeoffReport) -> Result<String> {
     let mut names: Vec<&str> = Vec::new();
     let mut forms: Vec<&str> = Vec::new();
     for r in &rep.integrator_rows {
@@ -249,19 +249,20 @@ pub fn integrators_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
         .collect();
     let legend: Vec<String> = names.iter().map(|s| s.to_string()).collect();
     crate::plot::scatter_panels_svg(
-        title,
-        "ns per particle per Δx/c (at the Δt used)",
-        "|phase error| per wavelength, 10 ppw (rad)",
+        "",
+        "cost (ns per particle per Δx/c)",
+        "|phase error| per λ, 10 ppw (rad)",
         &legend,
         &panels,
     )
 }
 
-/// The figure of a report: [`integrators_svg`] when it has integrator rows, else [`pareto_svg`].
-pub fn figure_svg(rep: &TradeoffReport, title: &str) -> Result<String> {
+/// The figure of a report: [`integrators_svg`] when it has integrator rows, else [`pareto_svg`]
+/// (untitled: the study config's note is the caption).
+pub fn figure_svg(rep: &TradeoffReport) -> Result<String> {
     if rep.integrator_rows.is_empty() {
-        pareto_svg(rep, title)
+        pareto_svg(rep)
     } else {
-        integrators_svg(rep, title)
+        integrators_svg(rep)
     }
 }
