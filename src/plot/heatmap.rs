@@ -171,7 +171,7 @@ pub fn heatmap_svg(
         )?;
         root.present().map_err(plot_err)?;
     }
-    super::print::finish(&svg, Width::Single)
+    Ok(svg)
 }
 
 /// One panel of [`strips_svg`]: its title and, per row, the samples (x, value); a value
@@ -379,7 +379,7 @@ pub fn strips_svg(
         )?;
         root.present().map_err(plot_err)?;
     }
-    super::print::finish(&svg, Width::Double)
+    Ok(svg)
 }
 
 #[cfg(test)]

@@ -1,25 +1,17 @@
 //! The print geometry of every figure, in one place: page widths in millimetres, the drawing
 //! scale (canvas pixels per millimetre), type sizes and line widths in points at print size,
-//! one font family, and [`finish`], which turns a canvas-pixel SVG into one printed at 85 or
+//! one font family, and [`finish`], which sets an assembled SVG in points to print at 85 or
 //! 170 mm.
 //!
 //! Every plot is laid out in points on a page of the printed width ([`page_pt`]: 481.9 pt for
-//! 170 mm, 240.9 pt for 85 mm), so a type size or line width given here is what prints. It is
-//! drawn on a canvas of `width_mm · S × height_mm · S` pixels (S = [`PX_PER_MM`]) and its root
-//! `<svg>` then carries `width="170mm"` and `viewBox="0 0 W H"`: plotters' SVG backend writes
-//! whole-pixel coordinates, which at S = 20 px/mm are 0.05 mm apart at print size, below what
-//! paper or a zoomed screen shows.
+//! 170 mm, 240.9 pt for 85 mm), so a type size or line width given here is what prints: the
+//! root `<svg>` carries `width="170mm"` and a `viewBox` in points ([`super::canvas`] writes
+//! every coordinate in points to 0.01 pt).
 
 use crate::error::{Error, Result};
 
-/// Canvas pixels per millimetre at print size.
-pub const PX_PER_MM: f64 = 20.0;
-
 /// Millimetres per point (1 pt = 1/72 inch).
 pub const MM_PER_PT: f64 = 25.4 / 72.0;
-
-/// Canvas pixels per point at print size (S · 25.4/72 ≈ 7.06 at S = 20).
-pub const PX_PER_PT: f64 = PX_PER_MM * MM_PER_PT;
 
 /// The one font family of every figure: DejaVu Sans where installed, else the metric-alike
 /// sans serifs every system has.
@@ -75,15 +67,6 @@ impl Width {
         }
     }
 
-    /// Width of the canvas in pixels (`mm · S`).
-    pub fn px(self) -> f64 {
-        self.mm() * PX_PER_MM
-    }
-}
-
-/// Canvas pixels of a length of `pt` points at print size.
-pub fn pt(pt: f64) -> f64 {
-    pt * PX_PER_PT
 }
 
 /// The width in points of a page `width` wide: every plot is laid out in points on a page
@@ -107,8 +90,8 @@ pub fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
     tag[i..].split('"').next()
 }
 
-/// Width and height in canvas pixels of an SVG drawn by plotters or finished by [`finish`]:
-/// its `viewBox` when it has one, else its `width` and `height`.
+/// Width and height in user units (points) of an SVG drawn by this layer: its `viewBox`
+/// when it has one, else its `width` and `height`.
 pub fn canvas_size(svg: &str) -> Result<(f64, f64)> {
     let (tag, _) = split_root(svg)?;
     let bad = || Error::Incompatible("SVG without a viewBox or pixel width and height".into());
@@ -152,9 +135,9 @@ pub fn set_root_size(svg: &str, width: &str, height: &str, view_box: &str) -> Re
     ))
 }
 
-/// The one post-processing step of every figure: sets the root `<svg>` to `width` millimetres
-/// wide, its height in proportion, with a `viewBox` of the canvas in pixels, so that the
-/// canvas pixels become sub-millimetre units at print size.
+/// Sets the root `<svg>` of a document in points to `width` millimetres wide, its height in
+/// proportion, with a `viewBox` of its size in points (what [`super::canvas::Canvas`] writes;
+/// [`super::stack_svg`] uses it for the figure it assembles).
 pub fn finish(svg: &str, width: Width) -> Result<String> {
     let (w, h) = canvas_size(svg)?;
     let height_mm = width.mm() * h / w;
@@ -185,9 +168,8 @@ mod tests {
     }
 
     #[test]
-    fn sizes_convert_through_points() {
-        assert!((pt(1.0) - 20.0 * 25.4 / 72.0).abs() < 1e-12);
+    fn pages_are_measured_in_points() {
         assert!((page_pt(Width::Double) - 170.0 * 72.0 / 25.4).abs() < 1e-9);
-        assert_eq!(Width::Single.px(), 1700.0);
+        assert!((page_pt(Width::Single) - 85.0 / MM_PER_PT).abs() < 1e-9);
     }
 }

@@ -9,7 +9,8 @@ use super::print::{
     page_pt,
 };
 use super::style::{
-    Dash, GREY, Style, draw_line, draw_marker, draw_sample, outline, panel_styles, plot_err, text,
+    Dash, GREY, Style, draw_line, draw_marker, draw_sample, group, outline, panel_styles, plot_err,
+    text,
     text_width, wrap,
 };
 use crate::error::{Error, Result};
@@ -114,6 +115,7 @@ pub fn legend_column(
     let nchars = ((w - SAMPLE_W - 4.0 - 2.0 * PAD) / (0.6 * NOTE_PT)) as usize;
     let tx = lx + PAD + SAMPLE_W + 4.0;
     let mut y = top + PAD;
+    group(root, Some("legend"))?;
     for e in entries {
         draw_sample(
             root,
@@ -135,6 +137,7 @@ pub fn legend_column(
         }
         y += 1.5;
     }
+    group(root, None)?;
     let bottom = y + PAD - 1.5;
     outline(root, (lx, top, lx + w, bottom), GREY, FRAME_LINE_PT)?;
     Ok(bottom)
@@ -182,6 +185,7 @@ pub fn legend_block(
 ) -> Result<f64> {
     let (_, rows, col_w) = block_shape(entries, width);
     let pitch = block_pitch(entries);
+    group(root, Some("legend"))?;
     for (i, e) in entries.iter().enumerate() {
         let (c, r) = (i / rows, i % rows);
         let (lx, y) = (x + PAD + c as f64 * col_w, top + PAD + r as f64 * pitch);
@@ -198,6 +202,7 @@ pub fn legend_block(
             text(root, n, (lx + SAMPLE_W + 4.0, y + LEGEND_LINE), NOTE_PT, GREY)?;
         }
     }
+    group(root, None)?;
     let bottom = top + legend_block_height(entries, width);
     outline(root, (x, top, x + width, bottom), GREY, FRAME_LINE_PT)?;
     Ok(bottom)
@@ -399,7 +404,7 @@ pub fn pareto_svg(
         legend_column(&root, &entries, (grid.legend_x(1), frame.rect.1), legend_w)?;
         root.present().map_err(plot_err)?;
     }
-    super::print::finish(&svg, Width::Double)
+    Ok(svg)
 }
 
 /// One panel of [`scatter_panels_svg`]: caption and points (legend index, x, y).
@@ -537,7 +542,7 @@ pub fn scatter_panels_svg(
         legend_block(&root, &entries, (PAD, legend_top), legend_w)?;
         root.present().map_err(plot_err)?;
     }
-    super::print::finish(&svg, Width::Double)
+    Ok(svg)
 }
 
 #[cfg(test)]

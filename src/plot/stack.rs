@@ -2,18 +2,17 @@
 //! panels side by side, or one 170 mm panel), each panel kept whole (its frame, legend and
 //! notes) as a nested `<svg>`.
 
-use super::canvas::Canvas;
-use super::print::{PAD, TITLE_PT, Width, page_pt, pt};
+use super::canvas::{Canvas, num};
+use super::print::{PAD, TITLE_PT, Width, page_pt};
 use super::style::{plot_err, text, wrap};
 use crate::error::{Error, Result};
 use plotters::prelude::*;
 
-/// Width and height (canvas pixels) of an SVG drawn by this module's plots: its `viewBox`
-/// (see [`canvas_size`](super::print::canvas_size)), rounded to whole pixels.
-pub fn svg_size(svg: &str) -> Result<(u32, u32)> {
-    let (w, h) = super::print::canvas_size(svg)
-        .map_err(|_| Error::Incompatible("panel: not an SVG with width and height".into()))?;
-    Ok((w.round() as u32, h.round() as u32))
+/// Width and height (points) of an SVG drawn by this module's plots: its `viewBox` (see
+/// [`canvas_size`](super::print::canvas_size)).
+pub fn svg_size(svg: &str) -> Result<(f64, f64)> {
+    super::print::canvas_size(svg)
+        .map_err(|_| Error::Incompatible("panel: not an SVG with width and height".into()))
 }
 
 /// One SVG of `title` ([`TITLE_PT`], wrapped; none when empty) above `panels` in rows:
@@ -25,7 +24,7 @@ pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
         .iter()
         .map(|p| svg_size(p))
         .collect::<Result<Vec<_>>>()?;
-    let half = Width::Single.px().round() as u32;
+    let half = page_pt(Width::Single) + 0.01;
     // rows of panels: (first panel, count)
     let mut rows: Vec<Vec<usize>> = Vec::new();
     for (i, s) in sizes.iter().enumerate() {
@@ -50,20 +49,15 @@ pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
     } else {
         PAD + TITLE_PT * 1.25 * lines.len() as f64
     };
-    let strip = pt(strip_pt).round() as u32;
-    let row_h: Vec<u32> = rows
+    let strip = strip_pt;
+    let row_h: Vec<f64> = rows
         .iter()
-        .map(|r| r.iter().map(|&i| sizes[i].1).max().unwrap_or(0))
+        .map(|r| r.iter().map(|&i| sizes[i].1).fold(0.0, f64::max))
         .collect();
-    let height_px = strip + row_h.iter().sum::<u32>();
+    let height = strip + row_h.iter().sum::<f64>();
     let mut head = String::new();
     {
-        let root = Canvas::new(
-            &mut head,
-            width,
-            (page, f64::from(height_px) / pt(1.0)),
-        )
-        .into_drawing_area();
+        let root = Canvas::new(&mut head, width, (page, height)).into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (k, line) in lines.iter().enumerate() {
             text(
@@ -83,18 +77,15 @@ pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
         .to_string();
     let mut y = strip;
     for (r, h) in rows.iter().zip(&row_h) {
-        let mut x = 0;
+        let mut x = 0.0;
         for &i in r {
             let (w, ph) = sizes[i];
-            // the panel nested at its canvas size (its print size is the figure's)
-            let px = super::print::set_root_size(
-                &panels[i],
-                &w.to_string(),
-                &ph.to_string(),
-                &format!("0 0 {w} {ph}"),
-            )?;
+            // the panel nested at its size in points (its print size is the figure's)
+            let (ws, hs) = (num(w), num(ph));
+            let px =
+                super::print::set_root_size(&panels[i], &ws, &hs, &format!("0 0 {ws} {hs}"))?;
             let body = px.trim_end().strip_prefix("<svg ").unwrap_or(&px);
-            out.push_str(&format!("<svg x=\"{x}\" y=\"{y}\" {body}\n"));
+            out.push_str(&format!("<svg x=\"{}\" y=\"{}\" {body}\n", num(x), num(y)));
             x += w;
         }
         y += h;
@@ -133,7 +124,7 @@ mod tests {
         let s = stack_svg("both", &[a, b]).unwrap();
         let (w, h) = svg_size(&s).unwrap();
         assert_eq!(w, wa);
-        assert!(h > 2 * ha, "{h} {ha}");
+        assert!(h > 2.0 * ha, "{h} {ha}");
         let i = s.find("(a) first").unwrap();
         assert!(s[i..].contains("(b) second"));
         assert_eq!(s.matches("<svg ").count(), 3);
@@ -146,9 +137,10 @@ mod tests {
             .collect();
         let (ws, hs) = svg_size(&p[0]).unwrap();
         let s = stack_svg("", &p).unwrap();
-        assert_eq!(svg_size(&s).unwrap(), (2 * ws, 2 * hs));
-        assert!(s.contains(&format!("<svg x=\"{ws}\" y=\"0\"")));
-        assert!(s.contains(&format!("<svg x=\"0\" y=\"{hs}\"")));
+        let (w, h) = svg_size(&s).unwrap();
+        assert!((w - 2.0 * ws).abs() < 0.02 && (h - 2.0 * hs).abs() < 0.02, "{w} {h}");
+        assert!(s.contains(&format!("<svg x=\"{}\" y=\"0\"", num(ws))));
+        assert!(s.contains(&format!("<svg x=\"0\" y=\"{}\"", num(hs))));
         assert!(s[..200].contains("width=\"170mm\""));
     }
 }

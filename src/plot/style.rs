@@ -568,6 +568,14 @@ pub fn fill_polygon(
     fine(area, pts.to_vec(), color, FineKind::Fill)
 }
 
+/// Opens (`Some(class)`) or closes (`None`) a group of elements, e.g. `"legend"`.
+pub fn group(
+    area: &DrawingArea<super::canvas::Canvas<'_>, Shift>,
+    class: Option<&'static str>,
+) -> Result<()> {
+    fine(area, Vec::new(), BLACK, FineKind::Group(class))
+}
+
 /// Approximate width in points of `s` set at `size` points (DejaVu Sans: 0.55–0.64 em per
 /// character; 0.6 em keeps labels from overlapping).
 pub fn text_width(s: &str, size: f64) -> f64 {

@@ -183,5 +183,5 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
         legend_block(&root, &entries, (PAD, legend_top), page - 2.0 * PAD)?;
         root.present().map_err(plot_err)?;
     }
-    crate::plot::print::finish(&svg, Width::Double)
+    Ok(svg)
 }
