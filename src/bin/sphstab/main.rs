@@ -5,6 +5,7 @@ mod art_stress;
 mod atlas;
 mod common;
 mod dispersion;
+mod export;
 mod figures;
 mod files;
 mod flags;
