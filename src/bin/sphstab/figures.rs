@@ -181,7 +181,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     for f in study_configs {
         let c: StudyCaption =
             sphstab::studies::config::parse_json(&f.display().to_string(), &read(&f)?)
-                .with_context(|| "--studies")?;
+                .context("--studies")?;
         if let Some(o) = c.output {
             captions.push((o, c.note, f));
         }
