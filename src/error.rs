@@ -180,6 +180,14 @@ pub enum Error {
         /// Largest velocity magnitude at that point (may be non-finite).
         max_amplitude: f64,
     },
+    /// A figure that could not be converted to another format ([`crate::plot::export`]):
+    /// "{format}: {problem}".
+    Export {
+        /// The format being written (`svg` when the SVG itself cannot be read).
+        format: &'static str,
+        /// What went wrong.
+        problem: String,
+    },
     /// Long work stopped because its [`crate::progress::Progress`] asked it to.
     Cancelled,
     /// An iterative method that did not reach its tolerance within its iteration limit.
@@ -253,6 +261,7 @@ impl Error {
             } => format!(
                 "DIVERGED at step {step} (t = {t:.6e}): {what} (max |v| = {max_amplitude:.3e}); the run was stopped"
             ),
+            Error::Export { format, problem } => format!("{format} export: {problem}"),
             Error::Cancelled => "cancelled".into(),
             Error::NotConverged {
                 what,

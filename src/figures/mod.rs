@@ -459,7 +459,7 @@ impl FigureConfig {
 
 /// Renders a figure to an SVG string: the curves, the vertical range from the data unless
 /// `y_range` fixes it (curves leaving it are marked as clipped). The title and the note are
-/// the caption ([`caption`]), not drawn: a figure of one panel is 170 mm wide with its legend
+/// the caption (`figures` writes them to the captions file), not drawn: a figure of one panel is 170 mm wide with its legend
 /// right of the data; panels are 85 mm wide, two side by side, each with its letter and its
 /// legend under it. Anti-plane panels mark the cut-off of every θ.
 pub fn render(cfg: &FigureConfig) -> Result<String> {
@@ -503,16 +503,6 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
             .ok_or_else(|| Error::Incompatible("figure without curves".into()));
     }
     stack_svg("", &parts)
-}
-
-/// The caption of a figure, set by the paper under it rather than drawn: the config's title
-/// and note.
-pub fn caption(cfg: &FigureConfig) -> String {
-    if cfg.note.is_empty() {
-        cfg.title.clone()
-    } else {
-        format!("{}. {}", cfg.title.trim_end_matches('.'), cfg.note)
-    }
 }
 
 #[cfg(test)]

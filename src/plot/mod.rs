@@ -7,6 +7,7 @@
 
 pub mod axes;
 pub mod canvas;
+pub mod export;
 mod heatmap;
 mod lines;
 pub mod print;

@@ -10,6 +10,7 @@ pub mod kernel_guide;
 pub mod pairing;
 pub mod shard;
 pub mod stable_dt;
+pub mod stored;
 pub mod swegle;
 pub mod throughput;
 pub mod tradeoff;

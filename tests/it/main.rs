@@ -59,6 +59,7 @@ mod golden_solver2d;
 // studies, figures and the documents generated from the code
 mod art_stress;
 mod docs;
+mod export;
 mod figures;
 mod kernel_guide;
 mod pairing;

@@ -61,6 +61,8 @@ pub struct Args {
     /// Write the figure (SVG: growth rate against ε, one panel per h and f) here.
     #[arg(long)]
     plot: Option<PathBuf>,
+    #[command(flatten)]
+    export: crate::export::ExportArgs,
     /// Compute only shard i of n (0 ≤ i < n): the cells c with c mod n = i (per h and f, one
     /// per ε of the grid, then one per run), written to --out for `sphstab merge`, which gives
     /// the table, JSON and figure of all the shards. For job arrays:
@@ -99,7 +101,10 @@ impl Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    let mut files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref());
+    let export = a
+        .export
+        .resolve(a.plot.is_some(), "no --plot (it sets the plot's formats)")?;
+    let mut files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref(), &export);
     if let Some(p) = &a.compare {
         files = files.input("--compare", p);
     }
@@ -114,6 +119,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         return study::redraw::<ArtStressReport>(
             from,
             a.plot.as_ref(),
+            &export,
             others,
             sphstab::studies::art_stress::figure_svg,
         );
@@ -214,7 +220,12 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     let pb = progress::Bar::new(progress::wanted(a.json));
     let rep = sphstab::studies::art_stress::run(&cfg, compare.as_ref(), pb.clone())?;
     pb.finish();
-    output(&rep, a.out.as_deref(), a.json, a.plot.as_deref())
+    output(
+        &rep,
+        a.out.as_deref(),
+        a.json,
+        a.plot.as_deref().map(|p| (p, &export)),
+    )
 }
 
 /// Writes and prints a report (shared with `merge`): `--out` (JSON), `--plot`, its config's
@@ -223,7 +234,7 @@ pub fn output(
     rep: &ArtStressReport,
     out: Option<&Path>,
     json: bool,
-    plot: Option<&Path>,
+    plot: Option<study::Plot<'_>>,
 ) -> Result<()> {
     study::output(
         rep,

@@ -2,7 +2,7 @@
 
 use crate::common::Config;
 use crate::units::{self, System};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use sphstab::analysis::DispersionReport;
 use sphstab::budget::Budget;
 
@@ -31,6 +31,8 @@ pub struct Args {
     /// abscissa range). Needs --plot.
     #[arg(long = "y-range", value_name = "LO,HI", allow_hyphen_values = true)]
     y_range: Option<String>,
+    #[command(flatten)]
+    export: crate::export::ExportArgs,
     #[command(flatten)]
     vary: crate::vary::VaryArgs,
 }
@@ -62,10 +64,6 @@ fn damping_path(p: &std::path::Path) -> std::path::PathBuf {
     p.with_file_name(format!("{stem}-damping.svg"))
 }
 
-fn write_svg(path: &std::path::Path, svg: String) -> Result<()> {
-    std::fs::write(path, svg).with_context(|| format!("--plot: cannot write {}", path.display()))
-}
-
 /// A damping cell of the table: Re s or ξ, "-" when the matching is ambiguous.
 fn cell(v: Option<f64>, width: usize, prec: usize) -> String {
     match v {
@@ -75,8 +73,13 @@ fn cell(v: Option<f64>, width: usize, prec: usize) -> String {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    let export = a
+        .export
+        .resolve(a.plot.is_some(), "no --plot (it sets the plot's formats)")?;
     if let Some(p) = &a.plot {
-        crate::files::Files::new().output("--plot", p).check()?;
+        export
+            .output(crate::files::Files::new(), "--plot", p)
+            .check()?;
     }
     if a.cfg.grid.is_some() {
         return Err(crate::query::not_in(
@@ -106,7 +109,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         ],
     )?;
     let dim = a.cfg.dim()?;
-    crate::by_dim!(dim, run_in(a, budget))
+    crate::by_dim!(dim, run_in(a, budget, &export))
 }
 
 /// Names of the D branches of a dispersion plot (sorted by ω² at each wave vector; named after
@@ -131,6 +134,7 @@ fn branch_names(d: usize) -> Vec<&'static str> {
 /// question by its form); the damping rate to FILE-damping.svg for dissipative systems.
 fn plot<const D: usize>(
     path: &std::path::Path,
+    export: &crate::export::Export,
     title: &str,
     series: &[(String, DispersionReport)],
     x_range: Option<(f64, f64)>,
@@ -139,9 +143,9 @@ fn plot<const D: usize>(
     use sphstab::plot::{Curve, LinePlot};
     if series.iter().any(|(_, r)| r.damping_rate.is_some()) {
         // the second figure of a dissipative system, checked before either is written
-        crate::files::Files::new()
-            .output("--plot", path)
-            .output("--plot (its damping figure)", damping_path(path))
+        let files = export.output(crate::files::Files::new(), "--plot", path);
+        export
+            .output(files, "--plot (its damping figure)", &damping_path(path))
             .check()?;
     }
     let pi = std::f64::consts::PI;
@@ -236,7 +240,7 @@ fn plot<const D: usize>(
         ..LinePlot::new(title, &x_desc, sphstab::plot::OMEGA2_DESC, curves)
     }
     .svg()?;
-    write_svg(path, svg)?;
+    export.write("--plot", &svg, path)?;
     if series.iter().any(|(_, r)| r.damping_rate.is_some()) {
         if series.iter().any(|(_, r)| r.path != first.path) {
             eprintln!(
@@ -270,12 +274,12 @@ fn plot<const D: usize>(
             )
         }
         .svg()?;
-        write_svg(&damping_path(path), svg)?;
+        export.write("--plot", &svg, &damping_path(path))?;
     }
     Ok(())
 }
 
-fn run_in<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
+fn run_in<const D: usize>(a: Args, budget: &Budget, export: &crate::export::Export) -> Result<()> {
     let x_range = range("--kappa-range", &a.kappa_range)?;
     let y_range = range("--y-range", &a.y_range)?;
     if D == 1
@@ -306,7 +310,7 @@ fn run_in<const D: usize>(a: Args, budget: &Budget) -> Result<()> {
         } else {
             reports[0].1.header.to_string()
         };
-        plot::<D>(path, &title, &reports, x_range, y_range)?;
+        plot::<D>(path, export, &title, &reports, x_range, y_range)?;
     }
     if a.json {
         if compare {

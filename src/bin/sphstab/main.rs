@@ -5,6 +5,7 @@ mod art_stress;
 mod atlas;
 mod common;
 mod dispersion;
+mod export;
 mod figures;
 mod files;
 mod flags;
@@ -102,7 +103,8 @@ pub(crate) enum Cmd {
     Timestep(timestep::Args),
     /// The kernel table.
     Kernels(kernels::Args),
-    /// Regenerate the figures in figures/ from the configs in analysis/configs/.
+    /// Regenerate the figures in figures/ from the configs in analysis/configs/ and the studies'
+    /// stored data, with their captions (README.md); --format pdf,png also as PDF and PNG.
     Figures(figures::Args),
     /// 2D stability map: growth rate (c/Δx) over (κxΔx, κyΔx) as a heat map.
     Map(map::Args),

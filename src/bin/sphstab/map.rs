@@ -2,7 +2,7 @@
 //! 3D zone (`--dim 3 --plane`) as a heat map.
 
 use crate::common::Config;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use sphstab::budget::Budget;
 use sphstab::display::num;
 
@@ -25,6 +25,8 @@ pub struct Args {
     /// (x̂ + ŷ)/√2 and ẑ); map coordinates (u, v) ∈ [−π, π]².
     #[arg(long)]
     plane: Option<String>,
+    #[command(flatten)]
+    export: crate::export::ExportArgs,
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
@@ -68,8 +70,13 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
 
 fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) -> Result<()> {
     use sphstab::analysis::Plane;
+    let export = a
+        .export
+        .resolve(a.plot.is_some(), "no --plot (it sets the plot's formats)")?;
     if let Some(p) = &a.plot {
-        crate::files::Files::new().output("--plot", p).check()?;
+        export
+            .output(crate::files::Files::new(), "--plot", p)
+            .check()?;
     }
     let plane = match &a.plane {
         Some(p) => Plane::by_name(p)?,
@@ -115,8 +122,7 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) 
             &ys,
             &m.growth,
         )?;
-        std::fs::write(path, svg)
-            .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+        export.write("--plot", &svg, path)?;
     }
     if a.json {
         println!(

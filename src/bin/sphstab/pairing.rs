@@ -49,6 +49,8 @@ pub struct Args {
     /// Write the figure (SVG: growth against N_H, one panel per lattice and σ̄) here.
     #[arg(long)]
     plot: Option<PathBuf>,
+    #[command(flatten)]
+    export: crate::export::ExportArgs,
     /// Compute only shard i of n (0 ≤ i < n): the rows r with r mod n = i, written to --out
     /// for `sphstab merge`, which gives the table, JSON and figure of all the shards. For job
     /// arrays: analysis/cluster/study_array.sh.
@@ -91,7 +93,10 @@ fn all_or(v: &[String]) -> Vec<String> {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    let files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref());
+    let export = a
+        .export
+        .resolve(a.plot.is_some(), "no --plot (it sets the plot's formats)")?;
+    let files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref(), &export);
     files.check()?;
     let flags = a.study_flags();
     if let Some(from) = &a.from {
@@ -103,6 +108,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         return study::redraw::<PairingReport>(
             from,
             a.plot.as_ref(),
+            &export,
             others,
             sphstab::studies::pairing::figure_svg,
         );
@@ -173,7 +179,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         &rep,
         a.out.as_deref(),
         a.json,
-        a.plot.as_deref(),
+        a.plot.as_deref().map(|p| (p, &export)),
         config_out.as_deref(),
     )?;
     if !a.json && a.config.is_none() {
@@ -196,7 +202,7 @@ pub fn output(
     rep: &PairingReport,
     out: Option<&Path>,
     json: bool,
-    plot: Option<&Path>,
+    plot: Option<study::Plot<'_>>,
     config_out: Option<&str>,
 ) -> Result<()> {
     study::output(

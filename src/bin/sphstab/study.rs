@@ -2,17 +2,22 @@
 //! parsed, `--from` read back, the figure drawn to `--plot` and, for a config with `output`, the
 //! figure and its data written into `figures/`. The library side is [`sphstab::studies::config`].
 
+use crate::export::Export;
 use anyhow::{Context, Result};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::path::{Path, PathBuf};
 
-/// The files of a study command: `--config` and `--from` read, `--plot` written (checked with
-/// [`crate::files::Files::check`]).
+/// `--plot` and the formats it is written in (`--format`, `--dpi`).
+pub type Plot<'a> = (&'a Path, &'a Export);
+
+/// The files of a study command: `--config` and `--from` read, `--plot` written in every format
+/// of `export` (checked with [`crate::files::Files::check`]).
 pub fn files(
     config: Option<&PathBuf>,
     from: Option<&PathBuf>,
     plot: Option<&PathBuf>,
+    export: &Export,
 ) -> crate::files::Files {
     let mut f = crate::files::Files::new();
     if let Some(p) = config {
@@ -22,7 +27,7 @@ pub fn files(
         f = f.input("--from", p);
     }
     if let Some(p) = plot {
-        f = f.output("--plot", p);
+        f = export.output(f, "--plot", p);
     }
     f
 }
@@ -64,10 +69,10 @@ pub fn plot_path(plot: Option<&PathBuf>) -> Result<&Path> {
     })
 }
 
-/// Writes a drawn figure to `path` (the `--plot` file or the config's figure).
-pub fn write_plot(svg: sphstab::error::Result<String>, path: &Path) -> Result<()> {
-    std::fs::write(path, svg?)
-        .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+/// Writes a drawn figure to `path` (the `--plot` file, in the formats of `export`, or the
+/// config's figure).
+pub fn write_plot(svg: sphstab::error::Result<String>, (path, export): Plot<'_>) -> Result<()> {
+    export.write("--plot", &svg?, path)?;
     Ok(())
 }
 
@@ -79,7 +84,7 @@ pub fn write_figure_and_data<T: Serialize>(
     draw: impl Fn(&T) -> sphstab::error::Result<String>,
 ) -> Result<()> {
     let svg = PathBuf::from("figures").join(name);
-    write_plot(draw(report), &svg)?;
+    write_plot(draw(report), (&svg, &Export::default()))?;
     let data = svg.with_extension("json");
     let text = crate::units::json(report, crate::units::System::Normalised, true)?;
     std::fs::write(&data, text + "\n")
@@ -93,7 +98,7 @@ pub fn write_figure_and_data<T: Serialize>(
 pub struct Outputs<'a> {
     pub out: Option<&'a Path>,
     pub json: bool,
-    pub plot: Option<&'a Path>,
+    pub plot: Option<Plot<'a>>,
     pub config_out: Option<&'a str>,
 }
 
@@ -109,8 +114,8 @@ pub fn output<T: Serialize>(
     if let Some(path) = to.out {
         crate::shard::write_json(path, &units::with_units(report, System::Normalised)?)?;
     }
-    if let Some(path) = to.plot {
-        write_plot(draw(report), path)?;
+    if let Some(plot) = to.plot {
+        write_plot(draw(report), plot)?;
     }
     if let Some(name) = to.config_out {
         write_figure_and_data(report, name, &draw)?;
@@ -128,6 +133,7 @@ pub fn output<T: Serialize>(
 pub fn redraw<T: DeserializeOwned>(
     from: &Path,
     plot: Option<&PathBuf>,
+    export: &Export,
     others: bool,
     draw: impl Fn(&T) -> sphstab::error::Result<String>,
 ) -> Result<()> {
@@ -138,5 +144,5 @@ pub fn redraw<T: DeserializeOwned>(
     }
     let path = plot_path(plot)?;
     let rep: T = read_report(from)?;
-    write_plot(draw(&rep), path)
+    write_plot(draw(&rep), (path, export))
 }

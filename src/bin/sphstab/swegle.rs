@@ -88,12 +88,17 @@ pub struct Args {
     /// in the test's units) and final.vtk (particles) here.
     #[arg(long)]
     out: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    export: crate::export::ExportArgs,
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
+    let export = a
+        .export
+        .resolve(a.plot.is_some(), "no --plot (it sets the plot's formats)")?;
     let mut files = crate::files::Files::new();
     if let Some(p) = &a.plot {
-        files = files.output("--plot", p);
+        files = export.output(files, "--plot", p);
     }
     if let Some(d) = &a.out {
         std::fs::create_dir_all(d)
@@ -271,8 +276,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             )
         }
         .svg()?;
-        std::fs::write(path, svg)
-            .with_context(|| format!("--plot: cannot write {}", path.display()))?;
+        export.write("--plot", &svg, path)?;
     }
     if a.json {
         let mut v = serde_json::to_value(&r)?;

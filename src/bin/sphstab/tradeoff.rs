@@ -55,6 +55,8 @@ pub struct Args {
     /// Write the Pareto figure (SVG) here.
     #[arg(long)]
     plot: Option<PathBuf>,
+    #[command(flatten)]
+    export: crate::export::ExportArgs,
     /// Compute only shard i of n (0 ≤ i < n): the configurations c with c mod n = i, written
     /// to --out for `sphstab merge`, which gives the table, JSON and figure of all the shards.
     /// The costs are timed on the machine that runs each shard. For job arrays:
@@ -64,6 +66,11 @@ pub struct Args {
     /// Write the JSON report here (the bytes --json prints); with --shard, the shard.
     #[arg(long)]
     out: Option<PathBuf>,
+}
+
+/// The figure of a report (`--plot`, `--from`, a config's `output`, `figures`).
+pub fn draw(rep: &TradeoffReport) -> sphstab::error::Result<String> {
+    sphstab::studies::tradeoff::figure_svg(rep)
 }
 
 impl Args {
@@ -132,7 +139,10 @@ impl Args {
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
     a.check_combinations()?;
-    let files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref());
+    let export = a
+        .export
+        .resolve(a.plot.is_some(), "no --plot (it sets the plot's formats)")?;
+    let files = study::files(a.config.as_ref(), a.from.as_ref(), a.plot.as_ref(), &export);
     files.check()?;
     if a.cfl_table {
         if a.shard.is_some() || a.out.is_some() {
@@ -151,10 +161,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             anyhow::bail!("--from redraws stored data: not combined with --shard or --out");
         }
         let rep: TradeoffReport = study::read_report(from)?;
-        return study::write_plot(
-            sphstab::studies::tradeoff::figure_svg(&rep),
-            study::plot_path(a.plot.as_ref())?,
-        );
+        return study::write_plot(draw(&rep), (study::plot_path(a.plot.as_ref())?, &export));
     }
     let shard = crate::shard::flags(
         a.shard.as_deref(),
@@ -205,7 +212,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         &rep,
         a.out.as_deref(),
         a.json,
-        a.plot.as_deref(),
+        a.plot.as_deref().map(|p| (p, &export)),
         config_out.as_deref(),
     )
 }
@@ -216,7 +223,7 @@ pub fn output(
     rep: &TradeoffReport,
     out: Option<&Path>,
     json: bool,
-    plot: Option<&Path>,
+    plot: Option<study::Plot<'_>>,
     config_out: Option<&str>,
 ) -> Result<()> {
     study::output(
@@ -227,7 +234,7 @@ pub fn output(
             plot,
             config_out,
         },
-        sphstab::studies::tradeoff::figure_svg,
+        draw,
         |r| {
             let mut t = sphstab::studies::tradeoff::table(r);
             if !r.integrator_rows.is_empty() {
