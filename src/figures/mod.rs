@@ -489,8 +489,13 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
                 y_range: p.y_range,
                 zero_line: p.swegle.is_empty(),
                 y_log: !p.swegle.is_empty(),
+                names: crate::studies::series_names(),
                 x_marks,
-                width: if paneled { Width::Single } else { Width::Double },
+                width: if paneled {
+                    Width::Single
+                } else {
+                    Width::Double
+                },
                 ..LinePlot::new(if paneled { p.title } else { "" }, x_desc, y_desc, curves)
             }
             .svg()

@@ -37,9 +37,7 @@ impl SwegleHistory {
     /// Ordinate description.
     pub(super) fn desc(self) -> &'static str {
         match self {
-            SwegleHistory::Centre => {
-                "|v| of the kicked centre particle (V21 units)"
-            }
+            SwegleHistory::Centre => "|v| of the kicked centre particle (V21 units)",
             SwegleHistory::Max => "max |v| over the free particles (V21 units)",
             SwegleHistory::Rms => "RMS |v| over the free particles (V21 units)",
         }

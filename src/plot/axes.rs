@@ -289,7 +289,10 @@ impl Frame {
     fn ticks(
         &self,
         named_x: Option<&[(f64, String)]>,
-    ) -> ((Vec<(f64, String)>, Vec<f64>), (Vec<(f64, String)>, Vec<f64>)) {
+    ) -> (
+        (Vec<(f64, String)>, Vec<f64>),
+        (Vec<(f64, String)>, Vec<f64>),
+    ) {
         let (l, t, r, b) = self.rect;
         let per = |s: &Scale| {
             if matches!(s, Scale::Log(..)) {

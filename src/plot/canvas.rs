@@ -188,7 +188,10 @@ impl DrawingBackend for Canvas<'_> {
     }
     fn draw_pixel(&mut self, p: BackendCoord, color: BackendColor) -> Res {
         let (x, y) = at(p);
-        self.polygon(&[(x, y), (x + 1.0, y), (x + 1.0, y + 1.0), (x, y + 1.0)], rgb(color));
+        self.polygon(
+            &[(x, y), (x + 1.0, y), (x + 1.0, y + 1.0), (x, y + 1.0)],
+            rgb(color),
+        );
         Ok(())
     }
     fn draw_line<S: BackendStyle>(&mut self, a: BackendCoord, b: BackendCoord, s: &S) -> Res {

@@ -90,8 +90,8 @@ pub fn heatmap_svg(
     let height = top + side + bottom_margin(x_desc, side) + PAD;
     let mut svg = String::new();
     {
-        let root = super::canvas::Canvas::new(&mut svg, Width::Single, (page, height))
-            .into_drawing_area();
+        let root =
+            super::canvas::Canvas::new(&mut svg, Width::Single, (page, height)).into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (k, line) in title_lines.iter().enumerate() {
             text(
@@ -238,7 +238,14 @@ pub fn strips_svg(
         .fold(0.0f64, f64::max)
         + 3.0;
     let bar_w = 7.0;
-    let bar_room = 8.0 + bar_w + TICK_LEN + TICK_GAP + text_width("0.001", TICK_PT) + DESC_GAP + LABEL_PT + PAD;
+    let bar_room = 8.0
+        + bar_w
+        + TICK_LEN
+        + TICK_GAP
+        + text_width("0.001", TICK_PT)
+        + DESC_GAP
+        + LABEL_PT
+        + PAD;
     let gap = 10.0;
     let panel_w = (page - PAD - label_w - bar_room - gap * (cols - 1) as f64) / cols as f64;
     let row_h = 9.0;
@@ -249,8 +256,8 @@ pub fn strips_svg(
     let xscale = Scale::log(x0 / 1.15, x1 * 1.15);
     let mut svg = String::new();
     {
-        let root = super::canvas::Canvas::new(&mut svg, Width::Double, (page, height))
-            .into_drawing_area();
+        let root =
+            super::canvas::Canvas::new(&mut svg, Width::Double, (page, height)).into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (pi, panel) in panels.iter().enumerate() {
             let (r, c) = (pi / cols, pi % cols);
@@ -319,7 +326,10 @@ pub fn strips_svg(
                 if k > 0 {
                     stroke(
                         &root,
-                        &[(l, t + row_h * k as f64), (l + panel_w, t + row_h * k as f64)],
+                        &[
+                            (l, t + row_h * k as f64),
+                            (l + panel_w, t + row_h * k as f64),
+                        ],
                         RGBColor(225, 225, 225),
                         FRAME_LINE_PT,
                     )?;
@@ -329,7 +339,10 @@ pub fn strips_svg(
         }
         // the colour bar: two decades below the maximum, log
         let bl = page - bar_room + 8.0;
-        let (bt, bh) = (PAD + LABEL_PT * 1.5, (box_h * prow as f64).max(box_h).min(200.0));
+        let (bt, bh) = (
+            PAD + LABEL_PT * 1.5,
+            (box_h * prow as f64).max(box_h).min(200.0),
+        );
         let n = 100;
         for k in 0..n {
             let tt = (k as f64 + 0.5) / n as f64;

@@ -8,12 +8,12 @@ use super::print::{
     Width, page_pt,
 };
 use super::style::{
-    Dash, GREY, Style, draw_line, draw_marker, draw_sample, fill_polygon, fill_rect, group, outline,
-    panel_styles, plot_err, series_style, stroke, text, text_at, text_width, wrap,
+    Dash, GREY, Names, Style, draw_line, draw_marker, draw_sample, fill_polygon, fill_rect, group,
+    outline, panel_styles, plot_err, series_style, stroke, text, text_at, text_width, wrap,
 };
-use plotters::style::text_anchor::{HPos, VPos};
 use crate::error::{Error, Result};
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, VPos};
 
 /// One curve of a line plot.
 #[derive(Clone, Debug)]
@@ -67,6 +67,9 @@ pub struct LinePlot {
     /// Printed width: 170 mm with the legend right of the data (default), 85 mm with the
     /// legend under it.
     pub width: Width,
+    /// The form, kernel and integrator names whose series have one style in every figure
+    /// ([`Names`]; the default: none).
+    pub names: Names,
     /// Logarithmic vertical axis (decades labelled; values ≤ 0 leave gaps); `y_range` is then
     /// in data units too.
     pub y_log: bool,
@@ -76,10 +79,10 @@ pub struct LinePlot {
 /// form, kernel, integrator or reference name has that name's style in every figure; the others
 /// take the remaining colours), dashed curves dashed. The legend draws its samples with these
 /// same styles.
-pub fn curve_styles(curves: &[Curve]) -> Vec<Style> {
+pub fn curve_styles(curves: &[Curve], names: &Names) -> Vec<Style> {
     let labels: Vec<&str> = curves.iter().map(|c| c.label.as_str()).collect();
     let dashed: Vec<bool> = curves.iter().map(|c| c.dashed).collect();
-    panel_styles(&labels, &dashed)
+    panel_styles(&labels, &dashed, names)
 }
 
 /// A legend entry: sample style, label and an optional note (coincidence, clipping).
@@ -95,9 +98,9 @@ pub struct LegendEntry {
 
 /// What the plot of `curves` shows at vertical range `(lo, hi)`: the legend entries (style =
 /// the series' style; notes name coinciding curves and where a curve is clipped).
-pub fn legend_entries(curves: &[Curve], lo: f64, hi: f64) -> Vec<LegendEntry> {
+pub fn legend_entries(curves: &[Curve], lo: f64, hi: f64, names: &Names) -> Vec<LegendEntry> {
     let tol = COINCIDE_TOL * (hi - lo);
-    let styles = curve_styles(curves);
+    let styles = curve_styles(curves, names);
     curves
         .iter()
         .enumerate()
@@ -234,7 +237,7 @@ impl LinePlot {
         let (x0, x1) = self.x_range.unwrap_or((x0, x1));
         let axis_curves = self.axis_curves();
         let (lo, hi) = self.limits_of(&axis_curves);
-        let entries = legend_entries(&axis_curves, lo, hi);
+        let entries = legend_entries(&axis_curves, lo, hi, &self.names);
         let y_scale = if self.y_log {
             Scale::Log(lo, hi)
         } else {
@@ -279,7 +282,10 @@ impl LinePlot {
         let title = if self.title.is_empty() {
             Vec::new()
         } else {
-            wrap(&self.title, ((page - 2.0 * PAD) / (0.6 * TITLE_PT)) as usize)
+            wrap(
+                &self.title,
+                ((page - 2.0 * PAD) / (0.6 * TITLE_PT)) as usize,
+            )
         };
         let top0 = PAD + TITLE_PT * 1.25 * title.len() as f64;
         // mark labels: one row above the box, a further row wherever two would overlap
@@ -440,12 +446,7 @@ impl LinePlot {
             // the legend, outside the data
             group(&root, Some("legend"))?;
             let (lx, ly) = legend_at;
-            outline(
-                &root,
-                (lx, ly, lx + legend_w, ly + lh),
-                GREY,
-                FRAME_LINE_PT,
-            )?;
+            outline(&root, (lx, ly, lx + legend_w, ly + lh), GREY, FRAME_LINE_PT)?;
             let tx = lx + PAD + SAMPLE_W + 4.0;
             let mut y = ly + PAD;
             for e in &entries {
@@ -570,8 +571,8 @@ mod tests {
             curve("a", vec![0.0, 1.0, 2.0], false),
             curve("b", vec![0.0, 2.0, 1.0], true),
         ];
-        let e = legend_entries(&cs, -1.0, 3.0);
-        for (e, s) in e.iter().zip(curve_styles(&cs)) {
+        let e = legend_entries(&cs, -1.0, 3.0, &Names::default());
+        for (e, s) in e.iter().zip(curve_styles(&cs, &Names::default())) {
             assert_eq!(e.style, s);
         }
         assert_eq!(e[1].style.dash, Dash::Dashed);
@@ -590,7 +591,7 @@ mod tests {
         let p = LinePlot::new("t", "x", "y", cs.clone());
         let (lo, hi) = p.y_limits();
         assert!(hi < 10.0 && lo < 0.0, "{lo} {hi}");
-        let e = legend_entries(&cs, lo, hi);
+        let e = legend_entries(&cs, lo, hi, &Names::default());
         assert!(e[0].note.is_none());
         assert!(
             e[1].note

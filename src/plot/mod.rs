@@ -23,7 +23,6 @@ pub use lines::{
 pub use scatter::{
     COINCIDE_PX, Entry, FRONT_STYLE, Grid, ScatterPanel, coinciding_groups, colour_layers,
     draw_panel, draw_title, legend_block, legend_block_height, legend_column, legend_styles,
-    legend_width, panel_letter, pareto_svg,
-    scatter_panels_svg, title_block,
+    legend_width, panel_letter, pareto_svg, scatter_panels_svg, title_block,
 };
 pub use stack::{stack_svg, svg_size};

@@ -66,7 +66,6 @@ impl Width {
             Width::Double => 170.0,
         }
     }
-
 }
 
 /// The width in points of a page `width` wide: every plot is laid out in points on a page

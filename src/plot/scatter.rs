@@ -5,13 +5,12 @@
 
 use super::axes::{BOTTOM_MARGIN, Frame, Scale};
 use super::print::{
-    FRAME_LINE_PT, LABEL_PT, LEGEND_LINE, LEGEND_PT, NOTE_LINE, NOTE_PT, PAD, SAMPLE_W, TITLE_PT, Width,
-    page_pt,
+    FRAME_LINE_PT, LABEL_PT, LEGEND_LINE, LEGEND_PT, NOTE_LINE, NOTE_PT, PAD, SAMPLE_W, TITLE_PT,
+    Width, page_pt,
 };
 use super::style::{
-    Dash, GREY, Style, draw_line, draw_marker, draw_sample, group, outline, panel_styles, plot_err,
-    text,
-    text_width, wrap,
+    Dash, GREY, Names, Style, draw_line, draw_marker, draw_sample, group, outline, panel_styles,
+    plot_err, text, text_width, wrap,
 };
 use crate::error::{Error, Result};
 use plotters::prelude::*;
@@ -46,9 +45,9 @@ pub fn draw_title(
 }
 
 /// Styles of the legend entries of a scatter or panel figure, by meaning ([`panel_styles`]).
-pub fn legend_styles(legend: &[String]) -> Vec<Style> {
+pub fn legend_styles(legend: &[String], names: &Names) -> Vec<Style> {
     let labels: Vec<&str> = legend.iter().map(String::as_str).collect();
-    panel_styles(&labels, &[])
+    panel_styles(&labels, &[], names)
 }
 
 /// Splits legend entries into layers in which no two share a colour (in legend order, each
@@ -163,9 +162,7 @@ fn block_pitch(entries: &[Entry<'_>]) -> f64 {
 fn block_shape(entries: &[Entry<'_>], width: f64) -> (usize, usize, f64) {
     let col_w = entries
         .iter()
-        .map(|e| {
-            text_width(e.label, LEGEND_PT).max(e.note.map_or(0.0, |n| text_width(n, NOTE_PT)))
-        })
+        .map(|e| text_width(e.label, LEGEND_PT).max(e.note.map_or(0.0, |n| text_width(n, NOTE_PT))))
         .fold(0.0f64, f64::max)
         + SAMPLE_W
         + 4.0
@@ -199,7 +196,13 @@ pub fn legend_block(
         )?;
         text(root, e.label, (lx + SAMPLE_W + 4.0, y), LEGEND_PT, BLACK)?;
         if let Some(n) = e.note {
-            text(root, n, (lx + SAMPLE_W + 4.0, y + LEGEND_LINE), NOTE_PT, GREY)?;
+            text(
+                root,
+                n,
+                (lx + SAMPLE_W + 4.0, y + LEGEND_LINE),
+                NOTE_PT,
+                GREY,
+            )?;
         }
     }
     group(root, None)?;
@@ -296,6 +299,7 @@ pub fn pareto_svg(
     y_desc: &str,
     pts: &[(String, f64, f64, bool)],
     fill_meaning: (&str, &str),
+    names: &Names,
 ) -> Result<String> {
     let pts: Vec<&(String, f64, f64, bool)> = pts
         .iter()
@@ -312,7 +316,7 @@ pub fn pareto_svg(
             groups.push(p.0.clone());
         }
     }
-    let styles = legend_styles(&groups);
+    let styles = legend_styles(&groups, names);
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for p in &pts {
         x0 = x0.min(p.1);
@@ -473,6 +477,7 @@ pub fn scatter_panels_svg(
     y_desc: &str,
     legend: &[String],
     panels: &[ScatterPanel],
+    names: &Names,
 ) -> Result<String> {
     let ok = |p: &&(usize, f64, f64)| p.1.is_finite() && p.1 > 0.0 && p.2.is_finite() && p.2 > 0.0;
     let all: Vec<&(usize, f64, f64)> = panels
@@ -496,7 +501,7 @@ pub fn scatter_panels_svg(
         Scale::log(x0 / 1.3, x1 * 1.3),
         Scale::log(y0 / 1.3, y1 * 1.3),
     );
-    let styles = legend_styles(legend);
+    let styles = legend_styles(legend, names);
     let layers = colour_layers(&styles);
     let cols = panels.len().max(1);
     let (th, tlines) = title_block(title);
@@ -523,8 +528,8 @@ pub fn scatter_panels_svg(
     let height = legend_top + legend_block_height(&entries, legend_w) + PAD;
     let mut svg = String::new();
     {
-        let root = super::canvas::Canvas::new(&mut svg, Width::Double, (page, height))
-            .into_drawing_area();
+        let root =
+            super::canvas::Canvas::new(&mut svg, Width::Double, (page, height)).into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         draw_title(&root, &tlines)?;
         let mut letter = 0;
@@ -534,7 +539,12 @@ pub fn scatter_panels_svg(
                 let t = format!("{} {}", panel_letter(letter), panel.title);
                 letter += 1;
                 draw_panel(&root, &frame, &t, x_desc, y_desc)?;
-                for p in panel.points.iter().filter(ok).filter(|p| layer.contains(&p.0)) {
+                for p in panel
+                    .points
+                    .iter()
+                    .filter(ok)
+                    .filter(|p| layer.contains(&p.0))
+                {
                     draw_marker(&root, frame.map(p.1, p.2), &styles[p.0])?;
                 }
             }
@@ -562,14 +572,15 @@ mod tests {
                 (2, 100.0, 0.05),
             ],
         }];
-        let f = Grid::new(0.0, 1, 100.0, 0.9).frame(0, 0, Scale::log(10.0, 1e4), Scale::log(0.01, 1.0));
+        let f =
+            Grid::new(0.0, 1, 100.0, 0.9).frame(0, 0, Scale::log(10.0, 1e4), Scale::log(0.01, 1.0));
         let n = coinciding_groups(&legend, &panels, &[f]);
         assert_eq!(n, vec![Some("hidden under “dkd”".to_string()), None, None]);
-        let svg = scatter_panels_svg("t", "x", "y", &legend, &panels).unwrap();
+        let svg = scatter_panels_svg("t", "x", "y", &legend, &panels, &Names::default()).unwrap();
         assert!(svg.contains("hidden under “dkd”"));
         // decade labels on both log axes, no "100.0" or "1e2"
         for label in ["100", "10³", "0.1"] {
-            assert!(svg.contains(&format!(">\n{label}\n</text>")), "{label}");
+            assert!(svg.contains(&format!(">{label}</text>")), "{label}");
         }
         assert!(!svg.contains("100.0") && !svg.contains("1e2"));
     }
@@ -581,7 +592,15 @@ mod tests {
             ("a".to_string(), 20.0, 0.05, true),
             ("b".to_string(), 15.0, 0.2, false),
         ];
-        let svg = pareto_svg("t", "x", "y", &pts, ("filled: stable", "hollow: unstable")).unwrap();
+        let svg = pareto_svg(
+            "t",
+            "x",
+            "y",
+            &pts,
+            ("filled: stable", "hollow: unstable"),
+            &Names::default(),
+        )
+        .unwrap();
         for s in ["filled: stable", "hollow: unstable", "Pareto front"] {
             assert!(svg.contains(s), "{s}");
         }

@@ -82,8 +82,7 @@ pub fn stack_svg(title: &str, panels: &[String]) -> Result<String> {
             let (w, ph) = sizes[i];
             // the panel nested at its size in points (its print size is the figure's)
             let (ws, hs) = (num(w), num(ph));
-            let px =
-                super::print::set_root_size(&panels[i], &ws, &hs, &format!("0 0 {ws} {hs}"))?;
+            let px = super::print::set_root_size(&panels[i], &ws, &hs, &format!("0 0 {ws} {hs}"))?;
             let body = px.trim_end().strip_prefix("<svg ").unwrap_or(&px);
             out.push_str(&format!("<svg x=\"{}\" y=\"{}\" {body}\n", num(x), num(y)));
             x += w;
@@ -138,7 +137,10 @@ mod tests {
         let (ws, hs) = svg_size(&p[0]).unwrap();
         let s = stack_svg("", &p).unwrap();
         let (w, h) = svg_size(&s).unwrap();
-        assert!((w - 2.0 * ws).abs() < 0.02 && (h - 2.0 * hs).abs() < 0.02, "{w} {h}");
+        assert!(
+            (w - 2.0 * ws).abs() < 0.02 && (h - 2.0 * hs).abs() < 0.02,
+            "{w} {h}"
+        );
         assert!(s.contains(&format!("<svg x=\"{}\" y=\"0\"", num(ws))));
         assert!(s.contains(&format!("<svg x=\"0\" y=\"{}\"", num(hs))));
         assert!(s[..200].contains("width=\"170mm\""));

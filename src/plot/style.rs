@@ -120,24 +120,20 @@ pub fn series_style(i: usize, dash: Dash) -> Style {
     }
 }
 
-/// The names that carry one fixed style in every figure, by category: every form, kernel
-/// and integrator of the library (in their listing order).
-pub fn named_categories() -> [Vec<&'static str>; 3] {
-    [
-        crate::forms::FormKind::ALL.iter().map(|f| f.1).collect(),
-        crate::kernel::all().iter().map(|k| k.name()).collect(),
-        crate::integrator::INTEGRATOR_NAMES.to_vec(),
-    ]
-}
+/// The names that carry one fixed style in every figure, by category (forms, kernels,
+/// integrators: the layers above hold the lists and pass them in, the plot layer takes plain
+/// data). Empty (the default): no series is styled by name.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Names(pub Vec<Vec<&'static str>>);
 
 /// Names of reference curves: drawn dashed in [`REFERENCE`] grey.
 pub const REFERENCE_NAMES: [&str; 4] = ["continuum", "analytic", "exact", "reference"];
 
 /// The style of a form, kernel or integrator name, the same in every figure: the name's
-/// index i in its category ([`named_categories`]) gives colour `i mod 7` and marker `i mod 10`,
-/// filled for i < 7 and hollow after (so two names of a category never share colour, marker
-/// and fill). Reference names ([`REFERENCE_NAMES`]) are dashed dark grey. None: not a name.
-pub fn named_style(name: &str) -> Option<Style> {
+/// index i in its category of `names` gives colour `i mod 7` and marker `i mod 10`, filled for
+/// i < 7 and hollow after (so two names of a category never share colour, marker and fill).
+/// Reference names ([`REFERENCE_NAMES`]) are dashed dark grey. None: not a name.
+pub fn named_style(name: &str, names: &Names) -> Option<Style> {
     if REFERENCE_NAMES.contains(&name) {
         return Some(Style {
             color: REFERENCE,
@@ -147,8 +143,8 @@ pub fn named_style(name: &str) -> Option<Style> {
             width: super::print::SERIES_LINE_PT,
         });
     }
-    named_categories().iter().find_map(|names| {
-        let i = names.iter().position(|n| *n == name)?;
+    names.0.iter().find_map(|cat| {
+        let i = cat.iter().position(|n| *n == name)?;
         Some(Style {
             color: OKABE_ITO[i % OKABE_ITO.len()],
             dash: Dash::Solid,
@@ -162,7 +158,7 @@ pub fn named_style(name: &str) -> Option<Style> {
 /// The name a legend label stands for: its first word (up to a space, comma, colon, bar or
 /// parenthesis; after "form = " or another one-word key) when that is a form, kernel,
 /// integrator or reference name.
-pub fn label_name(label: &str) -> Option<&str> {
+pub fn label_name<'a>(label: &'a str, names: &Names) -> Option<&'a str> {
     // "form = classical": the value names the series
     let label = match label.split_once(" = ") {
         Some((k, v)) if !k.contains(' ') => v,
@@ -173,7 +169,7 @@ pub fn label_name(label: &str) -> Option<&str> {
         .next()
         .unwrap_or_default()
         .trim();
-    named_style(first).map(|_| first)
+    named_style(first, names).map(|_| first)
 }
 
 /// The part of a label before its first ": " — series of one stem (a run and its fitted
@@ -190,8 +186,8 @@ fn stem(label: &str) -> &str {
 /// unnamed. Unnamed series take, by stem ([`stem`]: a run and its prediction share one), the
 /// Okabe–Ito colours no named series of the panel uses, with the marker cycle; within a stem
 /// they differ in dash pattern. `dashed[i]`: series i is a reference or prediction.
-pub fn panel_styles(labels: &[&str], dashed: &[bool]) -> Vec<Style> {
-    let mut names: Vec<Option<&str>> = labels.iter().map(|l| label_name(l)).collect();
+pub fn panel_styles(labels: &[&str], dashed: &[bool], registry: &Names) -> Vec<Style> {
+    let mut names: Vec<Option<&str>> = labels.iter().map(|l| label_name(l, registry)).collect();
     let compared: Vec<&str> = {
         let mut d: Vec<&str> = names
             .iter()
@@ -213,7 +209,7 @@ pub fn panel_styles(labels: &[&str], dashed: &[bool]) -> Vec<Style> {
     let used: Vec<RGBColor> = names
         .iter()
         .flatten()
-        .filter_map(|n| named_style(n))
+        .filter_map(|n| named_style(n, registry))
         .map(|s| s.color)
         .collect();
     let free: Vec<RGBColor> = OKABE_ITO
@@ -239,7 +235,7 @@ pub fn panel_styles(labels: &[&str], dashed: &[bool]) -> Vec<Style> {
     for i in 0..labels.len() {
         let style = match names[i] {
             Some(n) => {
-                let base = named_style(n).expect("a name");
+                let base = named_style(n, registry).expect("a name");
                 let k = names[..i].iter().filter(|m| **m == Some(n)).count();
                 if REFERENCE_NAMES.contains(&n) && k == 0 {
                     base
@@ -359,12 +355,7 @@ pub fn draw_line(
     style: &Style,
 ) -> Result<()> {
     for piece in dash_polyline(pts, style.dash.pattern()) {
-        fine(
-            area,
-            piece,
-            style.color,
-            FineKind::Path(style.width),
-        )?;
+        fine(area, piece, style.color, FineKind::Path(style.width))?;
     }
     Ok(())
 }
@@ -448,12 +439,7 @@ pub fn draw_sample(
 ) -> Result<()> {
     if line {
         for piece in sample_pieces(style, x, y, w) {
-            fine(
-                area,
-                piece,
-                style.color,
-                FineKind::Path(style.width),
-            )?;
+            fine(area, piece, style.color, FineKind::Path(style.width))?;
         }
     }
     if marker {
@@ -556,7 +542,12 @@ pub fn fill_rect(
     (l, t, r, b): (f64, f64, f64, f64),
     color: RGBColor,
 ) -> Result<()> {
-    fine(area, vec![(l, t), (r, t), (r, b), (l, b)], color, FineKind::Fill)
+    fine(
+        area,
+        vec![(l, t), (r, t), (r, b), (l, b)],
+        color,
+        FineKind::Fill,
+    )
 }
 
 /// The filled polygon through `pts` (points).
@@ -614,17 +605,17 @@ mod tests {
     #[test]
     fn dashes_follow_the_pattern_across_vertices() {
         // a straight line sampled densely is dashed like the same line in one segment
-        let dense: Vec<(f64, f64)> = (0..=100).map(|i| (i as f64 * 0.7, 3.0)).collect();
+        let dense: Vec<(f64, f64)> = (0..=100).map(|i| (i as f64 * 0.21, 3.0)).collect();
         let a = dash_polyline(&dense, Dash::Dashed.pattern());
-        let b = dash_polyline(&[(0.0, 3.0), (70.0, 3.0)], Dash::Dashed.pattern());
+        let b = dash_polyline(&[(0.0, 3.0), (21.0, 3.0)], Dash::Dashed.pattern());
         assert_eq!(a.len(), b.len());
-        assert_eq!(a.len(), 5); // 70 px of (9 on, 5 off)
+        assert_eq!(a.len(), 4); // 21 pt of (3.5 on, 2 off): 3 periods and a dash
         for (p, q) in a.iter().zip(&b) {
             assert!((length(p) - length(q)).abs() < 1e-9);
             assert!((p[0].0 - q[0].0).abs() < 1e-9);
         }
-        assert!((length(&a[0]) - 9.0).abs() < 1e-9);
-        assert!((a[1][0].0 - 14.0).abs() < 1e-9);
+        assert!((length(&a[0]) - 3.5).abs() < 1e-9);
+        assert!((a[1][0].0 - 5.5).abs() < 1e-9);
         assert_eq!(dash_polyline(&dense, &[]).len(), 1);
     }
 

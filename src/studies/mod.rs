@@ -14,3 +14,14 @@ pub mod stored;
 pub mod swegle;
 pub mod throughput;
 pub mod tradeoff;
+
+/// The form, kernel and integrator names of the library, whose series every figure draws in
+/// one style each ([`crate::plot::style::named_style`]): the lists of [`crate::forms::FormKind`],
+/// [`crate::kernel::all`] and [`crate::integrator::INTEGRATOR_NAMES`], in their order.
+pub fn series_names() -> crate::plot::style::Names {
+    crate::plot::style::Names(vec![
+        crate::forms::FormKind::ALL.iter().map(|f| f.1).collect(),
+        crate::kernel::all().iter().map(|k| k.name()).collect(),
+        crate::integrator::INTEGRATOR_NAMES.to_vec(),
+    ])
+}

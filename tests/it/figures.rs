@@ -328,7 +328,8 @@ fn swegle_kind_draws_the_box_slope_over_the_fit() {
     for (x, h) in hist.x.iter().zip(&report.history_full) {
         assert!((x - h[0] * unit).abs() < 1e-9 * (1.0 + x));
     }
-    let slope = (line.y[1] - line.y[0]) / (line.x[1] - line.x[0]);
+    // drawn on a log axis: the ordinates are |v|, the slope is that of log10 |v|
+    let slope = (line.y[1].log10() - line.y[0].log10()) / (line.x[1] - line.x[0]);
     assert!(
         (slope * std::f64::consts::LN_10 - pred.box_rate).abs() < 1e-12,
         "slope {slope}, box rate {}",
@@ -355,9 +356,9 @@ fn swegle_kind_draws_the_box_slope_over_the_fit() {
         .iter()
         .position(|&x| x >= mid)
         .expect("history covers the window");
-    let on_line = line.y[0] + slope * (hist.x[i] - line.x[0]);
+    let on_line = line.y[0].log10() + slope * (hist.x[i] - line.x[0]);
     assert!(
-        (hist.y[i] - on_line).abs() < 0.2,
+        (hist.y[i].log10() - on_line).abs() < 0.2,
         "{} vs {on_line}",
         hist.y[i]
     );

@@ -104,10 +104,7 @@ fn coordinates(svg: &str) -> Vec<f64> {
         let key = format!(" {name}=\"");
         for (i, m) in svg.match_indices(&key) {
             let v = svg[i + m.len()..].split('"').next().unwrap_or("");
-            out.extend(
-                v.split([' ', ','])
-                    .filter_map(|n| n.parse::<f64>().ok()),
-            );
+            out.extend(v.split([' ', ',']).filter_map(|n| n.parse::<f64>().ok()));
         }
     }
     out
@@ -116,7 +113,10 @@ fn coordinates(svg: &str) -> Vec<f64> {
 /// The paint of a drawing element: its stroke, else its fill (None: text or unpainted).
 fn paint(tag: &str) -> Option<String> {
     let name = tag.trim_start_matches('<').split([' ', '>', '/']).next()?;
-    if !matches!(name, "polyline" | "polygon" | "circle" | "rect" | "path" | "line") {
+    if !matches!(
+        name,
+        "polyline" | "polygon" | "circle" | "rect" | "path" | "line"
+    ) {
         return None;
     }
     attr(tag, "stroke")
@@ -139,11 +139,10 @@ fn is_decoration(c: &str) -> bool {
 /// another one-word key), the sample being the last series-coloured element drawn before the
 /// text (legend samples precede their labels).
 fn named_entries(svg: &str) -> Vec<(String, String)> {
-    let [forms, kernels, integrators] = sphstab::plot::style::named_categories();
-    let names: Vec<&str> = forms
+    let names: Vec<&str> = sphstab::studies::series_names()
+        .0
         .into_iter()
-        .chain(kernels)
-        .chain(integrators)
+        .flatten()
         .chain(["continuum", "analytic", "exact"])
         .collect();
     let mut last: Option<String> = None;
@@ -289,5 +288,10 @@ fn every_figure_is_print_ready_with_one_colour_per_name() {
         );
     }
     // the check is not vacuous: the forms, the integrators and references are compared
-    assert!(seen.len() >= 15, "{} names compared: {:?}", seen.len(), seen.keys());
+    assert!(
+        seen.len() >= 15,
+        "{} names compared: {:?}",
+        seen.len(),
+        seen.keys()
+    );
 }

@@ -228,6 +228,7 @@ fn plot<const D: usize>(
         )
     };
     let svg = LinePlot {
+        names: sphstab::studies::series_names(),
         zero_line: true,
         x_ticks: ticks.clone(),
         x_range,
@@ -264,6 +265,7 @@ fn plot<const D: usize>(
             }
         }
         let svg = LinePlot {
+            names: sphstab::studies::series_names(),
             x_range,
             ..sphstab::plot::damping_plot(
                 &format!("{title} — damping"),

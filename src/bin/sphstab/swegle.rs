@@ -255,6 +255,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             }
         }
         let svg = LinePlot {
+        names: sphstab::studies::series_names(),
             band,
             y_log: true,
             notes: vec![format!(

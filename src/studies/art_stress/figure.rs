@@ -4,9 +4,7 @@ use super::report::ArtStressReport;
 use super::run::{max_relative_difference, trim};
 use crate::error::Result;
 use crate::plot::axes::{Scale, auto_range};
-use crate::plot::style::{
-    Dash, GREY, Style, draw_line, draw_marker, plot_err, series_style, text,
-};
+use crate::plot::style::{Dash, GREY, Style, draw_line, draw_marker, plot_err, series_style, text};
 
 /// Legend entries: (label, style, line, marker).
 fn legend(r: &ArtStressReport) -> Vec<(String, Style, bool, bool)> {
@@ -107,7 +105,7 @@ pub fn figure_svg(r: &ArtStressReport) -> Result<String> {
     let mut svg = String::new();
     {
         let root = crate::plot::canvas::Canvas::new(&mut svg, Width::Double, (page, height))
-        .into_drawing_area();
+            .into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         for (ci, case) in r.cases.iter().enumerate() {
             let (row, col) = (ci / cols, ci % cols);

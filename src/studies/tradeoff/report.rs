@@ -156,6 +156,7 @@ pub fn pareto_svg(rep: &TradeoffReport) -> Result<String> {
             "filled: stable at σ̄ = ±0.01",
             "hollow: unstable at σ̄ = +0.01 or −0.01",
         ),
+        &crate::studies::series_names(),
     )
 }
 
@@ -254,6 +255,7 @@ pub fn integrators_svg(rep: &TradeoffReport) -> Result<String> {
         "|phase error| per λ, 10 ppw (rad)",
         &legend,
         &panels,
+        &crate::studies::series_names(),
     )
 }
 
