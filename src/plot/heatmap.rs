@@ -205,13 +205,15 @@ fn log_level(v: f64, vmax: f64, stable_below: f64) -> Option<f64> {
 /// halfway to its neighbours, coloured by its value on the heat-map scale (log, two decades
 /// below the maximum over all panels; white at or below `stable_below`, grey where not
 /// computed), so where a row turns from white to colour — an onset — reads at a glance.
-/// Panels `cols` to a row (lettered), row labels left of the first column, one colour bar.
+/// Panels `cols` to a row (lettered), a heading over each row of panels (`row_titles`), row
+/// labels left of the first column, one colour bar.
 pub fn strips_svg(
     x_desc: &str,
     z_desc: &str,
     labels: &[String],
     panels: &[StripPanel],
     cols: usize,
+    row_titles: &[String],
     stable_below: f64,
 ) -> Result<String> {
     let cols = cols.max(1);
@@ -251,7 +253,8 @@ pub fn strips_svg(
     let row_h = 9.0;
     let box_h = row_h * labels.len() as f64;
     let prow = panels.len().div_ceil(cols);
-    let cell_h = LABEL_PT * 1.5 + box_h + bottom_margin(x_desc, panel_w);
+    let head = LABEL_PT * 1.4;
+    let cell_h = head + LABEL_PT * 1.5 + box_h + bottom_margin(x_desc, panel_w);
     let height = PAD + cell_h * prow as f64 + PAD;
     let xscale = Scale::log(x0 / 1.15, x1 * 1.15);
     let mut svg = String::new();
@@ -262,7 +265,16 @@ pub fn strips_svg(
         for (pi, panel) in panels.iter().enumerate() {
             let (r, c) = (pi / cols, pi % cols);
             let l = PAD + label_w + c as f64 * (panel_w + gap);
-            let t = PAD + r as f64 * cell_h + LABEL_PT * 1.5;
+            let t = PAD + r as f64 * cell_h + head + LABEL_PT * 1.5;
+            if let (0, Some(rt)) = (c, row_titles.get(r)) {
+                text(
+                    &root,
+                    rt,
+                    (PAD, t - LABEL_PT * 1.35 - head),
+                    LABEL_PT,
+                    BLACK,
+                )?;
+            }
             // rows are labelled, not ticked: an empty vertical range has no ticks (and only
             // the horizontal mapping is used)
             let frame = Frame {
@@ -374,14 +386,16 @@ pub fn strips_svg(
                 false,
             )?;
         }
-        text_at(
-            &root,
-            &format!("white: stable (≤ {})", super::axes::sci(stable_below)),
-            (bl - 4.0, bt + bh + 2.0),
-            NOTE_PT,
-            (HPos::Left, VPos::Top),
-            false,
-        )?;
+        for (k, line) in ["white:", "stable"].iter().enumerate() {
+            text_at(
+                &root,
+                line,
+                (bl, bt + bh + 2.0 + NOTE_PT * 1.2 * k as f64),
+                NOTE_PT,
+                (HPos::Left, VPos::Top),
+                false,
+            )?;
+        }
         text_at(
             &root,
             z_desc,

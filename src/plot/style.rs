@@ -199,11 +199,11 @@ pub fn panel_styles(labels: &[&str], dashed: &[bool], registry: &Names) -> Vec<S
         d.dedup();
         d
     };
-    if let [only] = compared[..] {
-        if names.iter().filter(|n| **n == Some(only)).count() > 1 {
-            for n in names.iter_mut().filter(|n| **n == Some(only)) {
-                *n = None;
-            }
+    if let [only] = compared[..]
+        && names.iter().filter(|n| **n == Some(only)).count() > 1
+    {
+        for n in names.iter_mut().filter(|n| **n == Some(only)) {
+            *n = None;
         }
     }
     let used: Vec<RGBColor> = names

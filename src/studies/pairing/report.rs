@@ -263,19 +263,22 @@ pub fn figure_svg(rep: &PairingReport) -> Result<String> {
                         .collect()
                 })
                 .collect();
-            let label = match what {
-                Quantity::Pairing => "pairing",
-                Quantity::Transverse => "transverse",
-            };
             panels.push(StripPanel {
-                title: format!(
-                    "{l}, {label}, σ̄ = {}",
-                    crate::display::num(s).replace('-', "−")
-                ),
+                title: l.to_string(),
                 rows: strips,
             });
         }
     }
+    let row_titles: Vec<String> = rows
+        .iter()
+        .map(|&(what, s)| {
+            let label = match what {
+                Quantity::Pairing => "pairing: largest longitudinal growth",
+                Quantity::Transverse => "largest transverse growth",
+            };
+            format!("{label}, σ̄ = {}", crate::display::num(s).replace('-', "−"))
+        })
+        .collect();
     let labels: Vec<String> = rep
         .kernels
         .iter()
@@ -293,6 +296,7 @@ pub fn figure_svg(rep: &PairingReport) -> Result<String> {
         &labels,
         &panels,
         lattices.len(),
+        &row_titles,
         rep.growth_tol,
     )
 }
