@@ -186,12 +186,33 @@ fn pixels(size: usvg::Size, dpi: f64) -> (u32, u32) {
     (px(size.width()), px(size.height()))
 }
 
-/// The figure `svg` as a PNG at `dpi` dots per inch of its printed size, on white.
+/// The figure `svg` as a PNG at `dpi` dots per inch of its printed size, on white: 8-bit
+/// RGB with its resolution recorded (pHYs, pixels per metre), so it is placed at its printed
+/// size.
 pub fn to_png(svg: &str, dpi: f64) -> Result<Vec<u8>> {
     let dpi = check_dpi(dpi)?;
-    raster(&tree(svg)?, dpi)?
-        .encode_png()
-        .map_err(|e| png_error(e.to_string()))
+    let pixmap = raster(&tree(svg)?, dpi)?;
+    // opaque (drawn on white): premultiplied RGBA is plain RGBA; the alpha is dropped
+    let rgb: Vec<u8> = pixmap
+        .data()
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    let mut out = Vec::new();
+    let mut enc = png::Encoder::new(&mut out, pixmap.width(), pixmap.height());
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    let per_metre = (dpi / 0.0254).round() as u32;
+    enc.set_pixel_dims(Some(png::PixelDimensions {
+        xppu: per_metre,
+        yppu: per_metre,
+        unit: png::Unit::Meter,
+    }));
+    let mut w = enc.write_header().map_err(|e| png_error(e.to_string()))?;
+    w.write_image_data(&rgb)
+        .map_err(|e| png_error(e.to_string()))?;
+    w.finish().map_err(|e| png_error(e.to_string()))?;
+    Ok(out)
 }
 
 fn png_error(problem: String) -> Error {
@@ -288,12 +309,21 @@ mod tests {
             (170.0, 300.0, 2008),
             (85.0, 150.0, 502),
         ] {
-            let (w, h, _) = decode(&to_png(&figure(mm, ""), dpi).unwrap());
+            let png = to_png(&figure(mm, ""), dpi).unwrap();
+            let (w, h, _) = decode(&png);
             assert_eq!(
                 (w, h),
                 (px, (px as f64 / 2.0).round() as u32),
                 "{mm} mm at {dpi}"
             );
+            // the resolution is recorded: 300 dpi = 11811 pixels per metre (300 / 0.0254)
+            let reader = png::Decoder::new(&png[..]).read_info().unwrap();
+            let dims = reader.info().pixel_dims.expect("a pHYs chunk");
+            assert_eq!(dims.unit, png::Unit::Meter);
+            let per_metre = (dpi / 0.0254_f64).round() as u32;
+            assert_eq!((dims.xppu, dims.yppu), (per_metre, per_metre));
+            // printed width from pixels and resolution: the figure's millimetres
+            assert!((f64::from(w) / f64::from(dims.xppu) * 1000.0 - mm).abs() < 0.1);
         }
         assert!(to_png(&figure(85.0, ""), 5.0).is_err());
     }

@@ -150,7 +150,7 @@ pub fn pareto_svg(rep: &TradeoffReport) -> Result<String> {
     crate::plot::pareto_svg(
         "",
         "cost (ns per particle per Δx/c, at Δt_crit)",
-        "phase-velocity error |c_num/c − 1|, 10 ppw",
+        "phase-velocity error |c_num/c − 1| (10 ppw)",
         &pts,
         (
             "filled: stable at σ̄ = ±0.01",
