@@ -70,12 +70,36 @@ pub fn check_print(what: &str, svg: &str) {
             t.chars().count()
         );
     }
+    // lines: at least 0.5 pt at print size (user units × the viewBox scale)
+    let pt_per_unit = s.width_mm / view_box_width(svg) / MM_PER_PT;
+    for (i, m) in svg.match_indices(" stroke-width=\"") {
+        let w: f64 = svg[i + m.len()..]
+            .split('"')
+            .next()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(0.0);
+        assert!(
+            // the viewBox is written to 0.01 pt (481.89 for 481.8898): 2e-5 relative
+            w * pt_per_unit >= 0.5 * (1.0 - 1e-4),
+            "{what}: a line of {:.2} pt (at least 0.5 pt)",
+            w * pt_per_unit
+        );
+    }
     let coords = coordinates(svg);
     assert!(coords.len() > 10, "{what}: {} coordinates", coords.len());
     assert!(
         coords.iter().any(|c| c.fract() != 0.0),
         "{what}: every coordinate is a whole number (staircase curves)"
     );
+}
+
+/// Width of the root `viewBox` (user units across the printed width).
+fn view_box_width(svg: &str) -> f64 {
+    let start = svg.find("<svg").unwrap_or(0);
+    let root = &svg[start..start + svg[start..].find('>').unwrap_or(0)];
+    attr(root, "viewBox")
+        .and_then(|v| v.split_whitespace().nth(2)?.parse().ok())
+        .unwrap_or(f64::NAN)
 }
 
 /// The contents of every `<text>` element, unescaped.
@@ -198,6 +222,9 @@ fn the_check_reads_millimetres_and_points() {
     assert!(fails(svg("85mm", 5.9, curve, "a")));
     assert!(fails(svg("85mm", 7.0, "0,0 1,2 3,4 5,6 7,8 9,10", "a")));
     assert!(fails(svg("85mm", 7.0, curve, &"x".repeat(121))));
+    let thin =
+        svg("85mm", 7.0, curve, "a").replace("<polyline ", "<polyline stroke-width=\"0.4\" ");
+    assert!(fails(thin));
     // legend entries: the sample's colour before each name
     let legend = "<polyline stroke=\"#0072B2\" points=\"0,0 1,1\"/><text>classical (sum)</text>\
                   <polyline stroke=\"#6E6E6E\" points=\"0,0 1,1\"/>\
