@@ -13,6 +13,7 @@ pub mod common;
 pub mod maps;
 pub mod query;
 pub mod report;
+pub mod spec;
 pub mod work;
 pub mod zone;
 
@@ -25,6 +26,7 @@ pub use report::{
     DispersionReport, Header, Instability, Polarisation, QueryReport, SCHEMA_VERSION,
     TimestepReport,
 };
+pub use spec::QuerySpec;
 
 use crate::error::Result;
 

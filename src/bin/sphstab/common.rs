@@ -3,9 +3,6 @@
 use anyhow::Result;
 use sphstab::analysis::Query;
 use sphstab::budget::Budget;
-use sphstab::forms::FormKind;
-use sphstab::kernel;
-use sphstab::shape::ShapeFamily;
 
 /// Configuration flags.
 #[derive(clap::Args, Debug, Clone)]
@@ -90,180 +87,44 @@ pub struct Config {
 }
 
 impl Config {
+    /// The question by name ([`sphstab::analysis::QuerySpec`]): the one translation of these
+    /// flags, shared with the Python module.
+    pub fn spec(&self) -> sphstab::analysis::QuerySpec {
+        sphstab::analysis::QuerySpec {
+            form: Some(self.form.clone()),
+            kernel: Some(self.kernel.clone()),
+            h: self.h,
+            support: self.support,
+            shape: self.shape.clone(),
+            stress: Some(self.stress),
+            c: self.c,
+            alpha_s: self.alpha_s,
+            dt: self.dt,
+            av_alpha: self.av_alpha,
+            av_beta: self.av_beta,
+            dim: self.dim,
+            lattice: self.lattice.clone(),
+            gamma: self.gamma,
+            material: self.material.clone(),
+            poisson: self.poisson,
+            rate: self.rate.clone(),
+            art_eps: self.art_eps,
+            art_n: self.art_n,
+            delta: self.diffusion.delta,
+            delta_form: self.diffusion.delta_form.clone(),
+            grid: self.grid,
+        }
+    }
+
     /// The dimension (`--dim`, default 1); any other value than 1, 2 or 3 is an error.
     pub fn dim(&self) -> Result<u8> {
-        match self.dim.unwrap_or(1) {
-            d @ 1..=3 => Ok(d),
-            d => Err(sphstab::error::Error::OutOfRange {
-                field: "dim",
-                value: d as f64,
-                range: "must be 1, 2 or 3".into(),
-            }
-            .into()),
-        }
+        Ok(self.spec().dim()?)
     }
 
-    /// Builds and validates the question in D dimensions, within `budget`: the flags every
-    /// dimension shares, then the lattice and material flags of D ≥ 2 (refused in 1D).
+    /// Builds and validates the question in D dimensions, within `budget`
+    /// ([`sphstab::analysis::QuerySpec::query`]).
     pub fn query<const D: usize>(&self, budget: &Budget) -> Result<Query<D>> {
-        if D == 1 {
-            self.reject_2d_flags()?;
-            if self.art_eps.is_some() {
-                return Err(sphstab::error::Error::Incompatible(
-                    "--art-eps: artificial stress is implemented in 2D (--dim 2) only".into(),
-                )
-                .into());
-            }
-        }
-        let form = FormKind::by_name(&self.form)?;
-        let k = kernel::by_name(&self.kernel)?;
-        let h = match (self.h, self.support) {
-            (Some(h), _) => h,
-            (None, Some(r)) => {
-                let (lo, hi) = sphstab::params::H_RANGE;
-                sphstab::error::check_range(
-                    "--support",
-                    r,
-                    lo * k.zeta(),
-                    hi * k.zeta(),
-                    true,
-                    true,
-                )?;
-                if r <= 1.0 {
-                    return Err(sphstab::error::Error::OutOfRange {
-                        field: "support",
-                        value: r,
-                        range: "the support R/Δx must exceed 1 so that particles have neighbours"
-                            .into(),
-                    }
-                    .into());
-                }
-                r / k.zeta()
-            }
-            (None, None) => 1.2,
-        };
-        let mut q = Query::<D>::new(form, k, h, self.stress);
-        if let Some(s) = &self.shape {
-            q.shape = ShapeFamily::by_name(s)?;
-        }
-        let mixed = matches!(form, FormKind::Lnl | FormKind::Cll);
-        if self.c.is_some() && !mixed {
-            return Err(crate::query::not_in(
-                "--c",
-                &format!(
-                    "--form {} (the partition coefficient is of lnl and cll)",
-                    form.name()
-                ),
-            ));
-        }
-        if self.alpha_s.is_some() && form != FormKind::LeastSquares {
-            return Err(crate::query::not_in(
-                "--alpha-s",
-                &format!(
-                    "--form {} (α_s is the stabilisation of least-squares)",
-                    form.name()
-                ),
-            ));
-        }
-        q.c_partition = self.c.unwrap_or(0.5);
-        q.alpha_s = self.alpha_s.unwrap_or(0.0);
-        q.dt = self.dt;
-        if self.av_alpha.is_some() || self.av_beta.is_some() {
-            q.av = Some((self.av_alpha.unwrap_or(0.0), self.av_beta.unwrap_or(0.0)));
-        }
-        q.diffusion = self.diffusion.get()?;
-        if let Some(g) = self.grid {
-            q.grid = g;
-        }
-        q.budget = *budget;
-        if D > 1 {
-            self.lattice_and_material(&mut q)?;
-        }
-        q.validate()?;
-        Ok(q)
-    }
-
-    /// The D ≥ 2 flags: `--art-eps/--art-n`, `--lattice/--gamma`, `--material/--poisson/--rate`.
-    fn lattice_and_material<const D: usize>(&self, q: &mut Query<D>) -> Result<()> {
-        use sphstab::analysis::MaterialSpec;
-        use sphstab::forms::ObjectiveRate;
-        q.art_stress = art_stress(self.art_eps, self.art_n)?;
-        let lattice = self
-            .lattice
-            .as_deref()
-            .unwrap_or(if D == 3 { "sc" } else { "square" });
-        if lattice != "square" && self.gamma.is_some() {
-            return Err(crate::query::not_in(
-                "--gamma",
-                &format!("--lattice {lattice} (the aspect ratio is for the 2D square lattice)"),
-            ));
-        }
-        q.lattice = sphstab::lattice::Lattice::<D>::named(lattice, self.gamma.unwrap_or(1.0))?;
-        let material = self.material.as_deref().unwrap_or("elastic");
-        if material == "hydro" && (self.poisson.is_some() || self.rate.is_some()) {
-            return Err(crate::query::not_in(
-                "--poisson/--rate",
-                "--material hydro (G = 0)",
-            ));
-        }
-        if material == "neo-hookean" && self.rate.is_some() {
-            return Err(crate::query::not_in(
-                "--rate",
-                "--material neo-hookean (a hyperelastic law has no stress rate)",
-            ));
-        }
-        let poisson = self.poisson.unwrap_or(0.3);
-        let rate = match self.rate.as_deref().unwrap_or("jaumann") {
-            "jaumann" => ObjectiveRate::Jaumann,
-            "truesdell" => ObjectiveRate::Truesdell,
-            r => {
-                return Err(sphstab::error::Error::UnknownName {
-                    what: "rate".into(),
-                    given: r.into(),
-                    valid: "jaumann, truesdell".into(),
-                }
-                .into());
-            }
-        };
-        q.material = match material {
-            "hydro" => MaterialSpec::Hydro,
-            "neo-hookean" => {
-                sphstab::error::check_range("--poisson", poisson, -0.99, 0.5, true, false)?;
-                MaterialSpec::NeoHookean { poisson }
-            }
-            "elastic" => {
-                sphstab::error::check_range("--poisson", poisson, -0.99, 0.5, true, false)?;
-                MaterialSpec::Elastic { poisson, rate }
-            }
-            m => {
-                return Err(sphstab::error::Error::UnknownName {
-                    what: "material".into(),
-                    given: m.into(),
-                    valid: "hydro, elastic, neo-hookean".into(),
-                }
-                .into());
-            }
-        };
-        Ok(())
-    }
-
-    /// Errors for 2D/3D-only flags given with `--dim 1`.
-    pub fn reject_2d_flags(&self) -> Result<()> {
-        let given = [
-            ("--lattice", self.lattice.is_some()),
-            ("--gamma", self.gamma.is_some()),
-            ("--material", self.material.is_some()),
-            ("--poisson", self.poisson.is_some()),
-            ("--rate", self.rate.is_some()),
-            ("--art-n", self.art_n.is_some()),
-        ];
-        match given.iter().find(|(_, g)| *g) {
-            Some((flag, _)) => Err(crate::query::not_in(
-                flag,
-                "--dim 1 (it is a 2D/3D flag; add --dim 2 or --dim 3)",
-            )),
-            None => Ok(()),
-        }
+        Ok(self.spec().query::<D>(budget)?)
     }
 }
 
@@ -290,22 +151,9 @@ macro_rules! by_dim {
     };
 }
 
-/// `--art-eps` / `--art-n` (Monaghan–Gray artificial stress): ε ∈ [0, 10], n ∈ [1, 12]
-/// (default 4); `--art-n` alone is an error.
+/// `--art-eps` / `--art-n` ([`sphstab::analysis::spec::art_stress`]).
 pub fn art_stress(eps: Option<f64>, n: Option<i32>) -> Result<Option<(f64, i32)>> {
-    match (eps, n) {
-        (Some(eps), n) => {
-            let n = n.unwrap_or(4);
-            sphstab::error::check_range("--art-eps", eps, 0.0, 10.0, true, true)?;
-            sphstab::error::check_range("--art-n", n as f64, 1.0, 12.0, true, true)?;
-            Ok(Some((eps, n)))
-        }
-        (None, Some(_)) => Err(crate::query::not_in(
-            "--art-n",
-            "no --art-eps (it is the exponent of the artificial stress)",
-        )),
-        (None, None) => Ok(None),
-    }
+    Ok(sphstab::analysis::spec::art_stress(eps, n)?)
 }
 
 /// `--integrator` and `--euler-every`, shared by `timestep`, `swegle` and `simulate`.
@@ -361,27 +209,11 @@ pub struct DiffusionArgs {
 }
 
 impl DiffusionArgs {
-    /// (δ, form), or None without `--delta`; `--delta-form` alone is an error.
+    /// (δ, form), or None without `--delta` ([`sphstab::analysis::spec::diffusion`]).
     pub fn get(&self) -> Result<Option<(f64, sphstab::forms::DiffusionForm)>> {
-        use sphstab::forms::{DELTA_RANGE, DiffusionForm};
-        match (self.delta, &self.delta_form) {
-            (Some(d), f) => {
-                sphstab::error::check_range(
-                    "--delta",
-                    d,
-                    DELTA_RANGE.0,
-                    DELTA_RANGE.1,
-                    true,
-                    true,
-                )?;
-                let form = DiffusionForm::from_name(f.as_deref().unwrap_or("antuono"))?;
-                Ok(Some((d, form)))
-            }
-            (None, Some(_)) => Err(crate::query::not_in(
-                "--delta-form",
-                "no --delta (it chooses the density-diffusion term)",
-            )),
-            (None, None) => Ok(None),
-        }
+        Ok(sphstab::analysis::spec::diffusion(
+            self.delta,
+            self.delta_form.as_deref(),
+        )?)
     }
 }

@@ -49,6 +49,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("points", "--points"),
     ("poisson", "--poisson"),
     ("quadrature", "--quadrature"),
+    ("rate", "--rate"),
     ("repeats", "--repeats"),
     ("runs", "--runs"),
     ("safety", "--safety"),
