@@ -79,4 +79,5 @@ pub mod scalar;
 pub mod shape;
 pub mod solver;
 pub mod studies;
+pub mod units;
 pub mod vonneumann;

@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 fn layer(top: &str) -> Option<&'static str> {
     Some(match top {
         "scalar" | "kernel" | "shape" | "lattice" | "neighbours" | "budget" | "error"
-        | "display" | "params" | "progress" => "core",
+        | "display" | "params" | "progress" | "units" => "core",
         "integrator" => "integrator",
         "forms" => "forms",
         "vonneumann" => "engine",

@@ -3,7 +3,7 @@
 //! shards.
 
 use crate::progress;
-use crate::units::System;
+use sphstab::units::System;
 use anyhow::Result;
 use sphstab::budget::Budget;
 use sphstab::studies::atlas::{AtlasConfig, AtlasReport, AtlasStudy};
@@ -76,10 +76,10 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
 /// the summary.
 pub fn output(rep: &AtlasReport, out: Option<&Path>, json: bool) -> Result<()> {
     if let Some(path) = out {
-        crate::shard::write_json(path, &crate::units::with_units(rep, System::Normalised)?)?;
+        crate::shard::write_json(path, &sphstab::units::with_units(rep, System::Normalised)?)?;
     }
     if json {
-        println!("{}", crate::units::json(rep, System::Normalised, false)?);
+        println!("{}", sphstab::units::json(rep, System::Normalised, false)?);
     } else {
         print!("{}", sphstab::studies::atlas::summary(rep));
         println!(

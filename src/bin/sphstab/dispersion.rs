@@ -1,7 +1,7 @@
 //! `sphstab dispersion`.
 
 use crate::common::Config;
-use crate::units::{self, System};
+use sphstab::units::{self, System};
 use anyhow::Result;
 use sphstab::analysis::DispersionReport;
 use sphstab::budget::Budget;

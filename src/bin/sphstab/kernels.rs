@@ -54,7 +54,7 @@ fn guide(a: &Args) -> Result<()> {
     if a.json {
         println!(
             "{}",
-            crate::units::json(&g, crate::units::System::Normalised, false)?
+            sphstab::units::json(&g, sphstab::units::System::Normalised, false)?
         );
     } else {
         print!("{}", markdown(&g));

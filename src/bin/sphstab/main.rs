@@ -23,7 +23,6 @@ mod swegle;
 mod throughput;
 mod timestep;
 mod tradeoff;
-mod units;
 mod vary;
 
 use clap::{Parser, Subcommand};

@@ -127,7 +127,7 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) 
     if a.json {
         println!(
             "{}",
-            crate::units::json(&m, crate::units::System::Normalised, false)?
+            sphstab::units::json(&m, sphstab::units::System::Normalised, false)?
         );
         return Ok(());
     }

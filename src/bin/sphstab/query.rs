@@ -1,7 +1,7 @@
 //! `sphstab query`.
 
 use crate::common::Config;
-use crate::units::{self, System};
+use sphstab::units::{self, System};
 use anyhow::Result;
 use sphstab::budget::Budget;
 

@@ -174,7 +174,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if a.json {
         println!(
             "{}",
-            crate::units::json(&r, crate::units::System::Si, true)?
+            sphstab::units::json(&r, sphstab::units::System::Si, true)?
         );
         return Ok(());
     }

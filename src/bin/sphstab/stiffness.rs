@@ -162,7 +162,7 @@ pub fn run(a: Args) -> Result<()> {
             "spurious_zero_frequency": spurious.map(|(a, b)| serde_json::json!({"theta_0": a, "theta_45": b}))});
         println!(
             "{}",
-            crate::units::json(&doc, crate::units::System::Normalised, true)?
+            sphstab::units::json(&doc, sphstab::units::System::Normalised, true)?
         );
         return Ok(());
     }

@@ -86,7 +86,7 @@ pub fn write_figure_and_data<T: Serialize>(
     let svg = PathBuf::from("figures").join(name);
     write_plot(draw(report), (&svg, &Export::default()))?;
     let data = svg.with_extension("json");
-    let text = crate::units::json(report, crate::units::System::Normalised, true)?;
+    let text = sphstab::units::json(report, sphstab::units::System::Normalised, true)?;
     std::fs::write(&data, text + "\n")
         .with_context(|| format!("cannot write {}", data.display()))?;
     eprintln!("wrote {} and {}", svg.display(), data.display());
@@ -110,7 +110,7 @@ pub fn output<T: Serialize>(
     draw: impl Fn(&T) -> sphstab::error::Result<String>,
     text: impl FnOnce(&T) -> String,
 ) -> Result<()> {
-    use crate::units::{self, System};
+    use sphstab::units::{self, System};
     if let Some(path) = to.out {
         crate::shard::write_json(path, &units::with_units(report, System::Normalised)?)?;
     }

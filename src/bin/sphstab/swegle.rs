@@ -286,7 +286,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
         println!(
             "{}",
-            crate::units::json(&v, crate::units::System::SwegleTest, true)?
+            sphstab::units::json(&v, sphstab::units::System::SwegleTest, true)?
         );
         return diverged(&r);
     }
@@ -341,7 +341,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         r.max_velocity_end,
         r.max_velocity_end / r.sound_speed_physical,
         r.steps,
-        crate::units::both(r.dt_physical, "time units", r.dt, "Δx/c"),
+        sphstab::units::both(r.dt_physical, "time units", r.dt, "Δx/c"),
         r.runtime_s
     );
     diverged(&r)

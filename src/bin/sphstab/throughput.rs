@@ -216,7 +216,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     if a.json {
         println!(
             "{}",
-            crate::units::json(&r, crate::units::System::Normalised, true)?
+            sphstab::units::json(&r, sphstab::units::System::Normalised, true)?
         );
         return Ok(());
     }

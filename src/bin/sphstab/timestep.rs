@@ -1,7 +1,7 @@
 //! `sphstab timestep`.
 
 use crate::common::{Config, IntegratorArgs};
-use crate::units::{self, System};
+use sphstab::units::{self, System};
 use anyhow::Result;
 use sphstab::analysis::IntegratorReport;
 use sphstab::budget::Budget;

@@ -1,7 +1,7 @@
 //! `sphstab tradeoff`: the speed/accuracy trade-off study (cost, accuracy, robustness of every
 //! form × kernel × h/Δx), as a table, JSON and a Pareto figure.
 
-use crate::units::{self, System};
+use sphstab::units::{self, System};
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;

@@ -303,7 +303,7 @@ impl<T: serde::Serialize> serde::Serialize for WithUnits<'_, T> {
 pub fn with_units<T: serde::Serialize>(
     value: &T,
     system: System,
-) -> anyhow::Result<WithUnits<'_, T>> {
+) -> serde_json::Result<WithUnits<'_, T>> {
     let doc = serde_json::to_value(value)?;
     Ok(WithUnits {
         value,
@@ -316,7 +316,7 @@ pub fn json<T: serde::Serialize>(
     value: &T,
     system: System,
     pretty: bool,
-) -> anyhow::Result<String> {
+) -> serde_json::Result<String> {
     let doc = with_units(value, system)?;
     Ok(if pretty {
         serde_json::to_string_pretty(&doc)?
@@ -329,8 +329,8 @@ pub fn json<T: serde::Serialize>(
 pub fn both(physical: f64, unit: &str, normalised: f64, normalised_unit: &str) -> String {
     format!(
         "{} {unit} ({} {normalised_unit})",
-        sphstab::display::num_sig(physical, 4),
-        sphstab::display::num_sig(normalised, 4)
+        crate::display::num_sig(physical, 4),
+        crate::display::num_sig(normalised, 4)
     )
 }
 
