@@ -3,10 +3,10 @@
 //! shards.
 
 use crate::progress;
-use sphstab::units::System;
 use anyhow::Result;
 use sphstab::budget::Budget;
 use sphstab::studies::atlas::{AtlasConfig, AtlasReport, AtlasStudy};
+use sphstab::units::System;
 use std::path::{Path, PathBuf};
 
 /// Flags of `atlas`.

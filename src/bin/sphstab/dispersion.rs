@@ -1,10 +1,10 @@
 //! `sphstab dispersion`.
 
 use crate::common::Config;
-use sphstab::units::{self, System};
 use anyhow::Result;
 use sphstab::analysis::DispersionReport;
 use sphstab::budget::Budget;
+use sphstab::units::{self, System};
 
 /// Flags of `dispersion`.
 #[derive(clap::Args, Debug)]

@@ -1,9 +1,9 @@
 //! `sphstab query`.
 
 use crate::common::Config;
-use sphstab::units::{self, System};
 use anyhow::Result;
 use sphstab::budget::Budget;
+use sphstab::units::{self, System};
 
 /// Flags of `query`.
 #[derive(clap::Args, Debug)]

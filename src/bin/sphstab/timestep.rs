@@ -1,12 +1,12 @@
 //! `sphstab timestep`.
 
 use crate::common::{Config, IntegratorArgs};
-use sphstab::units::{self, System};
 use anyhow::Result;
 use sphstab::analysis::IntegratorReport;
 use sphstab::budget::Budget;
 use sphstab::forms::ViscosityPairs;
 use sphstab::studies::stable_dt::{self, ProbeRun, StableDtReport};
+use sphstab::units::{self, System};
 
 /// Flags of `timestep`.
 #[derive(clap::Args, Debug)]

@@ -1,11 +1,11 @@
 //! `sphstab tradeoff`: the speed/accuracy trade-off study (cost, accuracy, robustness of every
 //! form × kernel × h/Δx), as a table, JSON and a Pareto figure.
 
-use sphstab::units::{self, System};
 use crate::{progress, study};
 use anyhow::Result;
 use sphstab::budget::Budget;
 use sphstab::studies::tradeoff::{TradeoffConfig, TradeoffReport, TradeoffStudy};
+use sphstab::units::{self, System};
 use std::path::{Path, PathBuf};
 
 /// Flags of `tradeoff`.
