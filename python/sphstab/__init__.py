@@ -11,7 +11,7 @@ import numpy as _np
 
 from . import _sphstab
 
-__all__ = ["query", "dispersion"]
+__all__ = ["query", "dispersion", "kernels"]
 
 # the array-valued fields of a dispersion document, as numpy float64 arrays
 _DISPERSION_ARRAYS = ("path", "kappa", "omega2", "growth_rate", "omega2_continuum")
@@ -42,3 +42,10 @@ def dispersion(*, points=256, **kwargs):
         if key in doc:
             doc[key] = _np.asarray(doc[key], dtype=_np.float64)
     return doc
+
+
+def kernels():
+    """The kernel table: ``sphstab kernels --json``, a list of dicts (name, zeta = support in
+    units of h, sigma_1/2/3 = normalisations, inflection_1d/2d = q*, customary_h = the h/Δx
+    range, reference)."""
+    return _json.loads(_sphstab.kernels_json())

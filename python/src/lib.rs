@@ -84,10 +84,17 @@ fn dispersion_json(py: Python<'_>, spec: &str, points: usize) -> PyResult<String
     })
 }
 
+/// `sphstab kernels --json`: the kernel table.
+#[pyfunction]
+fn kernels_json() -> PyResult<String> {
+    serde_json::to_string_pretty(&sphstab::kernel::table()).map_err(json_error)
+}
+
 /// The extension module.
 #[pymodule]
 fn _sphstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(query_json, m)?)?;
     m.add_function(wrap_pyfunction!(dispersion_json, m)?)?;
+    m.add_function(wrap_pyfunction!(kernels_json, m)?)?;
     Ok(())
 }

@@ -70,3 +70,14 @@ def test_dispersion_reports_the_continuum_of_b00_eq_32():
     kappa = d["kappa"].reshape(len(d["kappa"]), -1)[:, 0]
     cont = d["omega2_continuum"].reshape(len(kappa), -1)[:, 0]
     assert np.allclose(cont, 1.3 * kappa**2, rtol=1e-12, atol=0)
+
+
+def test_kernels_equal_the_cli_and_m4_is_normalised():
+    rows = sphstab.kernels()
+    assert rows == cli("kernels", "--json")
+    m4 = next(r for r in rows if r["name"] == "m4")
+    # Monaghan & Lattanzio (1985): σ = 2/3, 10/(7π), 1/π for the cubic spline, support 2h
+    assert m4["zeta"] == 2
+    assert abs(m4["sigma_1"] - 2 / 3) < 1e-15
+    assert abs(m4["sigma_2"] - 10 / (7 * np.pi)) < 1e-15
+    assert abs(m4["sigma_3"] - 1 / np.pi) < 1e-15

@@ -166,6 +166,48 @@ fn q_inside(k: &dyn Kernel, r: f64, h: f64) -> Option<f64> {
     if r >= k.zeta() * h { None } else { Some(r / h) }
 }
 
+/// One row of the kernel table (`sphstab kernels --json`, Python `sphstab.kernels()`).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct KernelRow {
+    /// Name.
+    pub name: &'static str,
+    /// Support radius in units of h.
+    pub zeta: f64,
+    /// Normalisation σ in 1D, 2D, 3D.
+    pub sigma_1: f64,
+    /// 2D normalisation.
+    pub sigma_2: f64,
+    /// 3D normalisation.
+    pub sigma_3: f64,
+    /// Inflection point q* of W (1D).
+    pub inflection_1d: f64,
+    /// Inflection point q* of W (2D).
+    pub inflection_2d: f64,
+    /// Customary h/Δx range.
+    pub customary_h: (f64, f64),
+    /// Where the kernel comes from.
+    pub reference: &'static str,
+}
+
+/// The kernel table: every kernel of [`all`] with its support, normalisations, inflection
+/// points, customary h/Δx range and reference.
+pub fn table() -> Vec<KernelRow> {
+    all()
+        .iter()
+        .map(|k| KernelRow {
+            name: k.name(),
+            zeta: k.zeta(),
+            sigma_1: k.sigma(1),
+            sigma_2: k.sigma(2),
+            sigma_3: k.sigma(3),
+            inflection_1d: k.inflection(1),
+            inflection_2d: k.inflection(2),
+            customary_h: k.customary_h(),
+            reference: k.reference(),
+        })
+        .collect()
+}
+
 /// All kernels, in the order of SPEC §2.
 pub fn all() -> &'static [&'static dyn Kernel] {
     ALL

@@ -2,7 +2,6 @@
 //! ([`sphstab::studies::kernel_guide`]).
 
 use anyhow::{Result, bail};
-use serde::Serialize;
 use sphstab::budget::Budget;
 use sphstab::studies::kernel_guide::{DEFAULT_H_STEP, GuideConfig, kernel_guide, markdown};
 
@@ -23,19 +22,6 @@ pub struct Args {
     /// With --table: step of the h/Δx scans over [0.8, 6], in [0.01, 1] (default 0.05).
     #[arg(long)]
     h_step: Option<f64>,
-}
-
-#[derive(Serialize)]
-struct Row {
-    name: &'static str,
-    zeta: f64,
-    sigma_1: f64,
-    sigma_2: f64,
-    sigma_3: f64,
-    inflection_1d: f64,
-    inflection_2d: f64,
-    customary_h: (f64, f64),
-    reference: &'static str,
 }
 
 fn guide(a: &Args) -> Result<()> {
@@ -74,20 +60,7 @@ pub fn run(a: Args, _budget: &Budget) -> Result<()> {
     if a.h_step.is_some() {
         bail!("--h-step applies to the kernel guide only: add --table");
     }
-    let rows: Vec<Row> = sphstab::kernel::all()
-        .iter()
-        .map(|k| Row {
-            name: k.name(),
-            zeta: k.zeta(),
-            sigma_1: k.sigma(1),
-            sigma_2: k.sigma(2),
-            sigma_3: k.sigma(3),
-            inflection_1d: k.inflection(1),
-            inflection_2d: k.inflection(2),
-            customary_h: k.customary_h(),
-            reference: k.reference(),
-        })
-        .collect();
+    let rows = sphstab::kernel::table();
     if a.json {
         println!("{}", serde_json::to_string_pretty(&rows)?);
         return Ok(());
