@@ -34,6 +34,44 @@ pub fn ramp(t: f64) -> RGBColor {
     RGBColor(c(a.0, b.0), c(a.1, b.1), c(a.2, b.2))
 }
 
+/// A vertical colour bar at (left, top, width, height) (points): `colour(t)` from t = 0 at
+/// the bottom to 1 at the top, framed, with a tick and its label at each (t, label) of
+/// `marks`.
+fn colour_bar(
+    root: &DrawingArea<super::canvas::Canvas<'_>, plotters::coord::Shift>,
+    (bl, bt, bw, bh): (f64, f64, f64, f64),
+    colour: impl Fn(f64) -> RGBColor,
+    marks: &[(f64, String)],
+) -> Result<()> {
+    // 100 bands overlapping by a hair, so no seam shows between them
+    let n = 100;
+    for k in 0..n {
+        let t = (k as f64 + 0.5) / n as f64;
+        let ya = bt + bh * (1.0 - (k + 1) as f64 / n as f64);
+        let yb = bt + bh * (1.0 - k as f64 / n as f64);
+        fill_rect(root, (bl, ya - 0.05, bl + bw, yb + 0.05), colour(t))?;
+    }
+    outline(root, (bl, bt, bl + bw, bt + bh), BLACK, FRAME_LINE_PT)?;
+    for (t, label) in marks {
+        let y = bt + bh * (1.0 - t);
+        stroke(
+            root,
+            &[(bl + bw, y), (bl + bw + TICK_LEN, y)],
+            BLACK,
+            FRAME_LINE_PT,
+        )?;
+        text_at(
+            root,
+            label,
+            (bl + bw + TICK_LEN + TICK_GAP, y),
+            TICK_PT,
+            (HPos::Left, VPos::Center),
+            false,
+        )?;
+    }
+    Ok(())
+}
+
 /// A heat map of z over a rectangular (x, y) grid (cell centres, z\[i\]\[j\] at (x\[i\], y\[j\])) with
 /// a colour bar labelled `z_desc` (quantity and unit) from 0 to max z.
 pub fn heatmap_svg(
@@ -120,31 +158,11 @@ pub fn heatmap_svg(
         frame.draw(&root, x_desc, y_desc, None)?;
         // the colour bar
         let (bl, bt, bh) = (left + side + 8.0, top, side);
-        let n = 100;
-        for k in 0..n {
-            let t = (k as f64 + 0.5) / n as f64;
-            let ya = bt + bh * (1.0 - (k + 1) as f64 / n as f64);
-            let yb = bt + bh * (1.0 - k as f64 / n as f64);
-            fill_rect(&root, (bl, ya - eps, bl + bar_w, yb + eps), ramp(t))?;
-        }
-        outline(&root, (bl, bt, bl + bar_w, bt + bh), BLACK, FRAME_LINE_PT)?;
-        for &v in &ticks {
-            let yy = bt + bh * (1.0 - v / zt);
-            stroke(
-                &root,
-                &[(bl + bar_w, yy), (bl + bar_w + TICK_LEN, yy)],
-                BLACK,
-                FRAME_LINE_PT,
-            )?;
-            text_at(
-                &root,
-                &tick_label(v, step),
-                (bl + bar_w + TICK_LEN + TICK_GAP, yy),
-                TICK_PT,
-                (HPos::Left, VPos::Center),
-                false,
-            )?;
-        }
+        let marks: Vec<(f64, String)> = ticks
+            .iter()
+            .map(|&v| (v / zt, tick_label(v, step)))
+            .collect();
+        colour_bar(&root, (bl, bt, bar_w, bh), ramp, &marks)?;
         let top_label = if zmax > 0.0 {
             format!("max {}", tick_label(zmax, zmax / 1000.0))
         } else {
@@ -355,37 +373,23 @@ pub fn strips_svg(
             PAD + LABEL_PT * 1.5,
             (box_h * prow as f64).max(box_h).min(200.0),
         );
-        let n = 100;
-        for k in 0..n {
-            let tt = (k as f64 + 0.5) / n as f64;
-            let ya = bt + bh * (1.0 - (k + 1) as f64 / n as f64);
-            let yb = bt + bh * (1.0 - k as f64 / n as f64);
-            fill_rect(
-                &root,
-                (bl, ya - 0.05, bl + bar_w, yb + 0.05),
-                ramp(LEVEL_MIN + (1.0 - LEVEL_MIN) * tt),
-            )?;
-        }
-        outline(&root, (bl, bt, bl + bar_w, bt + bh), BLACK, FRAME_LINE_PT)?;
         let lo = vmax * 1e-2;
         let (maj, _) = Scale::log(lo, vmax).ticks(4);
-        for (v, label) in maj {
-            let yy = bt + bh * (1.0 - (v.log10() - lo.log10()) / (vmax.log10() - lo.log10()));
-            stroke(
-                &root,
-                &[(bl + bar_w, yy), (bl + bar_w + TICK_LEN, yy)],
-                BLACK,
-                FRAME_LINE_PT,
-            )?;
-            text_at(
-                &root,
-                &label,
-                (bl + bar_w + TICK_LEN + TICK_GAP, yy),
-                TICK_PT,
-                (HPos::Left, VPos::Center),
-                false,
-            )?;
-        }
+        let marks: Vec<(f64, String)> = maj
+            .into_iter()
+            .map(|(v, label)| {
+                (
+                    (v.log10() - lo.log10()) / (vmax.log10() - lo.log10()),
+                    label,
+                )
+            })
+            .collect();
+        colour_bar(
+            &root,
+            (bl, bt, bar_w, bh),
+            |t| ramp(LEVEL_MIN + (1.0 - LEVEL_MIN) * t),
+            &marks,
+        )?;
         for (k, line) in ["white:", "stable"].iter().enumerate() {
             text_at(
                 &root,
