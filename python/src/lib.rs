@@ -69,7 +69,15 @@ fn dispersion_in<const D: usize>(spec: &QuerySpec, points: usize) -> PyResult<St
 
 /// `sphstab dispersion --json --points POINTS` for the keyword arguments in `spec` (JSON).
 #[pyfunction]
-fn dispersion_json(py: Python<'_>, spec: &str, points: usize) -> PyResult<String> {
+fn dispersion_json(py: Python<'_>, spec: &str, points: i64) -> PyResult<String> {
+    // a negative count is a ValueError like any other (the library checks the range)
+    let points = usize::try_from(points).map_err(|_| {
+        value_error(Error::OutOfRange {
+            field: "points",
+            value: points as f64,
+            range: "must be a non-negative integer".into(),
+        })
+    })?;
     let s = spec_of(spec)?;
     if s.grid.is_some() {
         return Err(PyValueError::new_err(

@@ -49,6 +49,10 @@ def test_bad_input_raises_value_error_naming_the_argument():
         sphstab.query(hh=1.2)
     with pytest.raises(ValueError, match="invalid type"):
         sphstab.query(h="large")
+    # counts: out of range on either side, never a crash or an OverflowError
+    for p in (-1, 0, 1, 10**9):
+        with pytest.raises(ValueError, match=r"^points = .* is out of range"):
+            sphstab.dispersion(points=p)
 
 
 def test_dispersion_equals_the_cli_json_and_has_arrays():
