@@ -81,7 +81,7 @@ fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("slow");
     g.sample_size(10);
     g.bench_function("growth map 2D, 128x128 (classical m4 hydro)", |b| {
-        b.iter(|| growth_map(&q2, 128, sphstab::analysis::Plane::Xy).unwrap())
+        b.iter(|| growth_map(&q2, 128, sphstab::analysis::Plane::Xy, &()).unwrap())
     });
 
     let p = ModelParams {

@@ -143,6 +143,41 @@ pub fn fmt_count(n: f64) -> String {
     }
 }
 
+/// A byte count as `--max-memory` / `max_memory` take it: a number of bytes, or with a K, M, G or
+/// T suffix (powers of 1024): `512M`, `2G`, `3000000`. Err: why, with the text given.
+pub fn parse_bytes(s: &str) -> std::result::Result<f64, String> {
+    let t = s.trim();
+    let split = t
+        .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == 'E' || c == '+'))
+        .unwrap_or(t.len());
+    let (num, unit) = t.split_at(split);
+    let v: f64 = num
+        .parse()
+        .map_err(|_| format!("`{s}` is not a byte count (e.g. 512M, 2G, 3000000)"))?;
+    let mult = match unit.trim().to_ascii_lowercase().as_str() {
+        "" | "b" => 1.0,
+        "k" | "kb" | "kib" => 1024.0,
+        "m" | "mb" | "mib" => 1024.0 * 1024.0,
+        "g" | "gb" | "gib" => 1024.0 * 1024.0 * 1024.0,
+        "t" | "tb" | "tib" => 1024.0f64.powi(4),
+        u => return Err(format!("unknown unit `{u}` in `{s}` (use K, M, G or T)")),
+    };
+    let b = v * mult;
+    if b.is_finite() && b > 0.0 {
+        Ok(b)
+    } else {
+        Err(format!("`{s}` must be a positive byte count"))
+    }
+}
+
+/// A particle-step cap as `--max-steps` / `max_steps` take it: a number ≥ 1 (`1e9`).
+pub fn parse_steps(s: &str) -> std::result::Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 1.0 => Ok(v),
+        _ => Err(format!("`{s}` must be a number ≥ 1 (e.g. 1e9)")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -158,5 +193,14 @@ mod tests {
         assert!(b.memory("x", "test", 1001.0).is_err());
         assert!(b.memory("x", "test", f64::NAN).is_err());
         assert!(b.steps("x", "test", 11.0).is_err());
+    }
+
+    #[test]
+    fn byte_counts_parse() {
+        assert_eq!(parse_bytes("2G").unwrap(), 2.0 * 1024.0 * 1024.0 * 1024.0);
+        assert_eq!(parse_bytes("512M").unwrap(), 512.0 * 1024.0 * 1024.0);
+        assert_eq!(parse_bytes("3000").unwrap(), 3000.0);
+        assert!(parse_bytes("-1").is_err());
+        assert!(parse_bytes("1X").is_err());
     }
 }

@@ -144,6 +144,23 @@ impl Integrator {
         })
     }
 
+    /// The integrator of the parameters `integrator` (default `kdk`) and `euler_every` (N_s of
+    /// `verlet-euler`, default [`DEFAULT_EULER_EVERY`]): `euler_every` with another integrator
+    /// is an error naming both, since it would not act.
+    pub fn by_names(name: Option<&str>, euler_every: Option<usize>) -> Result<Self> {
+        let name = name.unwrap_or("kdk");
+        let i = Self::from_name(name, euler_every.unwrap_or(DEFAULT_EULER_EVERY))?;
+        if euler_every.is_some() && !matches!(i, Self::VerletEuler { .. }) {
+            return Err(Error::Incompatible(
+                crate::error::field("euler_every")
+                    + " does not apply with "
+                    + crate::error::field("integrator")
+                    + format!(" {name} (N_s is the Euler period of verlet-euler)"),
+            ));
+        }
+        Ok(i)
+    }
+
     /// Every integrator (N_s = `euler_every` for `verlet-euler`).
     pub fn all(euler_every: usize) -> Vec<Self> {
         INTEGRATOR_NAMES

@@ -45,7 +45,7 @@ def test_bad_input_raises_value_error_naming_the_argument():
         sphstab.query(form="classical", c=0.3)
     with pytest.raises(ValueError, match=r"support = 0.5 is out of range"):
         sphstab.query(support=0.5)
-    with pytest.raises(ValueError, match=r"^unknown keyword argument `hh`, expected one of `form`.*`grid`$"):
+    with pytest.raises(ValueError, match=r"^unknown keyword argument `hh`, expected one of `form`.*`grid`, `max_memory`, `max_steps`, `integrator`, `euler_every`$"):
         sphstab.query(hh=1.2)
     with pytest.raises(ValueError, match="invalid type"):
         sphstab.query(h="large")

@@ -8,6 +8,7 @@ use super::query::Query;
 use crate::error::Result;
 use crate::lattice::grid_index;
 use crate::params::check_count;
+use crate::progress::{Counter, Progress};
 use crate::vonneumann::linearise::Bloch;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -81,8 +82,14 @@ impl Plane {
 }
 
 /// Growth over the square [−π, π]² (n × n) of wave vectors: (κx, κy) in 2D, (u, v) on `plane`
-/// in 3D (ignored in 2D), any lattice.
-pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Result<GrowthMap> {
+/// in 3D (ignored in 2D), any lattice. Rows are computed in parallel; each finished row is
+/// reported to `progress`, which can stop the map between rows.
+pub fn growth_map<const D: usize>(
+    q: &Query<D>,
+    n: usize,
+    plane: Plane,
+    progress: &dyn Progress,
+) -> Result<GrowthMap> {
     check_count("n", n, 2, MAX_MAP_N)?;
     let lin = q.linearise_at(q.stress)?;
     let ax: Vec<f64> = (0..n)
@@ -102,6 +109,7 @@ pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Resul
         k
     };
     // rows in parallel, one J(k) per wave vector
+    let done = Counter::new(progress, n, 1);
     let rows: Vec<(Vec<f64>, f64)> = ax
         .par_iter()
         .map(|&kx| {
@@ -112,6 +120,7 @@ pub fn growth_map<const D: usize>(q: &Query<D>, n: usize, plane: Plane) -> Resul
                 row.push(g);
                 w2 = w2.max(top);
             }
+            done.add(1)?;
             Ok((row, w2))
         })
         .collect::<Result<_>>()?;

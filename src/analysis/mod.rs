@@ -28,7 +28,7 @@ pub use report::{
 };
 pub use spec::QuerySpec;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 /// Answers a stability question: growing modes and their kinds, zero-energy modes, the critical
 /// Δt of `q.integrator` and, with `q.dt`, the fully discrete check.
@@ -47,6 +47,81 @@ pub fn dispersion<const D: usize>(q: &Query<D>, points: usize) -> Result<Dispers
         chain::dispersion(q, points)
     } else {
         zone::dispersion(q, points)
+    }
+}
+
+/// The unit polarisations of the D branches at each wave vector of `kappa` (D components
+/// each, as a [`DispersionReport`]'s `kappa`): `[point][branch][component]`, the branches in
+/// the order of the report's `omega2` (ascending). In 1D the one branch is longitudinal, 1.
+pub fn polarisations<const D: usize>(
+    q: &Query<D>,
+    kappa: &[Vec<f64>],
+) -> Result<Vec<Vec<[num_complex::Complex64; D]>>> {
+    if D == 1 {
+        return Ok(vec![
+            vec![[num_complex::Complex64::new(1.0, 0.0); D]];
+            kappa.len()
+        ]);
+    }
+    let lin = q.linearise_at(q.stress)?;
+    kappa
+        .iter()
+        .map(|k| {
+            let k: [f64; D] = k.as_slice().try_into().map_err(|_| Error::OutOfRange {
+                field: "kappa",
+                value: k.len() as f64,
+                range: format!("a wave vector has {D} components").into(),
+            })?;
+            let mut b = lin.branches(k);
+            orthonormalise_degenerate(&mut b);
+            Ok(b.into_iter().map(|b| b.1).collect())
+        })
+        .collect()
+}
+
+/// Branches with equal ω² (to 1e-10 of the largest |ω²|, at least 1e-10) span a space in
+/// which any basis is a set of polarisations; the closed forms return the same vector twice
+/// there (at Γ, D = 0). Replaces each such group's polarisations by an orthonormal basis of
+/// their span, completed with the coordinate axes (Gram–Schmidt).
+fn orthonormalise_degenerate<const D: usize>(
+    b: &mut [(num_complex::Complex64, [num_complex::Complex64; D])],
+) {
+    use num_complex::Complex64 as C;
+    let tol = 1e-10 * b.iter().map(|x| x.0.norm()).fold(1.0, f64::max);
+    let mut start = 0;
+    while start < b.len() {
+        let mut end = start + 1;
+        while end < b.len() && (b[end].0 - b[start].0).norm() <= tol {
+            end += 1;
+        }
+        if end - start > 1 {
+            let axes = (0..D).map(|a| {
+                let mut e = [C::new(0.0, 0.0); D];
+                e[a] = C::new(1.0, 0.0);
+                e
+            });
+            let mut basis: Vec<[C; D]> = Vec::new();
+            for v in b[start..end].iter().map(|x| x.1).chain(axes) {
+                if basis.len() == end - start {
+                    break;
+                }
+                let mut w = v;
+                for u in &basis {
+                    let p: C = (0..D).map(|c| u[c].conj() * w[c]).sum();
+                    for c in 0..D {
+                        w[c] -= p * u[c];
+                    }
+                }
+                let n = w.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+                if n > 1e-6 {
+                    basis.push(w.map(|z| z / n));
+                }
+            }
+            for (i, u) in basis.into_iter().enumerate() {
+                b[start + i].1 = u;
+            }
+        }
+        start = end;
     }
 }
 

@@ -63,6 +63,22 @@ pub struct QuerySpec {
     pub grid: Option<usize>,
 }
 
+/// The command a [`QuerySpec`] is asked in ([`QuerySpec::check_for`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command {
+    /// `query`.
+    Query,
+    /// `dispersion`.
+    Dispersion,
+    /// `timestep`, with or without its time-domain check.
+    Timestep {
+        /// Whether the time-domain check (`verify`) runs.
+        verify: bool,
+    },
+    /// `map`.
+    Map,
+}
+
 /// "`what` does not apply with `context`": a parameter that would not act.
 pub fn not_applicable(what: Text, context: Text) -> Error {
     Error::Incompatible(what + " does not apply with " + context)
@@ -112,6 +128,73 @@ impl QuerySpec {
                 value: d as f64,
                 range: "must be 1, 2 or 3".into(),
             }),
+        }
+    }
+
+    /// Refuses the parameters that would not act in `command`, each with why: `av_beta`
+    /// everywhere but the time-domain check of `timestep` (`verify`), `dt` in the
+    /// semi-discrete `dispersion` and `map`, `grid` in `map` (it samples `n` × `n`).
+    pub fn check_for(&self, command: Command) -> Result<()> {
+        let semi_discrete = Text::from("the check at a Δt is query ") + field("dt");
+        let (name, given, why) = match command {
+            Command::Map if self.grid.is_some() => (
+                "grid",
+                true,
+                Text::from("it samples n × n wave vectors: use ") + field("n"),
+            ),
+            Command::Map | Command::Dispersion if self.dt.is_some() => (
+                "dt",
+                true,
+                match command {
+                    Command::Map => {
+                        Text::from("the map is the semi-discrete growth rate; ") + semi_discrete
+                    }
+                    _ => {
+                        Text::from("ω² is semi-discrete; ")
+                            + semi_discrete
+                            + " or timestep "
+                            + field("dt")
+                    }
+                },
+            ),
+            Command::Timestep { verify: true } => ("av_beta", false, Text::default()),
+            _ => (
+                "av_beta",
+                self.av_beta.is_some(),
+                Text::from(
+                    "β multiplies the squared velocity divergence, which vanishes in the linearisation; only timestep ",
+                ) + field("verify")
+                    + " runs the solver",
+            ),
+        };
+        if !given {
+            return Ok(());
+        }
+        let label = match command {
+            Command::Query => Text::from("query"),
+            Command::Dispersion => Text::from("dispersion"),
+            Command::Map => Text::from("map"),
+            Command::Timestep { .. } => Text::from("timestep without ") + field("verify"),
+        };
+        Err(not_applicable(field(name), label + " (" + why + ")"))
+    }
+
+    /// The dimension of a growth map (default 2; [`Command::Map`]'s refusals first): the map
+    /// is over the 2D zone or a plane of the 3D zone, so `dim` 1 is refused.
+    pub fn map_dim(&self) -> Result<u8> {
+        self.check_for(Command::Map)?;
+        match self.dim.unwrap_or(2) {
+            1 => Err(not_applicable(
+                field("dim") + " 1",
+                Text::from("map (the map is over the 2D zone or a plane of the 3D zone; ")
+                    + field("dim")
+                    + " 2 or 3)",
+            )),
+            d => Self {
+                dim: Some(d),
+                ..Self::default()
+            }
+            .dim(),
         }
     }
 

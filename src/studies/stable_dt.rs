@@ -25,7 +25,7 @@
 
 use crate::analysis::{self, Query};
 use crate::budget::fmt_count;
-use crate::error::{Error, Result, fields};
+use crate::error::{Error, Result, Text, field, fields};
 use crate::forms::{State, ViscosityPairs};
 use crate::lattice::LatticeKind;
 use crate::progress::Progress;
@@ -249,6 +249,35 @@ fn probe<const D: usize>(
         }
     }
     Ok(Some((logs - half) / ((STEPS - STEPS / 2) as f64 * dt)))
+}
+
+/// The pairs the viscosity of the time-domain check acts on, by the name in `viscosity`:
+/// one-sided (approaching pairs only, as SPH codes apply it; the default) or two-sided (every
+/// pair, as the analysis linearises it). A name is refused without `verify` (the analysis
+/// applies viscosity to every pair) and without viscosity (`viscous` false: nothing to switch).
+pub fn viscosity_pairs(verify: bool, name: Option<&str>, viscous: bool) -> Result<ViscosityPairs> {
+    let refuse = |context: Text| {
+        Err(crate::analysis::spec::not_applicable(
+            field("viscosity"),
+            Text::from("timestep without ") + context,
+        ))
+    };
+    match name {
+        None => Ok(ViscosityPairs::OneSided),
+        Some(_) if !verify => {
+            refuse(field("verify") + " (the analysis applies viscosity to every pair)")
+        }
+        Some(_) if !viscous => refuse(field("av_alpha") + " (no viscosity to switch)"),
+        Some(n) => ViscosityPairs::ALL
+            .iter()
+            .find(|(_, v)| *v == n)
+            .map(|(p, _)| *p)
+            .ok_or_else(|| Error::UnknownName {
+                what: field("viscosity"),
+                given: n.into(),
+                valid: "one-sided, two-sided".into(),
+            }),
+    }
 }
 
 /// Measures the largest stable Δt of `q` (its form, lattice, pre-stress, viscosity and

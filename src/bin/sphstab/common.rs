@@ -128,17 +128,6 @@ impl Config {
     }
 }
 
-/// Errors for flags of [`Config`] that cannot act in `command`: each (flag, given, why).
-pub fn refuse(command: &str, flags: &[(&str, bool, &str)]) -> Result<()> {
-    match flags.iter().find(|f| f.1) {
-        Some((flag, _, why)) => Err(crate::query::not_in(flag, &format!("{command} ({why})"))),
-        None => Ok(()),
-    }
-}
-
-/// Why `--av-beta` cannot act in the analysis.
-pub const AV_BETA_WHY: &str = "β multiplies the squared velocity divergence, which vanishes in the linearisation; only timestep --verify runs the solver";
-
 /// Runs `f::<D>` for the dimension of `--dim`: the one place a command branches on it.
 #[macro_export]
 macro_rules! by_dim {
@@ -149,11 +138,6 @@ macro_rules! by_dim {
             _ => $f::<3>($($arg),*),
         }
     };
-}
-
-/// `--art-eps` / `--art-n` ([`sphstab::analysis::spec::art_stress`]).
-pub fn art_stress(eps: Option<f64>, n: Option<i32>) -> Result<Option<(f64, i32)>> {
-    Ok(sphstab::analysis::spec::art_stress(eps, n)?)
 }
 
 /// `--integrator` and `--euler-every`, shared by `timestep`, `swegle` and `simulate`.
@@ -173,24 +157,11 @@ impl IntegratorArgs {
     /// The integrator named by the flags (`--euler-every` with another integrator than
     /// verlet-euler is an error: it would not act).
     pub fn integrator(&self) -> anyhow::Result<sphstab::integrator::Integrator> {
-        use sphstab::integrator::{DEFAULT_EULER_EVERY, Integrator};
-        let i = Integrator::from_name(
-            &self.integrator,
-            self.euler_every.unwrap_or(DEFAULT_EULER_EVERY),
-        )?;
-        if self.euler_every.is_some() && !matches!(i, Integrator::VerletEuler { .. }) {
-            return Err(crate::query::not_in(
-                "--euler-every",
-                &euler_every_context(&self.integrator),
-            ));
-        }
-        Ok(i)
+        Ok(sphstab::integrator::Integrator::by_names(
+            Some(&self.integrator),
+            self.euler_every,
+        )?)
     }
-}
-
-/// Why `--euler-every` cannot act with the integrator `name`.
-pub fn euler_every_context(name: &str) -> String {
-    format!("--integrator {name} (N_s is the Euler period of verlet-euler)")
 }
 
 /// `--delta` / `--delta-form` (δ-SPH density diffusion), shared by `query`, `dispersion`,
@@ -206,14 +177,4 @@ pub struct DiffusionArgs {
     /// or molteni-colagrossi (Molteni & Colagrossi 2009); needs --delta.
     #[arg(long = "delta-form")]
     pub delta_form: Option<String>,
-}
-
-impl DiffusionArgs {
-    /// (δ, form), or None without `--delta` ([`sphstab::analysis::spec::diffusion`]).
-    pub fn get(&self) -> Result<Option<(f64, sphstab::forms::DiffusionForm)>> {
-        Ok(sphstab::analysis::spec::diffusion(
-            self.delta,
-            self.delta_form.as_deref(),
-        )?)
-    }
 }

@@ -93,21 +93,9 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             "no --plot (it sets the plot's vertical range)",
         ));
     }
-    crate::common::refuse(
-        "dispersion",
-        &[
-            (
-                "--dt",
-                a.cfg.dt.is_some(),
-                "ω² is semi-discrete; the check at a Δt is query --dt or timestep --dt",
-            ),
-            (
-                "--av-beta",
-                a.cfg.av_beta.is_some(),
-                crate::common::AV_BETA_WHY,
-            ),
-        ],
-    )?;
+    a.cfg
+        .spec()
+        .check_for(sphstab::analysis::spec::Command::Dispersion)?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget, &export))
 }

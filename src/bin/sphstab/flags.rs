@@ -14,6 +14,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("av", "--av"),
     ("av_alpha", "--av-alpha"),
     ("av_beta", "--av-beta"),
+    ("boundary_density", "--boundary-density"),
     ("box", "--box"),
     ("c_partition", "--c"),
     ("delta", "--delta"),
@@ -47,6 +48,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("max_steps", "--max-steps"),
     ("n", "--n"),
     ("points", "--points"),
+    ("plane", "--plane"),
     ("poisson", "--poisson"),
     ("quadrature", "--quadrature"),
     ("rate", "--rate"),
@@ -67,6 +69,8 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("t_end", "--t-end"),
     ("threads", "--threads"),
     ("until_window", "--until-window"),
+    ("verify", "--verify"),
+    ("viscosity", "--viscosity"),
 ];
 
 /// The flag of `field` (the field itself when no flag sets it).

@@ -44,51 +44,18 @@ pub(crate) struct Cli {
     cmd: Cmd,
     /// Memory budget (bytes, or with K/M/G/T suffix): a run whose estimated memory exceeds it
     /// is refused before it starts. Default: 2G, or a quarter of the machine's RAM if less.
-    #[arg(long = "max-memory", global = true, value_parser = parse_bytes)]
+    #[arg(long = "max-memory", global = true, value_parser = sphstab::budget::parse_bytes)]
     max_memory: Option<f64>,
     /// Cap on particle-steps (particles × time steps) of one time integration (simulate,
     /// swegle, throughput, tradeoff): longer runs are refused before they start. Default 5e7
     /// (about a minute here).
-    #[arg(long = "max-steps", global = true, value_parser = parse_steps)]
+    #[arg(long = "max-steps", global = true, value_parser = sphstab::budget::parse_steps)]
     max_steps: Option<f64>,
     /// Let --out and --plot overwrite existing files (without it a command that would write
     /// over a file stops before it starts). An output that is also an input of the command is
     /// refused even so. (`figures` and a study's --config regenerate their figures in place.)
     #[arg(long, global = true)]
     force: bool,
-}
-
-/// Parses a byte count with an optional binary suffix: `512M`, `2G`, `1.5GiB`, `3000000`.
-fn parse_bytes(s: &str) -> std::result::Result<f64, String> {
-    let t = s.trim();
-    let split = t
-        .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == 'E' || c == '+'))
-        .unwrap_or(t.len());
-    let (num, unit) = t.split_at(split);
-    let v: f64 = num
-        .parse()
-        .map_err(|_| format!("`{s}` is not a byte count (e.g. 512M, 2G, 3000000)"))?;
-    let mult = match unit.trim().to_ascii_lowercase().as_str() {
-        "" | "b" => 1.0,
-        "k" | "kb" | "kib" => 1024.0,
-        "m" | "mb" | "mib" => 1024.0 * 1024.0,
-        "g" | "gb" | "gib" => 1024.0 * 1024.0 * 1024.0,
-        "t" | "tb" | "tib" => 1024.0f64.powi(4),
-        u => return Err(format!("unknown unit `{u}` in `{s}` (use K, M, G or T)")),
-    };
-    let b = v * mult;
-    if b.is_finite() && b > 0.0 {
-        Ok(b)
-    } else {
-        Err(format!("`{s}` must be a positive byte count"))
-    }
-}
-
-fn parse_steps(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 1.0 => Ok(v),
-        _ => Err(format!("`{s}` must be a number ≥ 1 (e.g. 1e9)")),
-    }
 }
 
 #[derive(Subcommand)]
@@ -214,19 +181,5 @@ fn main() {
         eprintln!("error: {}", flags::message(&e));
         // 3: the run itself blew up (a result, not bad input); 2: bad input or over budget
         std::process::exit(if flags::diverged(&e) { 3 } else { 2 });
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::parse_bytes;
-
-    #[test]
-    fn byte_counts_parse() {
-        assert_eq!(parse_bytes("2G").unwrap(), 2.0 * 1024.0 * 1024.0 * 1024.0);
-        assert_eq!(parse_bytes("512M").unwrap(), 512.0 * 1024.0 * 1024.0);
-        assert_eq!(parse_bytes("3000").unwrap(), 3000.0);
-        assert!(parse_bytes("-1").is_err());
-        assert!(parse_bytes("1X").is_err());
     }
 }

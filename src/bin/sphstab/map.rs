@@ -30,35 +30,9 @@ pub struct Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    crate::common::refuse(
-        "map",
-        &[
-            (
-                "--grid",
-                a.cfg.grid.is_some(),
-                "it samples n × n wave vectors: use --n",
-            ),
-            (
-                "--dt",
-                a.cfg.dt.is_some(),
-                "the map is the semi-discrete growth rate; the check at a Δt is query --dt",
-            ),
-            (
-                "--av-beta",
-                a.cfg.av_beta.is_some(),
-                crate::common::AV_BETA_WHY,
-            ),
-        ],
-    )?;
-    if a.cfg.dim.is_some_and(|d| d == 1) {
-        return Err(crate::query::not_in(
-            "--dim 1",
-            "map (the map is over the 2D zone or a plane of the 3D zone; --dim 2 or 3)",
-        ));
-    }
     let mut cfg = a.cfg.clone();
-    cfg.dim = Some(cfg.dim.unwrap_or(2));
-    if cfg.dim()? == 3 {
+    cfg.dim = Some(cfg.spec().map_dim()?);
+    if cfg.dim == Some(3) {
         run_nd::<3>(a, cfg, budget)
     } else {
         if a.plane.is_some() {
@@ -84,7 +58,7 @@ fn run_nd<const D: usize>(a: Args, cfg: crate::common::Config, budget: &Budget) 
     };
     let q = cfg.query::<D>(budget)?;
     let t = std::time::Instant::now();
-    let m = sphstab::analysis::growth_map(&q, a.n, plane)?;
+    let m = sphstab::analysis::growth_map(&q, a.n, plane, &())?;
     let (xl, yl) = if D == 3 {
         let name = a.plane.as_deref().unwrap_or("xy");
         (

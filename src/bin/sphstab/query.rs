@@ -27,14 +27,9 @@ pub struct Args {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    crate::common::refuse(
-        "query",
-        &[(
-            "--av-beta",
-            a.cfg.av_beta.is_some(),
-            crate::common::AV_BETA_WHY,
-        )],
-    )?;
+    a.cfg
+        .spec()
+        .check_for(sphstab::analysis::spec::Command::Query)?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }

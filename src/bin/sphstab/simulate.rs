@@ -131,16 +131,10 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         let name = a.integrator.clone().or(scene.integrator.clone());
         let every = a.euler_every.or(scene.euler_every);
         let resolved = name.as_deref().unwrap_or("kdk");
-        if a.euler_every.is_some() && resolved != "verlet-euler" {
-            return Err(crate::query::not_in(
-                "--euler-every",
-                &crate::common::euler_every_context(resolved),
-            ));
+        sphstab::integrator::Integrator::by_names(Some(resolved), a.euler_every)?;
+        if let Some(n) = every {
+            sphstab::integrator::Integrator::from_name(resolved, n)?;
         }
-        sphstab::integrator::Integrator::from_name(
-            resolved,
-            every.unwrap_or(sphstab::integrator::DEFAULT_EULER_EVERY),
-        )?;
         scene.override_integrator(resolved.to_string(), every);
     }
     scene.budget = *budget;

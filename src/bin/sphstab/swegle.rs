@@ -4,9 +4,7 @@
 use anyhow::{Context, Result};
 use sphstab::budget::Budget;
 use sphstab::display::num;
-use sphstab::forms::FormKind;
-use sphstab::solver::BoundaryDensity;
-use sphstab::studies::swegle::{SwegleConfig, default_size, run_swegle};
+use sphstab::studies::swegle::{SwegleSpec, run_swegle};
 
 /// Flags of `swegle`.
 #[derive(clap::Args, Debug)]
@@ -108,66 +106,28 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             .output("--out", d.join("final.vtk"));
     }
     files.check()?;
-    let form = FormKind::by_name(&a.form)?;
-    let k = sphstab::kernel::by_name(&a.kernel)?;
-    if !(2..=3).contains(&a.dim) {
-        return Err(sphstab::error::Error::OutOfRange {
-            field: "dim",
-            value: a.dim as f64,
-            range: "2 or 3 (the 1D scenes are `simulate`)".into(),
-        }
-        .into());
-    }
-    let mut cfg = SwegleConfig::new(form, k, a.h, a.density_ratio).with_dim(a.dim);
-    cfg.budget = *budget;
-    if let Some(s) = &a.shape {
-        cfg.shape = sphstab::shape::ShapeFamily::by_name(s)?;
-    }
-    cfg.size = a.size.unwrap_or(default_size(a.dim));
-    cfg.t_end = a.t_end;
-    cfg.dt = a.dt;
-    if a.c.is_some() && !matches!(form, FormKind::Lnl | FormKind::Cll) {
-        return Err(crate::query::not_in(
-            "--c",
-            &format!(
-                "--form {} (the partition coefficient is of lnl and cll)",
-                form.name()
-            ),
-        ));
-    }
-    cfg.c_partition = a.c.unwrap_or(0.5);
-    cfg.until_window = a.until_window;
-    cfg.kick = a.kick;
-    cfg.integrator = a.integ.integrator()?;
-    cfg.diffusion = a.diffusion.get()?;
-    if let Some((eps, n)) = crate::common::art_stress(a.art_eps, a.art_n)? {
-        if !matches!(form, FormKind::Classical | FormKind::Cll) {
-            return Err(crate::query::not_in(
-                "--art-eps",
-                &format!(
-                    "--form {} (artificial stress is defined for classical and cll)",
-                    form.name()
-                ),
-            ));
-        }
-        if a.dim == 3 {
-            return Err(crate::query::not_in("--art-eps", "--dim 3"));
-        }
-        cfg.art_stress = Some((eps, n));
-    }
-    cfg.boundary = match a.boundary_density.as_deref().unwrap_or("evolve") {
-        "evolve" => BoundaryDensity::Evolve,
-        "frozen" => BoundaryDensity::Frozen,
-        s => {
-            return Err(sphstab::error::Error::UnknownName {
-                what: "--boundary-density".into(),
-                given: s.into(),
-                valid: "evolve, frozen".into(),
-            }
-            .into());
-        }
+    let spec = SwegleSpec {
+        dim: Some(a.dim),
+        form: Some(a.form.clone()),
+        kernel: Some(a.kernel.clone()),
+        h: Some(a.h),
+        shape: a.shape.clone(),
+        density_ratio: Some(a.density_ratio),
+        size: a.size,
+        t_end: Some(a.t_end),
+        until_window: Some(a.until_window),
+        kick: Some(a.kick),
+        boundary_density: a.boundary_density.clone(),
+        dt: Some(a.dt),
+        c: a.c,
+        art_eps: a.art_eps,
+        art_n: a.art_n,
+        integrator: Some(a.integ.integrator.clone()),
+        euler_every: a.integ.euler_every,
+        delta: a.diffusion.delta,
+        delta_form: a.diffusion.delta_form.clone(),
     };
-    cfg.validate()?;
+    let cfg = spec.config(budget)?;
     let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
     let r = run_swegle(&cfg, pb.clone())?;
     pb.finish();

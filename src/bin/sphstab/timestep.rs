@@ -4,7 +4,6 @@ use crate::common::{Config, IntegratorArgs};
 use anyhow::Result;
 use sphstab::analysis::IntegratorReport;
 use sphstab::budget::Budget;
-use sphstab::forms::ViscosityPairs;
 use sphstab::studies::stable_dt::{self, ProbeRun, StableDtReport};
 use sphstab::units::{self, System};
 
@@ -82,14 +81,9 @@ fn print_eq120(v: Option<f64>) {
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
-    crate::common::refuse(
-        "timestep without --verify",
-        &[(
-            "--av-beta",
-            a.cfg.av_beta.is_some() && !a.verify,
-            crate::common::AV_BETA_WHY,
-        )],
-    )?;
+    a.cfg
+        .spec()
+        .check_for(sphstab::analysis::spec::Command::Timestep { verify: a.verify })?;
     let dim = a.cfg.dim()?;
     crate::by_dim!(dim, run_in(a, budget))
 }
@@ -107,22 +101,7 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
     }
     let mut q = a.cfg.query::<D>(budget)?;
     q.integrator = a.integ.integrator()?;
-    let pairs = match &a.viscosity {
-        None => ViscosityPairs::OneSided,
-        Some(_) if !a.verify => {
-            return Err(crate::query::not_in(
-                "--viscosity",
-                "timestep without --verify (the analysis applies viscosity to every pair)",
-            ));
-        }
-        Some(_) if q.av.is_none() => {
-            return Err(crate::query::not_in(
-                "--viscosity",
-                "timestep without --av-alpha (no viscosity to switch)",
-            ));
-        }
-        Some(name) => ViscosityPairs::by_name("--viscosity", name)?,
-    };
+    let pairs = stable_dt::viscosity_pairs(a.verify, a.viscosity.as_deref(), q.av.is_some())?;
     // in 1D the κ points are --points or --grid: the budget names the one given
     let r = sphstab::analysis::timestep(&q)
         .map_err(|e| crate::flags::alias(e, "grid", "--points", a.points.is_some()))?;

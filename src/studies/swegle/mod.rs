@@ -12,6 +12,7 @@ mod config;
 mod predict;
 mod report;
 mod run;
+mod spec;
 
 pub use config::{
     MAX_DENSE_BOX_DOFS, SwegleConfig, default_size, dense_size_limit, infinite_grid, max_size,
@@ -19,3 +20,4 @@ pub use config::{
 pub use predict::{SweglePrediction, predict_swegle};
 pub use report::{Diverged, FinalState, SwegleReport};
 pub use run::run_swegle;
+pub use spec::SwegleSpec;
