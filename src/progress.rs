@@ -29,6 +29,54 @@ impl<F: Fn(f64) + Sync> Progress for F {
     }
 }
 
+/// Set by [`interrupt`]: the analysis and the solver stop at their next wave vector, time step
+/// or cell with [`Error::Cancelled`](crate::error::Error) while an [`Interruptible`] lives.
+static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+/// Live [`Interruptible`] guards.
+static ACTIVE: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// Asks every computation of this process to stop (an embedding interpreter's Ctrl-C: the
+/// signal is process-wide, so is this). The CLI never calls it: Ctrl-C ends its process.
+pub fn interrupt() {
+    INTERRUPTED.store(true, std::sync::atomic::Ordering::SeqCst);
+}
+
+/// Err([`Error::Cancelled`](crate::error::Error)) once [`interrupt`] was called: checked per
+/// wave vector by the analysis (an atomic load, nothing next to an eigenvalue problem).
+pub fn interrupted() -> crate::error::Result<()> {
+    match INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed) {
+        true => Err(crate::error::Error::Cancelled),
+        false => Ok(()),
+    }
+}
+
+/// A computation that [`interrupt`] may stop: while one lives, the interruption stands; when
+/// the last one is dropped it is cleared, so the next computation starts afresh.
+#[must_use]
+pub struct Interruptible(());
+
+impl Interruptible {
+    /// Registers a computation.
+    pub fn new() -> Self {
+        ACTIVE.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+        Self(())
+    }
+}
+
+impl Default for Interruptible {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Drop for Interruptible {
+    fn drop(&mut self) {
+        if ACTIVE.fetch_sub(1, std::sync::atomic::Ordering::SeqCst) == 1 {
+            INTERRUPTED.store(false, std::sync::atomic::Ordering::SeqCst);
+        }
+    }
+}
+
 /// Counts finished items of `total` from several threads and reports the fraction to
 /// `progress` every `every` items (and at the last one).
 pub(crate) struct Counter<'a> {

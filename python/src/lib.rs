@@ -19,7 +19,6 @@ use sphstab::forms::State;
 use sphstab::progress::Progress;
 use sphstab::studies::swegle::{FinalState, SwegleSpec};
 use sphstab::units::{self, System};
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Field → keyword argument (a field not listed is its own name).
@@ -121,33 +120,34 @@ impl Kwargs {
     }
 }
 
-/// Tells long work to stop: set when Ctrl-C reaches the calling thread.
-#[derive(Clone, Default)]
-struct Cancel(Arc<AtomicBool>);
+/// The solver's view of an interruption ([`sphstab::progress::interrupt`]): its time loops and
+/// studies ask [`Progress::cancelled`] between steps; the analysis checks per wave vector.
+#[derive(Clone, Copy, Default)]
+struct Cancel;
 
 impl Progress for Cancel {
     fn advance(&self, _fraction: f64) {}
     fn cancelled(&self) -> bool {
-        self.0.load(Ordering::Relaxed)
+        sphstab::progress::interrupted().is_err()
     }
 }
 
 /// Runs `work` on a worker thread without the GIL while this thread checks for signals every
-/// few milliseconds; on Ctrl-C (a signal handler raising) `work` is told to stop, and the
-/// handler's exception (KeyboardInterrupt) is raised once it has.
+/// few milliseconds; on Ctrl-C (a signal handler raising) the computation is interrupted
+/// ([`sphstab::progress::interrupt`]: it stops at its next wave vector, time step or row), and
+/// the handler's exception (KeyboardInterrupt) is raised once it has stopped.
 fn interruptible<T: Send>(
     py: Python<'_>,
     render: fn(Error) -> PyErr,
     work: impl FnOnce(Cancel) -> sphstab::error::Result<T> + Send,
 ) -> PyResult<T> {
-    let cancel = Cancel::default();
+    let _running = sphstab::progress::Interruptible::new();
     let finished = AtomicBool::new(false);
     let out = std::thread::scope(|s| {
         let worker = {
-            let cancel = cancel.clone();
             let finished = &finished;
             s.spawn(move || {
-                let r = work(cancel);
+                let r = work(Cancel);
                 finished.store(true, Ordering::Release);
                 r
             })
@@ -165,7 +165,7 @@ fn interruptible<T: Send>(
             if raised.is_none()
                 && let Err(e) = py.check_signals()
             {
-                cancel.0.store(true, Ordering::Relaxed);
+                sphstab::progress::interrupt();
                 raised = Some(e);
             }
         }
@@ -192,10 +192,10 @@ fn query_in<const D: usize>(
     spec: &QuerySpec,
     integ: sphstab::integrator::Integrator,
     budget: &Budget,
-) -> PyResult<String> {
-    let mut q = spec.query::<D>(budget).map_err(value_error)?;
+) -> sphstab::error::Result<sphstab::analysis::QueryReport> {
+    let mut q = spec.query::<D>(budget)?;
     q.integrator = integ;
-    normalised(&sphstab::analysis::query(&q).map_err(value_error)?)
+    sphstab::analysis::query(&q)
 }
 
 /// `sphstab query --json` for the keyword arguments in `kwargs` (JSON): the same document.
@@ -207,28 +207,31 @@ fn query_json(py: Python<'_>, kwargs: &str) -> PyResult<String> {
     let s: QuerySpec = kw.rest()?;
     s.check_for(Command::Query).map_err(value_error)?;
     let dim = spec_dim(&s)?;
-    py.allow_threads(|| match dim {
+    let r = interruptible(py, value_error, |_| match dim {
         1 => query_in::<1>(&s, integ, &budget),
         2 => query_in::<2>(&s, integ, &budget),
         _ => query_in::<3>(&s, integ, &budget),
-    })
+    })?;
+    normalised(&r)
 }
 
-/// The report (JSON) and, if asked, the polarisations flattened `[point][branch][component]`.
-type Dispersion = (String, Option<Vec<numpy::Complex64>>);
+/// The report and, if asked, the polarisations flattened `[point][branch][component]`.
+type Dispersion = (
+    sphstab::analysis::DispersionReport,
+    Option<Vec<numpy::Complex64>>,
+);
 
 fn dispersion_in<const D: usize>(
     spec: &QuerySpec,
     points: usize,
     b: &Budget,
     eigenvectors: bool,
-) -> PyResult<Dispersion> {
-    let q = spec.query::<D>(b).map_err(value_error)?;
-    let r = sphstab::analysis::dispersion(&q, points).map_err(value_error)?;
+) -> sphstab::error::Result<Dispersion> {
+    let q = spec.query::<D>(b)?;
+    let r = sphstab::analysis::dispersion(&q, points)?;
     let modes = match eigenvectors {
         true => Some(
-            sphstab::analysis::polarisations(&q, &r.kappa)
-                .map_err(value_error)?
+            sphstab::analysis::polarisations(&q, &r.kappa)?
                 .into_iter()
                 .flatten()
                 .flatten()
@@ -236,7 +239,7 @@ fn dispersion_in<const D: usize>(
         ),
         false => None,
     };
-    Ok((normalised(&r)?, modes))
+    Ok((r, modes))
 }
 
 /// A count that must be a non-negative integer, as a ValueError naming `field` otherwise.
@@ -273,11 +276,12 @@ fn dispersion_json<'py>(
     }
     s.check_for(Command::Dispersion).map_err(value_error)?;
     let dim = spec_dim(&s)?;
-    let (doc, modes) = py.allow_threads(|| match dim {
+    let (r, modes) = interruptible(py, value_error, |_| match dim {
         1 => dispersion_in::<1>(&s, points, &budget, eigenvectors),
         2 => dispersion_in::<2>(&s, points, &budget, eigenvectors),
         _ => dispersion_in::<3>(&s, points, &budget, eigenvectors),
     })?;
+    let doc = normalised(&r)?;
     let modes = match modes {
         Some(m) => {
             let d = dim as usize;

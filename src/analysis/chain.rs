@@ -38,6 +38,9 @@ fn curve(lin: &Linearisation, kappas: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
     let mut g = Vec::with_capacity(kappas.len());
     let table = PhaseTable::new(kappas, lin.reach());
     for k in 0..kappas.len() {
+        if k % 4096 == 0 {
+            crate::progress::interrupted()?;
+        }
         let (o, _) = lin.omega2_tabulated(&table, k);
         if !o.is_finite() {
             return Err(Error::NonFinite("ω²"));

@@ -293,6 +293,7 @@ fn largest_stable(mut lo: f64, mut hi: f64, stable: impl Fn(f64) -> Result<bool>
 /// Growth per step of `integ` at k: the spectral radius of one cycle's amplification matrix to
 /// the power 1/cycle; `dt` in Δx/c.
 pub fn spectral_radius_with<L: Modes>(lin: &L, k: L::K, dt: f64, integ: Integrator) -> Result<f64> {
+    crate::progress::interrupted()?;
     lin.growth_per_step(k, dt, integ)
 }
 

@@ -326,6 +326,7 @@ impl<const D: usize> Bloch<D> {
         &self,
         k: [f64; D],
     ) -> Result<(f64, [Complex64; D], Vec<(Complex64, [Complex64; D])>)> {
+        crate::progress::interrupted()?;
         let j = if self.dissipative {
             self.jacobian(k)
         } else {

@@ -94,6 +94,7 @@ impl<O: Copy> Columns<O> {
             let (b0, l) = (b - b % lanes, b % lanes);
             if l == 0 {
                 // one evaluation differentiates along LANES dofs
+                crate::progress::interrupted()?;
                 sys.seeded_rates(b0)?;
             }
             let mut col_at = Vec::new();
