@@ -163,6 +163,7 @@ const TABLE: &[(&str, Unit)] = &[
     ("max_stable_tension", Fixed(STRESS)),
     // speeds
     ("max_speed_end", Fixed("c")),
+    ("amplitude", Fixed("c")),
     // what a run with physical units measures
     ("t", Run(Dim::Time)),
     ("window", Run(Dim::Time)),

@@ -256,7 +256,10 @@ def test_bad_scenes_and_budgets_raise_value_error():
 def test_ctrl_c_stops_a_long_run(call):
     # Ctrl-C (SIGINT) must end the call within seconds, as KeyboardInterrupt, and the
     # interpreter must survive it, and the next call must run (the interruption is cleared)
-    code = ("import sphstab\nprint('start', flush=True)\n"
+    # (a Python started with SIGINT ignored, as a background job is, installs no handler:
+    # install the interactive interpreter's one)
+    code = ("import signal, sphstab\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n"
+            "print('start', flush=True)\n"
             f"try:\n    {call}\n"
             "except KeyboardInterrupt:\n    print('interrupted', flush=True)\n"
             "print(sphstab.query()['stable'], flush=True)\n")

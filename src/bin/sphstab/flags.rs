@@ -9,6 +9,7 @@ use sphstab::error::Error;
 /// Field → flag. A field not listed is printed as it is (a JSON key of a scene or config).
 pub const FLAGS: &[(&str, &str)] = &[
     ("alpha_s", "--alpha-s"),
+    ("amplitude", "--amplitude"),
     ("art_eps", "--art-eps"),
     ("art_n", "--art-n"),
     ("av", "--av"),

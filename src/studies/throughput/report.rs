@@ -64,6 +64,8 @@ pub struct ThroughputReport {
     pub art_n: Option<i32>,
     /// Time step (Δx/c).
     pub dt: f64,
+    /// Amplitude of the initial velocity field (c).
+    pub amplitude: f64,
     /// Timed steps per repeat.
     pub steps: usize,
     /// Repeats.

@@ -132,6 +132,7 @@ pub fn run_throughput(
         art_eps: cfg.art_stress.map(|a| a.0),
         art_n: cfg.art_stress.map(|a| a.1),
         dt: cfg.dt,
+        amplitude: cfg.amplitude,
         steps: cfg.steps,
         repeats: cfg.repeats,
         threads: pool.current_num_threads(),
