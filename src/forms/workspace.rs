@@ -35,31 +35,26 @@
 //! viscosity: the first kick's acceleration is evaluated where the previous step's last one
 //! was (same x and ρ, other v), so one stencil build of three is saved.
 //!
-//! # Reusing the pairs
+//! # Reusing the pairs: a Verlet list with a skin
 //!
 //! Each particle lists its neighbours by increasing index, whatever order the cell search finds
 //! them in, so the stencils — and the summation order of every rate term — are a function of
 //! the positions alone, not of the cell grid (whose origin follows the particles' bounding box).
 //!
 //! Between two builds the particles of a run move by a small fraction of the support, and the
-//! pairs rarely change. A build at new positions keeps the pairs of the last full build and
-//! only recomputes their data (−W'/r, fⁿ) when it can prove that a full build would find
-//! exactly the same pairs:
-//!
-//! - the full build records a margin δ, a lower bound on | |d| − ζh | over every pair: over the
-//!   candidates of the cell search |d² − r²|/(3r), capped at r (no square root per candidate);
-//!   the other pairs are at least a cell side apart, and the cells are r/16 wider than the
-//!   support;
-//! - each later build adds the largest displacement since the previous build to a drift bound
-//!   Δ; a pair's separation has changed by at most 2Δ, so while Δ < δ/4 no pair has crossed
-//!   the support radius (the factor 2 to spare covers the rounding of the distances).
-//!
-//! The pairs being the same and listed in index order, the stencils are then those a full
-//! build would make. Otherwise (and for non-SPH shape families, whose ∇φ depend on every
-//! neighbour, and for scalars with a tangent) the build is a full one. The results are bitwise
-//! those of a full build at every evaluation (tested on stable, large-motion and unstable runs,
-//! [`RateWorkspace::set_pair_reuse`]); the saving is the neighbour search, about half of a
-//! solver step. A diverging run (non-finite positions) makes Δ NaN and every build full.
+//! pairs rarely change. A full build therefore lists every pair closer than r + s, the support
+//! radius r = ζh plus a skin s = [`SKIN`] × r (the Verlet list of molecular dynamics), and gives
+//! the pairs beyond r zero kernel data. A later build keeps that list and only recomputes the
+//! pairs' data (−W'/r, fⁿ, zero beyond r) while every particle has moved less than s/2 since the
+//! full build (the rule of LAMMPS and GROMACS): a pair not listed was at least r + s apart and
+//! has closed by less than s, so no pair within r is missing. The pairs listed but beyond r add
+//! exact zeros to every rate sum, which leaves each sum bitwise unchanged (x + 0 = x), so the
+//! results are bitwise those of a full search at every evaluation (tested on stable,
+//! large-motion, lattice-degenerate and unstable runs, [`RateWorkspace::set_pair_reuse`]). A
+//! lattice whose neighbours sit exactly on the support radius (h/Δx = 1 with ζ = 2) is no special
+//! case. Non-SPH shape families (whose ∇φ depend on every neighbour) and scalars with a tangent
+//! always build in full, with s = 0. A diverging run (non-finite positions) makes every build
+//! full.
 
 // Small-vector algebra (D ≤ 3) reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
@@ -169,6 +164,11 @@ impl<S: Scalar, const D: usize> Stencils<S, D> {
     fn entries(&self) -> usize {
         self.entry.len()
     }
+
+    /// Owned pairs in total.
+    fn pairs(&self) -> usize {
+        self.upper.last().map_or(0, |&u| u as usize)
+    }
 }
 
 /// Scratch of the stencil build of one chunk of particles: the neighbours found (index,
@@ -200,10 +200,15 @@ const LOWER: u32 = 1 << 31;
 /// Particles per parallel work item of the stencil build (each item owns one scratch).
 const CHUNK: usize = 128;
 
-/// Cell side of the neighbour search over the support radius: slightly more than 1, so that
-/// a pair that is not a candidate is at least r/16 outside the support (the margin of the pair
-/// reuse, module docs).
+/// Cell side of the neighbour search over the list radius: slightly more than 1, so that the
+/// rounding of the cell index can never put two particles closer than the list radius more
+/// than one cell apart.
 const CELL_SIDE: f64 = 1.0 + 1.0 / 16.0;
+
+/// The skin of the pair list, as a fraction of the support radius r: a full build lists the
+/// pairs within (1 + SKIN) r, and later builds reuse them while no particle has moved SKIN r/2
+/// (module docs). Chosen from measured cost (docs/throughput.md, "The skin").
+pub const SKIN: f64 = 0.1;
 
 /// Reusable buffers of the rate evaluation (see the module docs). `S` is the scalar of the
 /// state (`f64` for the solver, [`Dual`](crate::scalar::Dual) for the linearisation), `D` the
@@ -232,13 +237,14 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     /// Densities and masses of the build (non-SPH shape families only).
     key_rho: Vec<S>,
     key_mass: Vec<f64>,
-    /// Lower bound, at the last full build, on | |d| − ζh | over every candidate pair of the
-    /// neighbour search: while the particles have moved less than a quarter of it in total,
-    /// no pair has crossed the support radius (module docs, "Reusing the pairs").
-    margin: f64,
-    /// Upper bound on how far any particle has moved since the last full build (the sum of
-    /// the largest displacement between consecutive builds).
-    drift: f64,
+    /// Positions at the last full build (the reference of the skin rule).
+    built: Vec<[f64; D]>,
+    /// Radius of the pair list of the last full build (r + skin; 0: no list to reuse).
+    list_r: f64,
+    /// Skin as a fraction of the support radius ([`SKIN`]).
+    skin: f64,
+    /// Owned pairs within the support radius at the last build (the others have zero data).
+    within: usize,
     /// Whether valid pairs are reused (default; off: every build is a full one).
     reuse: bool,
     /// Full builds and pair refreshes so far.
@@ -275,8 +281,10 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             key_x: Vec::new(),
             key_rho: Vec::new(),
             key_mass: Vec::new(),
-            margin: 0.0,
-            drift: f64::INFINITY,
+            built: Vec::new(),
+            list_r: 0.0,
+            skin: SKIN,
+            within: 0,
             reuse: true,
             builds: (0, 0),
             chain: ChainWorkspace::default(),
@@ -334,7 +342,17 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             return None;
         }
         let own = if self.st.with_self { 0 } else { n };
-        Some((self.st.entries() + own) as f64 / n as f64)
+        // listed within the skin but outside the support: not neighbours (zero data)
+        let beyond = 2 * (self.st.pairs() - self.within);
+        Some((self.st.entries() - beyond + own) as f64 / n as f64)
+    }
+
+    /// The skin of the pair list as a fraction of the support radius, in [0, 1] (default
+    /// [`SKIN`]; module docs): larger lists more pairs, reused for longer. Results are bitwise
+    /// the same for every skin.
+    pub fn set_skin(&mut self, fraction: f64) {
+        self.skin = fraction.clamp(0.0, 1.0);
+        self.list_r = 0.0;
     }
 
     /// Whether stencil builds reuse the pairs of the last full build while they are provably
@@ -445,34 +463,29 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         Ok(())
     }
 
-    /// Whether the pairs of the last full build are exactly the pairs, in the same order, that
-    /// a rebuild at `x` would find (module docs, "Reusing the pairs"); updates the drift bound
-    /// and the positions of the build.
+    /// Whether the pair list of the last full build still holds every pair within the support
+    /// at `x` (module docs: no particle has moved half the skin since that build); updates the
+    /// positions of the last build.
     fn pairs_still_valid(&mut self, m: &Model<D>, x: &[[S; D]]) -> bool {
-        if self.pos.len() != x.len() || self.margin.is_nan() || self.margin <= 0.0 {
-            return false;
-        }
-        // the largest displacement since the last build; NaN (a diverged run) propagates.
-        // Serial: a few ns per particle, and one parallel loop fewer per evaluation
-        let step2 = self.pos.iter().zip(x).fold(0.0f64, |m, (p, q)| {
-            let mut e2 = 0.0;
-            for c in 0..D {
-                let e = q[c].re() - p[c];
-                e2 += e * e;
-            }
-            if m.is_nan() || e2.is_nan() {
-                f64::NAN
-            } else {
-                m.max(e2)
-            }
-        });
-        self.drift += step2.sqrt();
         self.pos.clear();
         self.pos.extend(x.iter().map(|p| p.map(|c| c.re())));
         let r = m.p.kp.support();
-        // two particles approach each other by at most 2 × drift; the factor 2 more covers the
-        // rounding of the distances and of this bound by far (the margin must exceed 1e-9 r)
-        self.drift < 0.25 * self.margin && self.margin > 1e-9 * r
+        if self.built.len() != x.len() || self.list_r <= r {
+            return false;
+        }
+        // half the skin, less a part in 10⁶ for the rounding of the distances
+        let half = 0.5 * (self.list_r - r) * (1.0 - 1e-6);
+        let limit = half * half;
+        // the largest displacement since the full build; NaN (a diverged run) fails.
+        // Serial: a few ns per particle, and one parallel loop fewer per evaluation
+        self.built.iter().zip(&self.pos).all(|(p, q)| {
+            let mut e2 = 0.0;
+            for c in 0..D {
+                let e = q[c] - p[c];
+                e2 += e * e;
+            }
+            e2 < limit
+        })
     }
 
     /// Recomputes the pair data (−W'/r and the artificial-stress factor) of the current pairs
@@ -484,27 +497,36 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         let w_dp = art.map(|a| kernel::w(kern, D, a.spacing, h));
         let art_n = art.map_or(0, |a| a.n);
         let pk = PairKernel::new::<D>(kern, h);
+        let r = m.p.kp.support();
+        let r2 = r * r;
         let st = &mut self.st;
         let (upper, ab) = (&st.upper, &st.ab);
         let fp = Shared(st.f.as_mut_ptr());
         let fnn = Shared(st.fnn.as_mut_ptr());
-        (0..n.div_ceil(CHUNK)).into_par_iter().for_each(|c| {
-            for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
-                let xi = z.x[i];
-                for p in upper[i] as usize..upper[i + 1] as usize {
-                    let j = (ab[p] ^ i as u32) as usize;
-                    let (w, f) = pk.eval(m.rel(xi, z.x[j]));
-                    // SAFETY: pair p is owned by particle i alone, and p < the pair count
-                    // (the lengths of f and, with artificial stress, fnn)
-                    unsafe {
-                        fp.write(p, f);
-                        if let Some(wd) = w_dp {
-                            fnn.write(p, art_factor(w, wd, art_n));
+        self.within = (0..n.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let mut within = 0;
+                for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
+                    let xi = z.x[i];
+                    for p in upper[i] as usize..upper[i + 1] as usize {
+                        let j = (ab[p] ^ i as u32) as usize;
+                        // the full build's test and data: zero beyond the support
+                        let (w, f, inside) = pair_data(&pk, m.rel(xi, z.x[j]), r2);
+                        within += usize::from(inside);
+                        // SAFETY: pair p is owned by particle i alone, and p < the pair count
+                        // (the lengths of f and, with artificial stress, fnn)
+                        unsafe {
+                            fp.write(p, f);
+                            if let Some(wd) = w_dp {
+                                fnn.write(p, art_factor(w, wd, art_n));
+                            }
                         }
                     }
                 }
-            }
-        });
+                within
+            })
+            .sum();
     }
 
     /// Whether `x` is bitwise the positions of the last build.
@@ -539,11 +561,20 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         // into libm's hypot). The two can differ only within an ulp of the support radius,
         // where W and ∇W vanish.
         let r2 = r * r;
+        // the list radius: the support plus the skin where the list can be reused (module
+        // docs), the support alone otherwise
+        let reusable = self.reuse
+            && !S::TANGENT
+            && m.p.shape == ShapeFamily::Sph
+            && !with_corrected
+            && self.skin > 0.0;
+        let rl = if reusable { r * (1.0 + self.skin) } else { r };
+        let rl2 = rl * rl;
         self.pos.clear();
         self.pos.extend(z.x.iter().map(|p| p.map(|c| c.re())));
         let grid = match m.period {
             None => {
-                self.cells.rebuild(&self.pos, r * CELL_SIDE, None);
+                self.cells.rebuild(&self.pos, rl * CELL_SIDE, None);
                 true
             }
             Some(l) if is_diagonal(&l) => {
@@ -551,7 +582,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                 for (a, e) in ext.iter_mut().enumerate() {
                     *e = l[a][a];
                 }
-                self.cells.rebuild(&self.pos, r * CELL_SIDE, Some(ext));
+                self.cells.rebuild(&self.pos, rl * CELL_SIDE, Some(ext));
                 true
             }
             Some(_) => false,
@@ -569,7 +600,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                 for c in 1..D {
                     d2 += d[c].re() * d[c].re();
                 }
-                if d2 < r2 {
+                if d2 < rl2 {
                     visit(j, d);
                 }
             };
@@ -585,21 +616,18 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         };
         // (entries, owned pairs) of i: the neighbours `scan` visits, counted without visiting
         // them (the same distance test on the positions' values, branch-free)
-        // and the smallest |d² − r²| over every candidate (for the margin)
-        let count = |i: usize| -> (u32, u32, f64) {
+        let count = |i: usize| -> (u32, u32) {
             let pi = pos[i];
             let (mut all, mut own) = (0u32, 0u32);
-            let mut gap = f64::INFINITY;
             let mut test = |j: usize| {
                 let d = m.rel(pi, pos[j]);
                 let mut d2 = d[0] * d[0];
                 for c in 1..D {
                     d2 += d[c] * d[c];
                 }
-                let listed = u32::from(d2 < r2) & u32::from(j != i || with_self);
+                let listed = u32::from(d2 < rl2) & u32::from(j != i || with_self);
                 all += listed;
                 own += listed & u32::from(j >= i);
-                gap = gap.min((d2 - r2).abs());
             };
             if grid {
                 cells.for_candidate_runs(pi, |run| {
@@ -610,7 +638,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             } else {
                 (0..n).for_each(&mut test);
             }
-            (all, own, gap)
+            (all, own)
         };
 
         // pass 1: directed entries and owned pairs of each particle
@@ -620,23 +648,15 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         st.upper.resize(n + 1, 0);
         st.start[0] = 0;
         st.upper[0] = 0;
-        let gap = st.start[1..]
+        st.start[1..]
             .par_iter_mut()
             .zip(st.upper[1..].par_iter_mut())
             .enumerate()
-            .map(|(i, (s, u))| {
-                let (all, own, gap) = count(i);
-                (*s, *u) = (all, own);
-                gap
-            })
-            .reduce(|| f64::INFINITY, f64::min);
-        // |d − r| = |d² − r²|/(d + r) ≥ |d² − r²|/(3r) when d < 2r, and ≥ r otherwise; pairs
-        // that are not candidates are at least a cell side apart
-        self.margin = (gap / (3.0 * r)).min(r);
-        if grid {
-            self.margin = self.margin.min(r * (CELL_SIDE - 1.0));
-        }
-        self.drift = 0.0;
+            .for_each(|(i, (s, u))| (*s, *u) = count(i));
+        // the reference of the skin rule; no list to reuse until this build has succeeded
+        self.list_r = 0.0;
+        self.built.clear();
+        self.built.extend_from_slice(&self.pos);
         for i in 0..n {
             st.start[i + 1] += st.start[i];
             st.upper[i + 1] += st.upper[i];
@@ -677,10 +697,12 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         let ga = Shared(st.ga.as_mut_ptr());
         let gb = Shared(st.gb.as_mut_ptr());
         let vol = &self.vol;
+        let within = std::sync::atomic::AtomicUsize::new(0);
         self.scratch[..chunks]
             .par_iter_mut()
             .enumerate()
             .try_for_each(|(c, sc)| -> Result<()> {
+                let mut inside_pairs = 0;
                 for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                     // the neighbours by increasing index: the summation order of every rate
                     // term does not depend on the cell grid (module docs)
@@ -713,7 +735,8 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                             continue;
                         }
                         if j >= i {
-                            let (w, f) = pk.eval(d);
+                            let (w, f, inside) = pair_data(&pk, d, r2);
+                            inside_pairs += usize::from(inside);
                             // SAFETY: pair p and entry e belong to particle i alone (the
                             // offsets of pass 1 partition both arrays by particle)
                             unsafe {
@@ -742,8 +765,10 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                         e += 1;
                     }
                 }
+                within.fetch_add(inside_pairs, std::sync::atomic::Ordering::Relaxed);
                 Ok(())
             })?;
+        self.within = within.into_inner();
 
         // pass 3: the pair index of each entry J < I, from J's owned pairs
         let (start, upper, ab) = (&st.start, &st.upper, &st.ab);
@@ -770,7 +795,9 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                 unsafe { entry.write(e, (p0 + k) as u32) };
             }
             Ok(())
-        })
+        })?;
+        self.list_r = rl;
+        Ok(())
     }
 }
 
@@ -831,6 +858,23 @@ impl<'a> PairKernel<'a> {
         let w = r.lift(self.s0 * k.f(D, q), g0);
         let dw = r.lift(self.s1 * k.df(D, q), g1);
         (w, -dw / r)
+    }
+}
+
+/// The data (W, −W'/r) of a pair at separation `d` as a full build computes it, and whether
+/// the pair is within the support (|d|² < r², the test of the neighbour search); zeros for a
+/// pair of the skin beyond it.
+#[inline]
+fn pair_data<S: Scalar, const D: usize>(pk: &PairKernel, d: [S; D], r2: f64) -> (S, S, bool) {
+    let mut d2 = d[0].re() * d[0].re();
+    for c in 1..D {
+        d2 += d[c].re() * d[c].re();
+    }
+    if d2 < r2 {
+        let (w, f) = pk.eval(d);
+        (w, f, true)
+    } else {
+        (S::zero(), S::zero(), false)
     }
 }
 

@@ -566,6 +566,13 @@ impl<const D: usize> Run<D> {
         self.bufs.sys.ws.get_mut().set_pair_reuse(on);
     }
 
+    /// The skin of the pair list as a fraction of the support radius (default
+    /// [`crate::forms::SKIN`]; bitwise the same results for every skin, see
+    /// [`RateWorkspace::set_skin`]).
+    pub fn set_skin(&mut self, fraction: f64) {
+        self.bufs.sys.ws.get_mut().set_skin(fraction);
+    }
+
     /// (full builds, pair refreshes) of the stencils so far ([`RateWorkspace::stencil_builds`]).
     pub fn stencil_builds(&self) -> (u64, u64) {
         self.bufs.sys.ws.borrow().stencil_builds()

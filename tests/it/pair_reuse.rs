@@ -84,6 +84,53 @@ fn small_motion_reuses_and_matches() {
 }
 
 #[test]
+fn lattice_neighbours_on_the_support_radius_reuse_and_match() {
+    // h/Δx = 1 with the cubic spline (ζ = 2): the lattice's second neighbours sit exactly on
+    // the support radius, so no margin to the support exists; the skin of the list reuses the
+    // pairs all the same (the margin rule this replaced rebuilt at every evaluation)
+    for (dim, domain) in [(2, Domain::Open), (3, Domain::Periodic)] {
+        let mut cfg = block(dim, domain, 1e-3);
+        cfg.h_over_dx = 1.0;
+        let what = format!("{dim}D {domain:?} h = 1.0Δx");
+        let (full, refr) = if dim == 2 {
+            same_with_and_without(&what, || build_block_nd::<2>(&cfg, 16).unwrap(), cfg.dt, 40)
+        } else {
+            same_with_and_without(&what, || build_block_nd::<3>(&cfg, 8).unwrap(), cfg.dt, 20)
+        };
+        assert!(refr > 10 * full, "{what}: {full} full, {refr} refreshed");
+    }
+}
+
+#[test]
+fn every_skin_gives_the_same_bits() {
+    // the skin changes how many pairs are listed (zero data beyond the support) and how
+    // often the list is rebuilt, never a bit of the result; A = 0.1: the list is rebuilt
+    // often at every skin
+    let cfg = block(2, Domain::Open, 0.1);
+    for skin in [0.0, 0.02, 0.3, 1.0] {
+        let what = format!("2D open A = 0.1, skin {skin}");
+        let (full, refr) = same_with_and_without(
+            &what,
+            || {
+                let mut run = build_block_nd::<2>(&cfg, 16).unwrap();
+                run.set_skin(skin);
+                run
+            },
+            cfg.dt,
+            80,
+        );
+        if skin == 0.0 {
+            assert_eq!(refr, 0, "{what}: no skin, no reuse");
+        } else {
+            assert!(
+                full > 1 && refr > 1,
+                "{what}: {full} full, {refr} refreshed"
+            );
+        }
+    }
+}
+
+#[test]
 fn large_motion_rebuilds_and_matches() {
     // velocity amplitude 0.1c (the largest `throughput` takes): particles move ~Δx over the
     // run, pairs and cells change

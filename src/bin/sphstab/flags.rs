@@ -59,6 +59,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("shape", "--shape"),
     ("shard", "--shard"),
     ("size", "--size"),
+    ("skin", "--skin"),
     ("sizes", "--sizes"),
     ("steps", "--steps"),
     ("stress", "--stress"),

@@ -67,6 +67,11 @@ pub struct Args {
     /// particles as a real run does, so the neighbour lists change (the regime to measure).
     #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
     amplitude: f64,
+    /// Skin of the neighbour pair list, as a fraction of the support radius, in [0, 1]
+    /// (default 0.1): a full search lists the pairs within (1 + skin) r, later builds reuse
+    /// them while no particle has moved half the skin. Bitwise the same results for every skin.
+    #[arg(long)]
+    skin: Option<f64>,
     /// Timed steps per repeat (after one warm-up step), in [1, 10⁶]. Default 20: the default
     /// run (4 × 10⁴ particles, 3 repeats) then takes ~7 s of CPU, under the 10 s every default
     /// command keeps to.
@@ -197,6 +202,9 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
     }
     cfg.dt = a.dt;
     cfg.amplitude = a.amplitude;
+    if let Some(s) = a.skin {
+        cfg.skin = s;
+    }
     cfg.steps = a.steps;
     cfg.repeats = a.repeats;
     if a.no_pair_reuse && form.is_lagrangian() {

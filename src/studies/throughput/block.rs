@@ -126,6 +126,7 @@ fn time_block_nd<const D: usize>(
     });
     let mut run = build_block_nd::<D>(cfg, size)?;
     run.set_pair_reuse(cfg.pair_reuse);
+    run.set_skin(cfg.skin);
     let n = run.z.x.len();
     run.step(cfg.dt)?;
     let builds0 = run.stencil_builds();

@@ -76,6 +76,9 @@ pub struct ThroughputConfig {
     pub amplitude: f64,
     /// Whether stencil builds reuse provably unchanged pairs ([`Run::set_pair_reuse`](crate::solver::Run::set_pair_reuse)).
     pub pair_reuse: bool,
+    /// Skin of the pair list, as a fraction of the support radius, in [0, 1]
+    /// ([`Run::set_skin`](crate::solver::Run::set_skin)).
+    pub skin: f64,
     /// The budget the timing runs must stay within.
     pub budget: Budget,
 }
@@ -103,6 +106,7 @@ impl ThroughputConfig {
             repeats: 3,
             amplitude: 1e-3,
             pair_reuse: true,
+            skin: crate::forms::SKIN,
             budget: Budget::default(),
         }
     }
@@ -182,6 +186,7 @@ impl ThroughputConfig {
         check_range("steps", self.steps as f64, 1.0, 1e6, true, true)?;
         check_range("repeats", self.repeats as f64, 1.0, 1000.0, true, true)?;
         check_range("amplitude", self.amplitude, 0.0, 0.1, true, true)?;
+        check_range("skin", self.skin, 0.0, 1.0, true, true)?;
         Ok(())
     }
 
