@@ -208,7 +208,7 @@ const CELL_SIDE: f64 = 1.0 + 1.0 / 16.0;
 /// The skin of the pair list, as a fraction of the support radius r: a full build lists the
 /// pairs within (1 + SKIN) r, and later builds reuse them while no particle has moved SKIN r/2
 /// (module docs). Chosen from measured cost (docs/throughput.md, "The skin").
-pub const SKIN: f64 = 0.1;
+pub const SKIN: f64 = 0.05;
 
 /// Reusable buffers of the rate evaluation (see the module docs). `S` is the scalar of the
 /// state (`f64` for the solver, [`Dual`](crate::scalar::Dual) for the linearisation), `D` the
