@@ -1,7 +1,8 @@
 //! Criterion benches of the 2D/3D solver (issue 13, item 4): one `kdk` step of the open 200×200
 //! elastic block of `sphstab throughput` (classical m4, Jaumann, AV, artificial stress) on one
 //! thread and on two, and one step of the 3D periodic 22³ box (classical m4, elastic, AV) on
-//! one thread. `cargo bench --features bench --bench solver2d`; divide the time per step by the particle count
+//! one thread; the 2D block moving at 0.1 c with the pair list reused and with a full
+//! neighbour search at every build. `cargo bench --features bench --bench solver2d`; divide the time per step by the particle count
 //! (40,000 and 10,648) for the time per particle-step of `sphstab throughput`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -23,6 +24,31 @@ fn benches(c: &mut Criterion) {
         g.bench_function(
             format!("step 2D, open 200x200 elastic block, AV + art. stress, {threads} thread(s)"),
             |b| b.iter(|| pool.install(|| run.step(cfg.dt).unwrap())),
+        );
+    }
+    // the regime users run (issue 28): the block moving at up to 0.1 c, its pairs changing;
+    // with the pair list reused (skin) and with a full neighbour search at every build, so the
+    // difference is the cost of the searches the reuse saves
+    let mut moving = ThroughputConfig::new(m4);
+    moving.amplitude = 0.1;
+    let pool1 = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    for reuse in [true, false] {
+        let mut run = build_block(&moving, 200).unwrap();
+        run.set_pair_reuse(reuse);
+        pool1.install(|| run.step(moving.dt).unwrap());
+        g.bench_function(
+            format!(
+                "step 2D, open 200x200 elastic block at 0.1 c, {}, 1 thread",
+                if reuse {
+                    "pair list reused"
+                } else {
+                    "full search at every build"
+                }
+            ),
+            |b| b.iter(|| pool1.install(|| run.step(moving.dt).unwrap())),
         );
     }
     let cfg3 = ThroughputConfig::new(m4).with_dim(3);
