@@ -2,6 +2,7 @@
 """PySPH against `sphstab throughput` on the same 200 x 200 block, alternated.
 
     /work/pysph-venv/bin/python alternate.py --sphstab ../../target/release/sphstab [--rounds 3]
+        [--amplitude 0.1]
 
 Each round runs, one process at a time: PySPH serial (non-OpenMP build, OMP_NUM_THREADS=1),
 sphstab --threads 1, PySPH --openmp with OMP_NUM_THREADS=2, sphstab --threads 2. Each tool
@@ -19,8 +20,15 @@ ap.add_argument("--sphstab", required=True)
 ap.add_argument("--rounds", type=int, default=3)
 ap.add_argument("--steps", type=int, default=50)
 ap.add_argument("--size", type=int, default=200)
-ap.add_argument("--out", default=os.path.join(here, "results-alternated.json"))
+# the initial velocity amplitude in c, the same field in both tools (1e-3: the near-static
+# block of the first comparison; 0.1: particles moving as in a real run, pairs changing)
+ap.add_argument("--amplitude", type=float, default=1e-3)
+ap.add_argument("--out")
 a = ap.parse_args()
+if a.out is None:
+    name = "results-alternated.json" if a.amplitude == 1e-3 else \
+        f"results-alternated-A{a.amplitude:g}.json"
+    a.out = os.path.join(here, name)
 
 
 def load():
@@ -36,14 +44,15 @@ def run(cmd, env):
 
 def pysph(threads):
     cmd = [sys.executable, os.path.join(here, "elastic_block.py"), "--steps", str(a.steps),
-           "--size", str(a.size), "--json"] + (["--openmp"] if threads > 1 else [])
+           "--size", str(a.size), "--amp", str(a.amplitude), "--json"] + \
+        (["--openmp"] if threads > 1 else [])
     j, _ = run(cmd, {"OMP_NUM_THREADS": str(threads)})
     return j["ns_per_particle_step"]
 
 
 def sphstab(threads):
     cmd = [a.sphstab, "throughput", "--threads", str(threads), "--size", str(a.size), "--steps",
-           str(a.steps), "--repeats", "3", "--json"]
+           str(a.steps), "--repeats", "3", "--amplitude", str(a.amplitude), "--json"]
     j, _ = run(cmd, {})
     b = j["blocks"][0]
     return b["ns_per_particle_step"], b.get("state_bytes_per_particle")
