@@ -489,13 +489,7 @@ fn swegle_json<'py>(
     })?;
     let hist = history(
         py,
-        &[
-            "t",
-            "centre_abs_v",
-            "max_abs_v_free",
-            "rms_v_free",
-            "kinetic_energy",
-        ],
+        &sphstab::studies::swegle::HISTORY_COLUMNS,
         r.history_full.iter().map(|row| row.to_vec()),
     )?;
     let fin = match &r.final_state {
@@ -550,7 +544,7 @@ fn simulate_json<'py>(
 
     let hist = history(
         py,
-        &["t", "max_abs_v", "kinetic_energy"],
+        &sphstab::solver::scene::HISTORY_COLUMNS,
         r.history.iter().map(|&(t, v, e)| vec![t, v, e]),
     )?;
     let fin = match &r.final_state {

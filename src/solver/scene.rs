@@ -210,6 +210,10 @@ const ROD: &str = r#"{
   "t_end": 1e-4, "dt": 0.2
 }"#;
 
+/// The columns of a scene's history ([`SceneReport::history`], `history.csv`): time (s), max
+/// |v| (m/s), kinetic energy.
+pub const HISTORY_COLUMNS: [&str; 3] = ["t", "max_abs_v", "kinetic_energy"];
+
 /// Result of a scene run.
 #[derive(Clone, Debug, Serialize)]
 pub struct SceneReport {

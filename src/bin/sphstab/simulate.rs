@@ -146,7 +146,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--out: cannot create {}", dir.display()))?;
         let h = csv(
-            &["t", "max_abs_v", "kinetic_energy"],
+            &sphstab::solver::scene::HISTORY_COLUMNS,
             r.history.iter().map(|&(t, v, e)| vec![t, v, e]),
         );
         std::fs::write(dir.join("history.csv"), h)

@@ -135,13 +135,7 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--out: cannot create {}", dir.display()))?;
         let h = sphstab::solver::output::csv(
-            &[
-                "t",
-                "centre_abs_v",
-                "max_abs_v_free",
-                "rms_v_free",
-                "kinetic_energy",
-            ],
+            &sphstab::studies::swegle::HISTORY_COLUMNS,
             r.history_full.iter().map(|row| row.to_vec()),
         );
         std::fs::write(dir.join("history.csv"), h)

@@ -18,6 +18,6 @@ pub use config::{
     MAX_DENSE_BOX_DOFS, SwegleConfig, default_size, dense_size_limit, infinite_grid, max_size,
 };
 pub use predict::{SweglePrediction, predict_swegle};
-pub use report::{Diverged, FinalState, SwegleReport};
+pub use report::{Diverged, FinalState, HISTORY_COLUMNS, SwegleReport};
 pub use run::run_swegle;
 pub use spec::SwegleSpec;

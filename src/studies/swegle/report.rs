@@ -38,6 +38,17 @@ impl From<State<f64, 3>> for FinalState {
     }
 }
 
+/// The columns of a Swegle run's history ([`SwegleReport::history_full`], `history.csv`): time,
+/// the centre particle's |v|, max and RMS |v| of the free particles, kinetic energy (the test's
+/// units).
+pub const HISTORY_COLUMNS: [&str; 5] = [
+    "t",
+    "centre_abs_v",
+    "max_abs_v_free",
+    "rms_v_free",
+    "kinetic_energy",
+];
+
 /// Result of a Swegle run: rates in c/Δx, the time step in Δx/c; what the run measures in the
 /// test's own units (Δx = 0.1, c = √(K/ρ0) ≈ 0.495: `max_velocity_end`, the `fit`'s rate (1/time)
 /// and window, `history`, `diverged.t`) and the keys named `_physical`, which convert them.
