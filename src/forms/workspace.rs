@@ -176,8 +176,8 @@ impl<S: Scalar, const D: usize> Stencils<S, D> {
 /// (φ, ∇φ) of the family and of the corrected functions.
 #[derive(Clone, Debug)]
 struct ShapeScratch<S, const D: usize> {
-    /// Neighbours as the search finds them (index, separation).
-    found: Vec<(usize, [S; D])>,
+    /// Neighbours as the search finds them.
+    found: Vec<u32>,
     nodes: Vec<([S; D], S)>,
     vals: Vec<(S, [S; D])>,
     vals_b: Vec<(S, [S; D])>,
@@ -226,6 +226,8 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     pub(crate) hydro: Vec<Tensor<S, D>>,
     /// Artificial-stress tensors R_I.
     pub(crate) art: Vec<Tensor<S, D>>,
+    /// σ_I/ρ_I² (upper triangles; the sum forms).
+    pub(crate) sig_r: Vec<Tensor<S, D>>,
     /// Displacements (total-Lagrangian forms).
     pub(crate) disp: Vec<[S; D]>,
     /// Antuono's renormalised density gradients ⟨∇ρ⟩_I (δ-SPH).
@@ -275,6 +277,7 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             scratch: Vec::new(),
             hydro: Vec::new(),
             art: Vec::new(),
+            sig_r: Vec::new(),
             disp: Vec::new(),
             rho_grad: Vec::new(),
             key: None,
@@ -381,7 +384,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             .scratch
             .iter()
             .map(|s| {
-                s.found.capacity() * size_of::<(usize, [S; D])>()
+                s.found.capacity() * size_of::<u32>()
                     + s.nodes.capacity() * size_of::<([S; D], S)>()
                     + (s.vals.capacity() + s.vals_b.capacity()) * size_of::<(S, [S; D])>()
             })
@@ -392,7 +395,8 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             + self.cells.reserved_bytes()
             + self.pos.capacity() * size_of::<[f64; D]>()
             + self.vol.capacity() * size_of::<S>()
-            + (self.hydro.capacity() + self.art.capacity()) * size_of::<Tensor<S, D>>()
+            + (self.hydro.capacity() + self.art.capacity() + self.sig_r.capacity())
+                * size_of::<Tensor<S, D>>()
             + self.disp.capacity() * size_of::<[S; D]>()
             + self.rho_grad.capacity() * size_of::<[S; D]>()
             + self.key_x.capacity() * size_of::<[S; D]>()
@@ -591,27 +595,18 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         let sph_a = family == ShapeFamily::Sph;
         let with_self = !sph_a;
         let (pos, cells) = (&self.pos, &self.cells);
-        // the neighbours of i within the support, in a fixed order (cell list or index order)
-        let scan = |i: usize, visit: &mut dyn FnMut(usize, [S; D])| {
-            let xi = z.x[i];
-            let mut test = |j: usize| {
-                let d = m.rel(xi, z.x[j]);
-                let mut d2 = d[0].re() * d[0].re();
-                for c in 1..D {
-                    d2 += d[c].re() * d[c].re();
-                }
-                if d2 < rl2 {
-                    visit(j, d);
-                }
-            };
+        // the neighbours of i within the list radius, in a fixed order (cell list or index
+        // order), appended to `found`: the distance test of `count` below on the positions'
+        // values, the same decision, branch-free (each candidate is written, and kept when
+        // listed)
+        let scan = |i: usize, found: &mut Vec<u32>| {
+            let pi = pos[i];
             if grid {
-                cells.for_candidate_runs(pos[i], |run| {
-                    for &j in run {
-                        test(j as usize);
-                    }
+                cells.for_candidate_runs(pi, |run| {
+                    keep_within(m, pi, pos, rl2, run.iter().copied(), run.len(), found)
                 });
             } else {
-                (0..n).for_each(&mut test);
+                keep_within(m, pi, pos, rl2, 0..n as u32, n, found);
             }
         };
         // (entries, owned pairs) of i: the neighbours `scan` visits, counted without visiting
@@ -707,11 +702,16 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                     // the neighbours by increasing index: the summation order of every rate
                     // term does not depend on the cell grid (module docs)
                     sc.found.clear();
-                    scan(i, &mut |j, d| sc.found.push((j, d)));
-                    sc.found.sort_unstable_by_key(|&(j, _)| j);
+                    scan(i, &mut sc.found);
+                    sc.found.sort_unstable();
+                    let xi = z.x[i];
                     sc.nodes.clear();
                     if !sph_a || with_corrected {
-                        sc.nodes.extend(sc.found.iter().map(|&(j, d)| (d, vol[j])));
+                        sc.nodes.extend(
+                            sc.found
+                                .iter()
+                                .map(|&j| (m.rel(xi, z.x[j as usize]), vol[j as usize])),
+                        );
                     }
                     if !sph_a {
                         eval_d(family, kp, &sc.nodes, pos[i][0], &mut sc.vals)?;
@@ -730,12 +730,13 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                     // pairs numbered in that order
                     let mut e = start[i] as usize;
                     let mut p = upper[i] as usize;
-                    for (k, &(j, d)) in sc.found.iter().enumerate() {
+                    for (k, &j) in sc.found.iter().enumerate() {
+                        let j = j as usize;
                         if j == i && !with_self {
                             continue;
                         }
                         if j >= i {
-                            let (w, f, inside) = pair_data(&pk, d, r2);
+                            let (w, f, inside) = pair_data(&pk, m.rel(xi, z.x[j]), r2);
                             inside_pairs += usize::from(inside);
                             // SAFETY: pair p and entry e belong to particle i alone (the
                             // offsets of pass 1 partition both arrays by particle)
@@ -900,6 +901,34 @@ fn fit<T: Clone>(v: &mut Vec<T>, len: usize, fill: T) {
         v.reserve_exact(len + len / 32);
     }
     v.resize(len, fill);
+}
+
+/// Appends to `found` the candidates `js` (`len` of them) closer to `pi` than √`rl2` (the
+/// distance test of the neighbour search), in their order, branch-free: each candidate is
+/// written, and kept when within.
+#[inline(always)]
+fn keep_within<const D: usize>(
+    m: &Model<D>,
+    pi: [f64; D],
+    pos: &[[f64; D]],
+    rl2: f64,
+    js: impl Iterator<Item = u32>,
+    len: usize,
+    found: &mut Vec<u32>,
+) {
+    let k0 = found.len();
+    found.resize(k0 + len, 0);
+    let mut k = k0;
+    for j in js {
+        let d = m.rel(pi, pos[j as usize]);
+        let mut d2 = d[0] * d[0];
+        for c in 1..D {
+            d2 += d[c] * d[c];
+        }
+        found[k] = j;
+        k += usize::from(d2 < rl2);
+    }
+    found.truncate(k);
 }
 
 /// Whether a periodic cell is a rectangular box (off-diagonal entries exactly zero).
