@@ -64,4 +64,4 @@ pub use params::{
     DiffusionForm, Material, ModelParams, ObjectiveRate, ViscosityPairs,
 };
 pub use state::{AuxRates, Comp, FieldKind, RateOut, State, StateView, Tensor, n_sym, voigt};
-pub use workspace::{RateWorkspace, SKIN};
+pub use workspace::{RateWorkspace, default_skin};

@@ -59,20 +59,21 @@ fn over_rho2<S: Scalar, const D: usize>(si: &Tensor<S, D>, ri2: S) -> Tensor<S, 
 }
 
 /// (σ_I/ρ_I² + σ_J/ρ_J²) ρ_J · ∇φ_J, one term of the classical sum \[V21 eq 55\], with
-/// `si_r` = σ_I/ρ_I² and `sj_r` = σ_J/ρ_J² from [`over_rho2`], computed once per particle
-/// (the quotients as divisions: the Swegle runs amplify a last-bit change of them to 1e-7).
+/// `si_r` = σ_I/ρ_I² from [`over_rho2`] (the quotients as divisions: the Swegle runs amplify
+/// a last-bit change of them to 1e-7).
 #[inline]
 fn sum_term<S: Scalar, const D: usize>(
     si_r: &Tensor<S, D>,
-    sj_r: &Tensor<S, D>,
+    sj: &Tensor<S, D>,
     rj: S,
     g: [S; D],
 ) -> [S; D] {
+    let rj2 = rj * rj;
     let mut t = [[S::zero(); D]; D];
     // symmetric: the upper triangle, mirrored
     for p in 0..D {
         for q in p..D {
-            t[p][q] = si_r[p][q] + sj_r[p][q];
+            t[p][q] = si_r[p][q] + sj[p][q] / rj2;
             t[q][p] = t[p][q];
         }
     }
@@ -341,24 +342,19 @@ fn accelerations<S: Scalar, const D: usize>(
         ws.art
             .extend(sig.iter().zip(z.rho).map(|(s, &r)| art_tensor(s, r, a.eps)));
     }
+    let (st, art, vol) = (&ws.st, &ws.art, &ws.vol);
     let sum_form = matches!(form, FormKind::Classical | FormKind::Cll);
-    // σ/ρ² of every particle, once (each particle's is read by all its neighbours)
-    ws.sig_r.clear();
-    if sum_form {
-        ws.sig_r
-            .par_extend(sig.par_iter().zip(z.rho).map(|(s, &r)| over_rho2(s, r * r)));
-    }
-    let (st, art, vol, sig_r) = (&ws.st, &ws.art, &ws.vol, &ws.sig_r);
     let diff_form = matches!(form, FormKind::Nonlocal | FormKind::Local | FormKind::Lnl);
     let av = m.p.av;
     // per-particle accelerations in parallel (rayon)
     acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
         let (rho_i, si) = (z.rho[i], &sig[i]);
+        let si_r = over_rho2(si, rho_i * rho_i);
         let (mut fa, mut fav, mut far) = ([S::zero(); D], [S::zero(); D], [S::zero(); D]);
         st.for_each::<false>(m, z.x, vol, i, |nb| {
             let j = nb.j;
             if sum_form {
-                add(&mut fa, sum_term(&sig_r[i], &sig_r[j], z.rho[j], nb.g));
+                add(&mut fa, sum_term(&si_r, &sig[j], z.rho[j], nb.g));
             } else if diff_form {
                 add(&mut fa, diff_term(si, &sig[j], nb.g));
             }

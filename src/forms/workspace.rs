@@ -43,7 +43,7 @@
 //!
 //! Between two builds the particles of a run move by a small fraction of the support, and the
 //! pairs rarely change. A full build therefore lists every pair closer than r + s, the support
-//! radius r = ζh plus a skin s = [`SKIN`] × r (the Verlet list of molecular dynamics), and gives
+//! radius r = ζh plus a skin s = [`default_skin`] × r (the Verlet list of molecular dynamics), and gives
 //! the pairs beyond r zero kernel data. A later build keeps that list and only recomputes the
 //! pairs' data (−W'/r, fⁿ, zero beyond r) while every particle has moved less than s/2 since the
 //! full build (the rule of LAMMPS and GROMACS): a pair not listed was at least r + s apart and
@@ -205,10 +205,14 @@ const CHUNK: usize = 128;
 /// than one cell apart.
 const CELL_SIDE: f64 = 1.0 + 1.0 / 16.0;
 
-/// The skin of the pair list, as a fraction of the support radius r: a full build lists the
-/// pairs within (1 + SKIN) r, and later builds reuse them while no particle has moved SKIN r/2
-/// (module docs). Chosen from measured cost (docs/throughput.md, "The skin").
-pub const SKIN: f64 = 0.05;
+/// The default skin of the pair list in `dim` dimensions, as a fraction s of the support radius
+/// r: a full build lists the pairs within (1 + s) r, and later builds reuse them while no
+/// particle has moved s r/2 (module docs). 0.05 in 1D and 2D, 0.1 in 3D, chosen from measured
+/// cost (docs/throughput.md, "The skin"): a 3D search tests 3³ cells of candidates, so it pays
+/// to search half as often for the (1.1/1.05)³ − 1 = 15% more pairs the wider skin lists.
+pub const fn default_skin(dim: usize) -> f64 {
+    if dim >= 3 { 0.1 } else { 0.05 }
+}
 
 /// Reusable buffers of the rate evaluation (see the module docs). `S` is the scalar of the
 /// state (`f64` for the solver, [`Dual`](crate::scalar::Dual) for the linearisation), `D` the
@@ -226,8 +230,6 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     pub(crate) hydro: Vec<Tensor<S, D>>,
     /// Artificial-stress tensors R_I.
     pub(crate) art: Vec<Tensor<S, D>>,
-    /// σ_I/ρ_I² (upper triangles; the sum forms).
-    pub(crate) sig_r: Vec<Tensor<S, D>>,
     /// Displacements (total-Lagrangian forms).
     pub(crate) disp: Vec<[S; D]>,
     /// Antuono's renormalised density gradients ⟨∇ρ⟩_I (δ-SPH).
@@ -243,7 +245,7 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     built: Vec<[f64; D]>,
     /// Radius of the pair list of the last full build (r + skin; 0: no list to reuse).
     list_r: f64,
-    /// Skin as a fraction of the support radius ([`SKIN`]).
+    /// Skin as a fraction of the support radius ([`default_skin`]).
     skin: f64,
     /// Owned pairs within the support radius at the last build (the others have zero data).
     within: usize,
@@ -277,7 +279,6 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             scratch: Vec::new(),
             hydro: Vec::new(),
             art: Vec::new(),
-            sig_r: Vec::new(),
             disp: Vec::new(),
             rho_grad: Vec::new(),
             key: None,
@@ -286,7 +287,7 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             key_mass: Vec::new(),
             built: Vec::new(),
             list_r: 0.0,
-            skin: SKIN,
+            skin: default_skin(D),
             within: 0,
             reuse: true,
             builds: (0, 0),
@@ -351,7 +352,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     }
 
     /// The skin of the pair list as a fraction of the support radius, in [0, 1] (default
-    /// [`SKIN`]; module docs): larger lists more pairs, reused for longer. Results are bitwise
+    /// [`default_skin`]; module docs): larger lists more pairs, reused for longer. Results are bitwise
     /// the same for every skin.
     pub fn set_skin(&mut self, fraction: f64) {
         self.skin = fraction.clamp(0.0, 1.0);
@@ -395,8 +396,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             + self.cells.reserved_bytes()
             + self.pos.capacity() * size_of::<[f64; D]>()
             + self.vol.capacity() * size_of::<S>()
-            + (self.hydro.capacity() + self.art.capacity() + self.sig_r.capacity())
-                * size_of::<Tensor<S, D>>()
+            + (self.hydro.capacity() + self.art.capacity()) * size_of::<Tensor<S, D>>()
             + self.disp.capacity() * size_of::<[S; D]>()
             + self.rho_grad.capacity() * size_of::<[S; D]>()
             + self.key_x.capacity() * size_of::<[S; D]>()

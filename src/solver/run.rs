@@ -567,7 +567,7 @@ impl<const D: usize> Run<D> {
     }
 
     /// The skin of the pair list as a fraction of the support radius (default
-    /// [`crate::forms::SKIN`]; bitwise the same results for every skin, see
+    /// [`crate::forms::default_skin`]; bitwise the same results for every skin, see
     /// [`RateWorkspace::set_skin`]).
     pub fn set_skin(&mut self, fraction: f64) {
         self.bufs.sys.ws.get_mut().set_skin(fraction);

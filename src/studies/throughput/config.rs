@@ -106,13 +106,14 @@ impl ThroughputConfig {
             repeats: 3,
             amplitude: 1e-3,
             pair_reuse: true,
-            skin: crate::forms::SKIN,
+            skin: crate::forms::default_skin(2),
             budget: Budget::default(),
         }
     }
 
     /// The defaults in dimension `dim`: in 3D a periodic box and no artificial stress (not
-    /// available in 3D), everything else as in 2D.
+    /// available in 3D) and the pair list's skin of the dimension
+    /// ([`default_skin`](crate::forms::default_skin)), everything else as in 2D.
     pub fn with_dim(self, dim: usize) -> Self {
         Self {
             dim,
@@ -122,6 +123,7 @@ impl ThroughputConfig {
                 Domain::Open
             },
             art_stress: if dim == 3 { None } else { self.art_stress },
+            skin: crate::forms::default_skin(dim),
             ..self
         }
     }
