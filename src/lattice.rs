@@ -320,11 +320,17 @@ impl<const D: usize> Lattice<D> {
     /// The image of k in the first Brillouin zone (nearest to Γ among k − G, G a
     /// reciprocal-lattice vector with coefficients in −2..=2).
     pub fn fold(&self, k: [f64; D]) -> [f64; D] {
-        let b = self.reciprocal();
+        self.fold_with(&self.reciprocal(), k)
+    }
+
+    /// [`Self::fold`] with the reciprocal vectors `b` given (computed once for many folds).
+    pub fn fold_with(&self, b: &[[f64; D]; D], k: [f64; D]) -> [f64; D] {
         let mut best = k;
         // |·| as the 2D code always computed it (hypot), so that 2D folds are unchanged
         let len = |v: &[f64; D]| if D == 2 { v[0].hypot(v[1]) } else { norm(v) };
+        let sq = |v: &[f64; D]| v.iter().map(|x| x * x).sum::<f64>();
         let mut bn = len(&k);
+        let mut bs = sq(&k);
         for idx in 0..5usize.pow(D as u32) {
             let mut m = [0.0; D];
             let mut rest = idx;
@@ -338,10 +344,16 @@ impl<const D: usize> Lattice<D> {
                     q[a] -= m[i] * b[i][a];
                 }
             }
+            // an image more than 1e-10 longer (squared) than the best cannot be shorter by
+            // 1e-12: the length (a libm call) only for the others, with the same test
+            if sq(&q) > bs * (1.0 + 1e-10) {
+                continue;
+            }
             let qn = len(&q);
             if qn < bn - 1e-12 {
                 best = q;
                 bn = qn;
+                bs = sq(&q);
             }
         }
         best

@@ -18,6 +18,7 @@ use crate::lattice::{Lattice, LatticeKind, grid_index};
 use crate::params::{check_art_stress_dim, check_common, check_count};
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::vonneumann::linearise::{Bloch, Lattice1D, Linearisation};
+use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -405,20 +406,21 @@ impl<const D: usize> Query<D> {
         let b = self.lattice.reciprocal();
         let n = self.grid;
         let count = n.pow(D as u32);
-        let mut out = Vec::with_capacity(count);
-        for idx in 1..count {
-            let f = grid_index::<D>(idx, n).map(|i| i as f64 / n as f64);
-            let mut k = [0.0; D];
-            for c in 0..D {
-                let mut v = f[0] * b[0][c];
-                for a in 1..D {
-                    v += f[a] * b[a][c];
+        (1..count)
+            .into_par_iter()
+            .map(|idx| {
+                let f = grid_index::<D>(idx, n).map(|i| i as f64 / n as f64);
+                let mut k = [0.0; D];
+                for c in 0..D {
+                    let mut v = f[0] * b[0][c];
+                    for a in 1..D {
+                        v += f[a] * b[a][c];
+                    }
+                    k[c] = v;
                 }
-                k[c] = v;
-            }
-            out.push(self.lattice.fold(k));
-        }
-        out
+                self.lattice.fold_with(&b, k)
+            })
+            .collect()
     }
 
     /// Continuum branches ω²/|k|² (units of c²) of the material at the question's stress: (P, S).

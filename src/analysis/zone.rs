@@ -14,14 +14,16 @@ use super::report::{
 };
 use crate::error::{Error, Result, check_range};
 use crate::integrator::Integrator;
-use crate::lattice::Lattice;
+use crate::lattice::{Lattice, grid_index};
 use crate::params::check_count;
 use crate::vonneumann::amplification::{
     AMPLIFICATION_TOL, critical_dt_given, spectral_radius_with, step_stability,
 };
 use crate::vonneumann::classify::{GROWTH_TOL, Kind, ZERO_OMEGA2_TOL, growth_kind};
 use crate::vonneumann::damping::{branch_eigenvalues, critical_dt_eq120, damping_ratio};
+use crate::vonneumann::linearise::Bloch;
 use crate::vonneumann::maximise::refine_grid_max;
+use num_complex::Complex64;
 use rayon::prelude::*;
 
 fn polarisation<const D: usize>(p: [num_complex::Complex64; D], k: [f64; D]) -> Polarisation {
@@ -71,6 +73,53 @@ fn nearest_neighbour<const D: usize>(lat: &Lattice<D>) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// Growth and branches ([`Bloch::growth_and_branches`]) at every wave vector of `q.kgrid()`
+/// (`ks`: the grid^D zone sampling without Γ, in grid order), each pair {k, −k} evaluated once.
+/// The Jacobian columns are real, so J(−k) = conj J(k): the same growth, and the conjugate
+/// eigenvalues and polarisations, which the partner's entry gets (the grid index of −k is
+/// (n − i) mod n per axis). Halves the work of a zone scan.
+#[allow(clippy::type_complexity)]
+fn zone_modes<const D: usize>(
+    lin: &Bloch<D>,
+    n: usize,
+    ks: &[[f64; D]],
+) -> Result<Vec<(f64, [Complex64; D], Vec<(Complex64, [Complex64; D])>)>> {
+    let count = n.pow(D as u32);
+    debug_assert_eq!(ks.len(), count - 1);
+    // ks[i] is grid entry i + 1
+    let partner = |i: usize| -> usize {
+        let c = grid_index::<D>(i + 1, n);
+        let mut idx = 0;
+        for a in 0..D {
+            idx = idx * n + (n - c[a]) % n;
+        }
+        idx - 1
+    };
+    let reps: Vec<usize> = (0..ks.len()).filter(|&i| i <= partner(i)).collect();
+    let done: Vec<_> = reps
+        .par_iter()
+        .map(|&i| lin.growth_and_branches(ks[i]))
+        .collect::<Result<_>>()?;
+    let mut out: Vec<Option<(f64, [Complex64; D], Vec<(Complex64, [Complex64; D])>)>> =
+        vec![None; ks.len()];
+    for (&i, m) in reps.iter().zip(done) {
+        let j = partner(i);
+        if j != i {
+            let conj = |v: [Complex64; D]| v.map(|c| c.conj());
+            out[j] = Some((
+                m.0,
+                conj(m.1),
+                m.2.iter().map(|&(l, v)| (l.conj(), conj(v))).collect(),
+            ));
+        }
+        out[i] = Some(m);
+    }
+    Ok(out
+        .into_iter()
+        .map(|m| m.expect("every grid entry is a representative or its partner"))
+        .collect())
+}
+
 /// Answers a stability question in D ≥ 2 dimensions.
 pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
     let lin = q.linearise_at(q.stress)?;
@@ -88,11 +137,8 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
     let mut grow = Vec::with_capacity(ks.len());
     let mut w2max: f64 = 0.0;
     let mut zeros = Vec::with_capacity(ks.len());
-    // one J(k) per wave vector, in parallel
-    let modes: Vec<_> = ks
-        .par_iter()
-        .map(|&k| lin.growth_and_branches(k))
-        .collect::<Result<_>>()?;
+    // one J(k) per pair {k, −k} of wave vectors, in parallel
+    let modes = zone_modes(&lin, q.grid, &ks)?;
     for (g, _, br) in modes {
         if !g.is_finite() || br.iter().any(|b| !b.0.re.is_finite()) {
             return Err(Error::NonFinite("dispersion branches (eigenvalues)"));
@@ -293,10 +339,7 @@ pub(super) fn timestep<const D: usize>(q: &Query<D>) -> Result<TimestepReport> {
         super::work::Question::Timestep,
     )?;
     let ks = q.kgrid();
-    let modes: Vec<_> = ks
-        .par_iter()
-        .map(|&k| lin.growth_and_branches(k))
-        .collect::<Result<_>>()?;
+    let modes = zone_modes(&lin, q.grid, &ks)?;
     let mut w2max: f64 = 0.0;
     let mut grows = false;
     for (g, _, br) in &modes {
