@@ -205,6 +205,11 @@ const CHUNK: usize = 128;
 /// than one cell apart.
 const CELL_SIDE: f64 = 1.0 + 1.0 / 16.0;
 
+/// Cells per list radius of the neighbour search by dimension (index D): the candidates of a
+/// particle are the (2s + 1)^D cells of side ≥ r/s around its own. Chosen from measured cost
+/// (docs/throughput.md, "The skin").
+const CELL_SUB: [usize; 4] = [1, 1, 1, 2];
+
 /// The default skin of the pair list in `dim` dimensions, as a fraction s of the support radius
 /// r: a full build lists the pairs within (1 + s) r, and later builds reuse them while no
 /// particle has moved s r/2 (module docs). 0.05 in 1D and 2D, 0.1 in 3D, chosen from measured
@@ -578,7 +583,8 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         self.pos.extend(z.x.iter().map(|p| p.map(|c| c.re())));
         let grid = match m.period {
             None => {
-                self.cells.rebuild(&self.pos, rl * CELL_SIDE, None);
+                self.cells
+                    .rebuild_subdivided(&self.pos, rl * CELL_SIDE, None, CELL_SUB[D]);
                 true
             }
             Some(l) if is_diagonal(&l) => {
@@ -586,7 +592,8 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
                 for (a, e) in ext.iter_mut().enumerate() {
                     *e = l[a][a];
                 }
-                self.cells.rebuild(&self.pos, rl * CELL_SIDE, Some(ext));
+                self.cells
+                    .rebuild_subdivided(&self.pos, rl * CELL_SIDE, Some(ext), CELL_SUB[D]);
                 true
             }
             Some(_) => false,
