@@ -422,9 +422,9 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         with_corrected: bool,
     ) -> Result<()> {
         self.vol.clear();
-        self.vol.extend(
+        self.vol.par_extend(
             z.rho
-                .iter()
+                .par_iter()
                 .zip(&m.mass)
                 .map(|(&rho, &ms)| S::cst(ms) / rho),
         );
@@ -477,7 +477,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     /// positions of the last build.
     fn pairs_still_valid(&mut self, m: &Model<D>, x: &[[S; D]]) -> bool {
         self.pos.clear();
-        self.pos.extend(x.iter().map(|p| p.map(|c| c.re())));
+        self.pos.par_extend(x.par_iter().map(|p| p.map(|c| c.re())));
         let r = m.p.kp.support();
         if self.built.len() != x.len() || self.list_r <= r {
             return false;
@@ -580,7 +580,8 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
         let rl = if reusable { r * (1.0 + self.skin) } else { r };
         let rl2 = rl * rl;
         self.pos.clear();
-        self.pos.extend(z.x.iter().map(|p| p.map(|c| c.re())));
+        self.pos
+            .par_extend(z.x.par_iter().map(|p| p.map(|c| c.re())));
         let grid = match m.period {
             None => {
                 self.cells
