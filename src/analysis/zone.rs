@@ -388,7 +388,7 @@ mod tests {
         let mut q2 = Query::<2>::new(FormKind::Classical, m4, 1.2, 0.05);
         q2.lattice = Lattice::<2>::hexagonal();
         q2.grid = 7;
-        let mut q2v = q2.clone();
+        let mut q2v = q2;
         q2v.av = Some((1.0, 1.0));
         let mut q3 = Query::<3>::new(FormKind::Classical, m4, 1.2, 0.01);
         q3.lattice = Lattice::<3>::bcc();
