@@ -43,8 +43,8 @@
 //!
 //! Between two builds the particles of a run move by a small fraction of the support, and the
 //! pairs rarely change. A full build therefore lists every pair closer than r + s, the support
-//! radius r = ζh plus a skin s = [`default_skin`] × r (the Verlet list of molecular dynamics), and gives
-//! the pairs beyond r zero kernel data. A later build keeps that list and only recomputes the
+//! radius r = ζh plus a skin s = [`default_skin`] × r (the Verlet list of molecular
+//! dynamics), and gives the pairs beyond r zero kernel data. A later build keeps that list and only recomputes the
 //! pairs' data (−W'/r, fⁿ, zero beyond r) while every particle has moved less than s/2 since the
 //! full build (the rule of LAMMPS and GROMACS): a pair not listed was at least r + s apart and
 //! has closed by less than s, so no pair within r is missing. The pairs listed but beyond r add
@@ -213,8 +213,9 @@ const CELL_SUB: [usize; 4] = [1, 1, 1, 2];
 /// The default skin of the pair list in `dim` dimensions, as a fraction s of the support radius
 /// r: a full build lists the pairs within (1 + s) r, and later builds reuse them while no
 /// particle has moved s r/2 (module docs). 0.05 in 1D and 2D, 0.1 in 3D, chosen from measured
-/// cost (docs/throughput.md, "The skin"): a 3D search tests 3³ cells of candidates, so it pays
-/// to search half as often for the (1.1/1.05)³ − 1 = 15% more pairs the wider skin lists.
+/// cost (docs/throughput.md, "The skin"): a full search costs more against a step in 3D than
+/// in 2D, so it pays to search half as often for the (1.1/1.05)³ − 1 = 15% more pairs the
+/// wider skin lists.
 pub const fn default_skin(dim: usize) -> f64 {
     if dim >= 3 { 0.1 } else { 0.05 }
 }
@@ -357,8 +358,8 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
     }
 
     /// The skin of the pair list as a fraction of the support radius, in [0, 1] (default
-    /// [`default_skin`]; module docs): larger lists more pairs, reused for longer. Results are bitwise
-    /// the same for every skin.
+    /// [`default_skin`]; module docs): larger lists more pairs, reused for longer. Results are
+    /// bitwise the same for every skin.
     pub fn set_skin(&mut self, fraction: f64) {
         self.skin = fraction.clamp(0.0, 1.0);
         self.list_r = 0.0;
@@ -623,12 +624,7 @@ impl<S: Scalar, const D: usize> RateWorkspace<S, D> {
             let pi = pos[i];
             let (mut all, mut own) = (0u32, 0u32);
             let mut test = |j: usize| {
-                let d = m.rel(pi, pos[j]);
-                let mut d2 = d[0] * d[0];
-                for c in 1..D {
-                    d2 += d[c] * d[c];
-                }
-                let listed = u32::from(d2 < rl2) & u32::from(j != i || with_self);
+                let listed = u32::from(dist2(m, pi, pos[j]) < rl2) & u32::from(j != i || with_self);
                 all += listed;
                 own += listed & u32::from(j >= i);
             };
@@ -928,15 +924,22 @@ fn keep_within<const D: usize>(
     found.resize(k0 + len, 0);
     let mut k = k0;
     for j in js {
-        let d = m.rel(pi, pos[j as usize]);
-        let mut d2 = d[0] * d[0];
-        for c in 1..D {
-            d2 += d[c] * d[c];
-        }
         found[k] = j;
-        k += usize::from(d2 < rl2);
+        k += usize::from(dist2(m, pi, pos[j as usize]) < rl2);
     }
     found.truncate(k);
+}
+
+/// |x_j − x_i|² (minimum image), the neighbour search's distance test: one definition for the
+/// counting pass and the listing pass, so that both make the same decision.
+#[inline(always)]
+fn dist2<const D: usize>(m: &Model<D>, pi: [f64; D], pj: [f64; D]) -> f64 {
+    let d = m.rel(pi, pj);
+    let mut d2 = d[0] * d[0];
+    for c in 1..D {
+        d2 += d[c] * d[c];
+    }
+    d2
 }
 
 /// Whether a periodic cell is a rectangular box (off-diagonal entries exactly zero).

@@ -68,8 +68,9 @@ pub struct Args {
     #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
     amplitude: f64,
     /// Skin of the neighbour pair list, as a fraction of the support radius, in [0, 1]
-    /// (default 0.05 in 2D, 0.1 in 3D): a full search lists the pairs within (1 + skin) r, later builds reuse
-    /// them while no particle has moved half the skin. Bitwise the same results for every skin.
+    /// (default 0.05 in 2D, 0.1 in 3D): a full search lists the pairs within (1 + skin) r,
+    /// later builds reuse them while no particle has moved half the skin. Bitwise the same
+    /// results for every skin.
     #[arg(long)]
     skin: Option<f64>,
     /// Timed steps per repeat (after one warm-up step), in [1, 10⁶]. Default 20: the default
