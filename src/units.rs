@@ -59,6 +59,8 @@ pub const STRESS: &str = "sigma/C";
 const WAVE: &str = "1/dx";
 /// ω² Δx²/c².
 const OMEGA2: &str = "(c/dx)^2";
+/// The argument of `interpolate`'s test function (its interval's units).
+const ARG: &str = "argument";
 /// Wall-clock seconds.
 const WALL: &str = "s (wall clock)";
 
@@ -136,6 +138,15 @@ const TABLE: &[(&str, Unit)] = &[
     ("first_negative_k", Fixed("1/h")),
     ("k_max", Fixed("1/h")),
     ("wstar_k_max", Fixed("1/h")),
+    // `interpolate`: the test function's argument, and its derivatives
+    ("interval", Fixed(ARG)),
+    ("spacing", Fixed(ARG)),
+    ("position", Fixed(ARG)),
+    ("gradient_x", Fixed("1/argument")),
+    ("gradient_x_approx", Fixed("1/argument")),
+    ("laplacian_exact", Fixed("1/argument^2")),
+    ("laplacian_approx", Fixed("1/argument^2")),
+    ("gradient_peak_width", Fixed(LENGTH)),
     // lengths (Δx)
     ("h", Fixed(LENGTH)),
     ("h_over_dx", Fixed(LENGTH)),

@@ -60,11 +60,13 @@ use crate::vonneumann::closed_form as cf;
 use rayon::prelude::*;
 
 mod antiplane;
+mod interpolation;
 mod scene;
 mod swegle;
 
 use antiplane::cutoff_marks;
 pub use antiplane::{AntiPlaneRoute, AntiPlaneSeries, KAPPA_THETA_DESC, OMEGA_DESC};
+pub use interpolation::{InterpolationQuantity, InterpolationSeries};
 pub use scene::{SceneQuantity, SceneRoute, SceneSeries};
 use serde::Deserialize;
 use std::f64::consts::PI;
@@ -165,6 +167,9 @@ pub struct FigureConfig {
     /// 1D scene profiles (stress or velocity against the reference position).
     #[serde(default)]
     pub scene: Vec<SceneSeries>,
+    /// Interpolations of a test function (against position).
+    #[serde(default)]
+    pub interpolation: Vec<InterpolationSeries>,
     /// Abscissa description (default: that of the curves' kind; scene figures give theirs).
     pub x_desc: Option<String>,
     /// Ordinate description (default: that of the curves' kind; scene figures give theirs).
@@ -197,6 +202,9 @@ pub struct Panel {
     /// 1D scene profiles.
     #[serde(default)]
     pub scene: Vec<SceneSeries>,
+    /// Interpolations of a test function.
+    #[serde(default)]
+    pub interpolation: Vec<InterpolationSeries>,
 }
 
 fn default_points() -> usize {
@@ -303,6 +311,7 @@ struct PanelSpec<'a> {
     antiplane: &'a [AntiPlaneSeries],
     swegle: &'a [SwegleSeries],
     scene: &'a [SceneSeries],
+    interpolation: &'a [InterpolationSeries],
 }
 
 impl FigureConfig {
@@ -315,6 +324,7 @@ impl FigureConfig {
                 antiplane: &self.antiplane,
                 swegle: &self.swegle,
                 scene: &self.scene,
+                interpolation: &self.interpolation,
             }];
         }
         self.panels
@@ -326,6 +336,7 @@ impl FigureConfig {
                 antiplane: &p.antiplane,
                 swegle: &p.swegle,
                 scene: &p.scene,
+                interpolation: &p.interpolation,
             })
             .collect()
     }
@@ -351,6 +362,8 @@ pub fn panel_curves(cfg: &FigureConfig) -> Result<Vec<Vec<Curve>>> {
                 Ok(c.into_iter().flatten().collect())
             } else if !p.scene.is_empty() {
                 p.scene.iter().map(|s| s.curve(&cfg.budget)).collect()
+            } else if !p.interpolation.is_empty() {
+                p.interpolation.iter().map(|s| s.curve()).collect()
             } else {
                 p.series.iter().map(|s| s.curve(cfg.points)).collect()
             }
@@ -388,17 +401,17 @@ impl FigureConfig {
                 "`output` = {o:?} must be a plain file name ending in .svg (no directory, no ..)"
             ));
         }
-        let curves = |what: &str, counts: [usize; 4]| {
+        let curves = |what: &str, counts: [usize; 5]| {
             let kinds = counts.iter().filter(|&&n| n > 0).count();
             let n: usize = counts.iter().sum();
             match kinds {
                 0 => Err(format!(
-                    "{what}: give 1 to 64 curves in `series` (1D), `antiplane` (2D), `swegle` or `scene`"
+                    "{what}: give 1 to 64 curves in `series` (1D), `antiplane` (2D), `swegle`, `scene` or `interpolation`"
                 )),
                 1 if n <= 64 => Ok(()),
                 1 => Err(format!("{what} has {n} curves: give 1 to 64")),
                 _ => Err(format!(
-                    "{what}: give one of `series` (1D), `antiplane` (2D), `swegle`, `scene`, not several (their axes differ)"
+                    "{what}: give one of `series` (1D), `antiplane` (2D), `swegle`, `scene`, `interpolation`, not several (their axes differ)"
                 )),
             }
         };
@@ -416,6 +429,7 @@ impl FigureConfig {
                     self.antiplane.len(),
                     self.swegle.len(),
                     self.scene.len(),
+                    self.interpolation.len(),
                 ],
             )?;
         } else {
@@ -423,6 +437,7 @@ impl FigureConfig {
                 || !self.antiplane.is_empty()
                 || !self.swegle.is_empty()
                 || !self.scene.is_empty()
+                || !self.interpolation.is_empty()
             {
                 return Err(
                     "give the curves either at the top level or in `panels`, not both".into(),
@@ -442,6 +457,7 @@ impl FigureConfig {
                         p.antiplane.len(),
                         p.swegle.len(),
                         p.scene.len(),
+                        p.interpolation.len(),
                     ],
                 )?;
                 range(&format!("`panels[{i}].y_range`"), p.y_range)?;
@@ -480,6 +496,8 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
                     "stress σ (+ tension) or velocity",
                     Vec::new(),
                 )
+            } else if !p.interpolation.is_empty() {
+                ("position x", "f, ∂f/∂x or ∂²f/∂x²", Vec::new())
             } else {
                 (KAPPA_DESC, OMEGA2_DESC, Vec::new())
             };

@@ -14,6 +14,7 @@ mod common;
 
 // kernels, shape functions, derivatives
 mod derivative_audit;
+mod interpolation;
 mod kernels;
 mod layers;
 mod shape;

@@ -226,7 +226,10 @@ fn results_do_not_depend_on_the_thread_count() {
                 a.step(cfg2.dt).unwrap();
                 b.step(cfg3.dt).unwrap();
             }
-            assert!(a.stencil_builds().0 >= 2, "2D block: no full search after the first");
+            assert!(
+                a.stencil_builds().0 >= 2,
+                "2D block: no full search after the first"
+            );
             (bits(&a), bits(&b))
         })
     };

@@ -1309,43 +1309,6 @@ fn thesis_kernels() -> Row {
     }
 }
 
-/// [T §2.7, Figs 2.11 and 2.13]: the interior gradient gain |S1|/κ of the sph gradient with the
-/// modified mollifier = √ω²/κ of `total-lagrangian --shape sph` (ω² = C̄ S1²).
-fn thesis_gradient_gain() -> Row {
-    let gain = |h: f64, ppw: f64| {
-        let kap = 2.0 * PI / ppw;
-        lin(
-            FormKind::TotalLagrangian,
-            "mollifier",
-            ShapeFamily::Sph,
-            h,
-            0.0,
-        )
-        .omega2(kap)
-        .0
-        .sqrt()
-            / kap
-    };
-    let g15 = gain(1.5, 40.0);
-    let g55: Vec<f64> = [10.0, 20.0, 40.0].iter().map(|&p| gain(5.5, p)).collect();
-    let ok = (g15 - 1.0).abs() > 0.5 && g55.windows(2).all(|w| w[0] < w[1]) && g55[2] < 1.0;
-    Row {
-        item: "Thesis Figs 2.11, 2.13",
-        shows: "SPH interpolation of (x − 0.5)⁴ and sin x with ghosts, fine discretisation: f and its gradients for several covers",
-        how: "`sphstab dispersion --form total-lagrangian --shape sph --kernel mollifier --h 1.5 --stress 0` (and `--h 5.5`): √(ω²)/κΔx = gain of the gradient",
-        paper: "cover 1.5 ps does not approximate gradients; at 5.5 ps the derivative's amplitude is reduced, less so with more particles (§2.7, §2.7.1)".into(),
-        ours: format!(
-            "interior gradient gain: h = 1.5Δx, 40 points per wavelength: {g15:.4}; h = 5.5Δx at 10, 20, 40 points per wavelength: {}",
-            list(&g55, 4)
-        ),
-        agree: if ok {
-            "partly (both statements ✔ in the interior, infinite lattice; the finite-interval curves with ghosts need code)".into()
-        } else {
-            verdict(false, "")
-        },
-    }
-}
-
 /// [T §4.6.3.3, Figs 4.10–4.12]: Δt = h/c (eq 4.47), h the cover (support radius), c = c_b.
 fn thesis_dt() -> Row {
     use sphstab::analysis::{Query, query, timestep};
@@ -1630,6 +1593,363 @@ fn thesis_fig59() -> Row {
     }
 }
 
+/// The interpolations of [T §2.7] (Figs 2.10–2.20), by `sphstab interpolate`'s code. The thesis
+/// names no kernel for §2.7 (§6.1: the modified mollifier "was used in all the SPH
+/// implementations"), no particle count and only two covers (1.5 and 5.5 ps): the mollifier,
+/// the counts and the covers 1.5, 2.5, 3.5, 5.5, 7.5 ps (= h/Δx, ζ = 1) are sphstab's choice,
+/// fixed with each row's criterion before it was computed.
+mod interp {
+    use super::{Row, list, verdict};
+    use sphstab::kernel;
+    use sphstab::studies::interpolation::{
+        InterpolationConfig, InterpolationReport, Normalisation, TestFunction, interpolate,
+    };
+    use std::f64::consts::PI;
+
+    pub const COVERS: [f64; 5] = [1.5, 2.5, 3.5, 5.5, 7.5];
+
+    fn run_k(
+        kern: &str,
+        f: TestFunction,
+        interval: (f64, f64),
+        n: usize,
+        h: f64,
+        ghosts: bool,
+        norm: Normalisation,
+    ) -> InterpolationReport {
+        let mut c = InterpolationConfig::new(f, kernel::by_name(kern).unwrap(), h);
+        c.interval = interval;
+        c.particles = n;
+        c.ghosts = ghosts;
+        c.normalisation = norm;
+        interpolate(&c).unwrap()
+    }
+
+    fn covers_k(
+        kern: &str,
+        f: TestFunction,
+        interval: (f64, f64),
+        n: usize,
+        ghosts: bool,
+        norm: Normalisation,
+    ) -> Vec<InterpolationReport> {
+        COVERS
+            .iter()
+            .map(|&h| run_k(kern, f, interval, n, h, ghosts, norm))
+            .collect()
+    }
+
+    /// [`covers_k`] with the modified mollifier.
+    fn covers(
+        f: TestFunction,
+        interval: (f64, f64),
+        n: usize,
+        ghosts: bool,
+        norm: Normalisation,
+    ) -> Vec<InterpolationReport> {
+        covers_k("mollifier", f, interval, n, ghosts, norm)
+    }
+
+    fn pct(v: &[f64]) -> String {
+        list(&v.iter().map(|x| 100.0 * x).collect::<Vec<_>>(), 1)
+    }
+
+    /// Max relative errors of f, f′, f″ per cover.
+    fn errs(r: &[InterpolationReport]) -> [Vec<f64>; 3] {
+        [
+            r.iter().map(|r| r.value.max).collect(),
+            r.iter().map(|r| r.gradient.unwrap().max).collect(),
+            r.iter().map(|r| r.laplacian.unwrap().max).collect(),
+        ]
+    }
+
+    const C: Normalisation = Normalisation::Continuum;
+    const L: Normalisation = Normalisation::Lattice;
+    const Q: TestFunction = TestFunction::Quartic;
+    const S: TestFunction = TestFunction::Sine;
+
+    /// Fig 2.10: (x − ½)⁴ without ghosts.
+    fn fig210() -> Row {
+        let r = covers(Q, (0.0, 1.0), 101, false, C);
+        let at_a: Vec<f64> = r.iter().map(|r| r.value_at_start.unwrap()).collect();
+        let interior: Vec<f64> = r.iter().map(|r| r.value.interior_max.unwrap()).collect();
+        let ok = (0.25..=0.75).contains(&at_a[3])
+            && r[1..]
+                .iter()
+                .all(|r| r.value.boundary_max > 10.0 * r.value.interior_max.unwrap());
+        Row {
+            item: "Thesis Fig 2.10",
+            shows: "interpolation of (x − 0.5)⁴ on (0, 1) without ghosts (101 particles and the modified mollifier: sphstab's choice)",
+            how: "`sphstab interpolate --function quartic --particles 101 --h 1.5,2.5,3.5,5.5,7.5`; `sphstab figures` → figures/thesis_fig2_10_interpolation.svg",
+            paper: "\"the approximation can have an error of up to 50% at the boundary\" (§2.7); particle count and covers not given".into(),
+            ours: format!(
+                "relative error of ⟨f⟩ at x = 0, covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: {} %; largest error (relative to max f) away from the boundary: {} %",
+                pct(&at_a),
+                list(&interior.iter().map(|x| 100.0 * x).collect::<Vec<_>>(), 2)
+            ),
+            agree: verdict(
+                ok,
+                "read as: at the recommended 5.5 ps the error at x = 0 is between 25% and 75%, and for every cover ≥ 2.5 ps the largest error near the boundary is > 10× the interior's; the boundary particle sees half a cover",
+            ),
+        }
+    }
+
+    /// Figs 2.11 and 2.12: (x − ½)⁴ with ghosts, fine (101) and coarse (11 particles).
+    fn fig211_212() -> [Row; 2] {
+        let fine = covers(Q, (0.0, 1.0), 101, true, C);
+        let [fv, fg, fl] = errs(&fine);
+        let ok_fine =
+            (1..5).all(|i| fv[i] <= 0.05 && fg[i] <= 0.05 && fl[i] <= 0.05) && fg[0] >= 0.2;
+        let coarse = covers(Q, (0.0, 1.0), 11, true, C);
+        let [cv, _, _] = errs(&coarse);
+        let ok_coarse = cv.iter().all(|&e| e >= 0.05);
+        [
+            Row {
+                item: "Thesis Fig 2.11",
+                shows: "(x − 0.5)⁴ with ghosts, fine discretisation (101 particles: sphstab's choice): f and its first and second derivatives for several covers",
+                how: "`sphstab interpolate --function quartic --particles 101 --ghosts --h 1.5,2.5,3.5,5.5,7.5`",
+                paper: "\"most cover sizes interpolate the function and its first and second derivatives well\"; \"the very small cover size of 1.5 times the particle spacing does not approximate the gradients well\" (§2.7)".into(),
+                ours: format!(
+                    "max relative error at covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: f {} %, f′ {} %, f″ {} %",
+                    pct(&fv),
+                    pct(&fg),
+                    pct(&fl)
+                ),
+                agree: verdict(
+                    ok_fine,
+                    "read as: every error ≤ 5% at the four covers ≥ 2.5 ps, and the gradient's ≥ 20% at 1.5 ps",
+                ),
+            },
+            Row {
+                item: "Thesis Fig 2.12",
+                shows: "(x − 0.5)⁴ with ghosts, coarse discretisation (11 particles: sphstab's choice)",
+                how: "`sphstab interpolate --function quartic --particles 11 --ghosts --h 1.5,2.5,3.5,5.5,7.5`",
+                paper: "\"substantial errors are seen in the interpolation of the function, regardless of the cover sizes used\" (§2.7)".into(),
+                ours: format!(
+                    "max relative error of f at covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: {} %",
+                    pct(&cv)
+                ),
+                agree: verdict(ok_coarse, "read as: ≥ 5% at every cover"),
+            },
+        ]
+    }
+
+    /// Figs 2.13–2.16: sin x with ghosts on (0, 3π) (fine 121, coarse 16 particles) and on
+    /// (0, π) with the same counts (very fine, intermediate).
+    fn sine_rows() -> [Row; 4] {
+        let three = (0.0, 3.0 * PI);
+        let one = (0.0, PI);
+        let fine = covers(S, three, 121, true, C);
+        let finer = covers(S, three, 241, true, C);
+        let coarse = covers(S, three, 16, true, C);
+        let vfine = covers(S, one, 121, true, C);
+        let inter = covers(S, one, 16, true, C);
+        let inter_l = covers(S, one, 16, true, L);
+        // the gradient's amplitude at x = 0 (f′ = 1 there)
+        let gain = |r: &InterpolationReport| r.gradient_x_approx[0];
+        let [fv, fg, _] = errs(&fine);
+        let [_, fg2, _] = errs(&finer);
+        let g55 = gain(&fine[3]);
+        let ok13 = fv[1..].iter().all(|&e| e <= 0.05) && g55 < 1.0 && fg2[3] < fg[3];
+        let [cv, cg, _] = errs(&coarse);
+        let ok14 = cv[3] >= 0.05 && cg[0] >= 0.2;
+        let [vv, vg, vl] = errs(&vfine);
+        // resolution lowers the errors that depend on it; at 1.5 and 2.5 ps the lattice sums
+        // S0 = Σ W ΔV and S1 = Σ x W′ ΔV differ from 1 and set an error no resolution removes
+        let ok15 = (2..5).all(|i| vv[i] < fv[i] && vg[i] < fg[i]);
+        let ok15_all = (0..5).all(|i| vv[i] <= fv[i] && vg[i] <= fg[i]);
+        let [iv, ig, _] = errs(&inter);
+        let [ivl, igl, _] = errs(&inter_l);
+        let ok16 = iv[0] <= 0.05 && ig[0] >= 0.2;
+        let ok16_l = ivl[0] <= 0.05 && igl[0] >= 0.2;
+        [
+            Row {
+                item: "Thesis Fig 2.13",
+                shows: "sin x on (0, 3π) with ghosts, fine discretisation (121 particles, 80 per wavelength: sphstab's choice)",
+                how: "`sphstab interpolate --function sine --particles 121 --ghosts --h 1.5,2.5,3.5,5.5,7.5` (and `--particles 241`)",
+                paper: "\"a fine discretisation … results in a good interpolation approximation. The gradients, however, see an amplitude reduction … an increased number of particles reduces the error\" (§2.7.1)".into(),
+                ours: format!(
+                    "max relative error at covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: f {} %, f′ {} %; f′ amplitude at 5.5 ps {:.4} (exact 1); f′ error at 5.5 ps with 241 particles {:.2} % (121: {:.2} %)",
+                    pct(&fv),
+                    pct(&fg),
+                    g55,
+                    100.0 * fg2[3],
+                    100.0 * fg[3]
+                ),
+                agree: verdict(
+                    ok13,
+                    "read as: f within 5% at the covers ≥ 2.5 ps, the gradient's amplitude < 1 at 5.5 ps, and its error smaller with twice the particles",
+                ),
+            },
+            Row {
+                item: "Thesis Fig 2.14",
+                shows: "sin x on (0, 3π) with ghosts, coarse discretisation (16 particles, 10 per wavelength: sphstab's choice)",
+                how: "`sphstab interpolate --function sine --particles 16 --ghosts --h 1.5,2.5,3.5,5.5,7.5`",
+                paper: "\"a reduction in particle density … sees significant errors introduced into the interpolation. Once again, a cover size of 1.5 times the particle spacing performs poorly\" (§2.7.1)".into(),
+                ours: format!(
+                    "max relative error at covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: f {} %, f′ {} %",
+                    pct(&cv),
+                    pct(&cg)
+                ),
+                agree: verdict(
+                    ok14,
+                    "read as: f's error ≥ 5% at 5.5 ps, and the gradient's ≥ 20% at 1.5 ps",
+                ),
+            },
+            Row {
+                item: "Thesis Fig 2.15",
+                shows: "sin x on (0, π) with ghosts, very fine (the 121 particles of Fig 2.13 on a third of the interval: 120 per wavelength)",
+                how: "`sphstab interpolate --function sine --interval 0,pi --particles 121 --ghosts --h 1.5,2.5,3.5,5.5,7.5`",
+                paper: "the function and its gradients \"at a finer resolution, keeping the total number of particles in the domain the same\" (§2.7.1); no statement specific to Fig 2.15".into(),
+                ours: format!(
+                    "max relative error at covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: f {} %, f′ {} %, f″ {} %",
+                    pct(&vv),
+                    pct(&vg),
+                    pct(&vl)
+                ),
+                agree: match (ok15_all, ok15) {
+                    (true, _) => verdict(true, "read as: at every cover the errors of f and f′ are no larger than Fig 2.13's"),
+                    (false, true) => "partly (read as: at every cover the errors of f and f′ are no larger than Fig 2.13's: ✔ at 3.5, 5.5 and 7.5 ps; at 1.5 and 2.5 ps they are set by the kernel's lattice sums, S0 = Σ W ΔV ≠ 1 and the gradient's gain as κ → 0 ≠ 1, which no resolution removes)".into(),
+                    _ => verdict(false, ""),
+                },
+            },
+            Row {
+                item: "Thesis Fig 2.16",
+                shows: "sin x on (0, π) with ghosts, intermediate (the 16 particles of Fig 2.14 on a third of the interval: 30 per wavelength)",
+                how: "`sphstab interpolate --function sine --interval 0,pi --particles 16 --ghosts --h 1.5,2.5,3.5,5.5,7.5` (and `--normalisation lattice`)",
+                paper: "\"small cover sizes approximate the function well, but the derivative thereof poorly … (with a cover size of 1.5 times the particle spacing only two points are used to evaluate the gradient)\" (§2.7.1)".into(),
+                ours: format!(
+                    "max relative error at covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: f {} %, f′ {} %; with the kernel normalised on the lattice: f {} %, f′ {} % (the mollifier's lattice sum at 1.5 ps is S0 = {:.4})",
+                    pct(&iv),
+                    pct(&ig),
+                    pct(&ivl),
+                    pct(&igl),
+                    inter[0].lattice_sum
+                ),
+                agree: if ok16 {
+                    verdict(true, "read as: f within 5% and the gradient off by ≥ 20% at 1.5 ps")
+                } else if ok16_l {
+                    format!(
+                        "partly (read as: f within 5% and the gradient off by ≥ 20% at 1.5 ps: the gradient ✔; the function ✔ only with the kernel normalised on the lattice, Σ W ΔV = 1 (§2.2.2: the mollifier's normalisation \"must be enforced using a numerical integration\"); with the kernel's own constant every value is S0 = {:.4} times too large at 1.5 ps)",
+                        inter[0].lattice_sum
+                    )
+                } else {
+                    verdict(false, "")
+                },
+            },
+        ]
+    }
+
+    /// Figs 2.17, 2.19, 2.20: a falling edge 1 → 0 on (0, 1), 101 particles, with ghosts, over
+    /// 40 and 4 spacings (very low and high gradient: sphstab's choice; over 2 spacings the
+    /// samples are the step's) and the step, with the modified mollifier and with Lucy's kernel
+    /// (eq 2.13, ζ = 1 like the mollifier: h is the cover); §2.7 names no kernel.
+    fn edge_rows() -> [Row; 3] {
+        let edge = |k: &str, w: f64| {
+            covers_k(k, TestFunction::Edge { width: w }, (0.0, 1.0), 101, true, C)
+        };
+        // ⟨f′⟩ at the edge's centre (particle 50) over the exact −1/(WΔx)
+        let centre = |r: &[InterpolationReport]| -> Vec<f64> {
+            r.iter()
+                .map(|r| r.gradient_x_approx[50] / r.gradient_x[50])
+                .collect()
+        };
+        let rms = |r: &[InterpolationReport]| -> Vec<f64> {
+            r.iter().map(|r| r.gradient.unwrap().rms).collect()
+        };
+        let [c40m, c40l] = ["mollifier", "lucy"].map(|k| centre(&edge(k, 40.0)));
+        let ok17 = |c: &[f64]| c[1..].iter().all(|g| (0.9..=1.1).contains(g)) && c[0] < 1.0;
+        let [r4m, r4l] = ["mollifier", "lucy"].map(|k| rms(&edge(k, 4.0)));
+        let ok19 = |r: &[f64]| r[1..].iter().all(|&x| r[0] < x);
+        let step = |k: &str| covers_k(k, TestFunction::Step, (0.0, 1.0), 101, true, C);
+        let [sm, sl] = ["mollifier", "lucy"].map(step);
+        let widths = |r: &[InterpolationReport]| -> Vec<f64> {
+            r.iter().map(|r| r.gradient_peak_width.unwrap()).collect()
+        };
+        let integrals = |r: &[InterpolationReport]| -> Vec<f64> {
+            r.iter().map(|r| r.gradient_integral.unwrap()).collect()
+        };
+        let ok20 = |r: &[InterpolationReport]| {
+            let w = widths(r);
+            w[1..].iter().all(|&x| w[0] < x) && (integrals(r)[0] + 1.0).abs() <= 0.05
+        };
+        let both = |m: bool, l: bool, reading: &str, why_m: &str| match (m, l) {
+            (true, true) => verdict(true, &format!("{reading}; with either kernel")),
+            (false, true) => format!(
+                "partly ({reading}: ✔ with Lucy's kernel, not with the modified mollifier: {why_m}; note N2)"
+            ),
+            (true, false) => {
+                format!("partly ({reading}: ✔ with the modified mollifier, not with Lucy's kernel)")
+            }
+            (false, false) => verdict(false, reading),
+        };
+        [
+            Row {
+                item: "Thesis Fig 2.17",
+                shows: "falling edge, very low gradient (1 → 0 over 40 spacings, 101 particles on (0, 1), ghosts: sphstab's choice)",
+                how: "`sphstab interpolate --function edge --edge-width 40 --ghosts --h 1.5,2.5,3.5,5.5,7.5` (and `--kernel lucy`)",
+                paper: "\"all of the cover sizes perform well, with a cover size of 1.5 times the particle spacing under-predicting the gradient as before\" (§2.7.2)".into(),
+                ours: format!(
+                    "⟨f′⟩/f′ at the edge's centre, covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: modified mollifier {}; Lucy {}",
+                    list(&c40m, 4),
+                    list(&c40l, 4)
+                ),
+                agree: both(
+                    ok17(&c40m),
+                    ok17(&c40l),
+                    "read as: within 10% of the exact gradient at the covers ≥ 2.5 ps, below it at 1.5 ps",
+                    "",
+                ),
+            },
+            Row {
+                item: "Thesis Fig 2.19",
+                shows: "falling edge, high gradient (over 4 spacings: sphstab's choice; over 2 the samples are the step's of Fig 2.20)",
+                how: "`sphstab interpolate --function edge --edge-width 4 --ghosts --h 1.5,2.5,3.5,5.5,7.5` (and `--kernel lucy`)",
+                paper: "\"the cover size of 1.5 times the particle spacing rapidly starts out-performing other cover sizes\" (§2.7.2)".into(),
+                ours: format!(
+                    "RMS gradient error relative to the exact −1/(4Δx), covers 1.5, 2.5, 3.5, 5.5, 7.5 ps: modified mollifier {} %; Lucy {} %",
+                    pct(&r4m),
+                    pct(&r4l)
+                ),
+                agree: both(
+                    ok19(&r4m),
+                    ok19(&r4l),
+                    "read as: 1.5 ps has the smallest RMS gradient error",
+                    "its 1.5-ps gradient has a gain of 0.15",
+                ),
+            },
+            Row {
+                item: "Thesis Fig 2.20",
+                shows: "the discontinuous edge (a step at x = 0.5, 101 particles on (0, 1), ghosts)",
+                how: "`sphstab interpolate --function step --ghosts --h 1.5,2.5,3.5,5.5,7.5` (and `--kernel lucy`); `sphstab figures` → figures/thesis_fig2_20_step_gradient.svg",
+                paper: "\"a cover size of 1.5 times the particle spacing approximates the gradient very well, while the others are significantly different\" (§2.7.2); §2.7.3: 1.5 ps suits a square wave, 5.5 ps is \"a good compromise\"".into(),
+                ours: format!(
+                    "width (FWHM) of the computed gradient's peak, covers 1.5, 2.5, 3.5, 5.5, 7.5 ps (exact: a Dirac), and Σ⟨f′⟩Δx (exact −1): modified mollifier {} Δx, {}; Lucy {} Δx, {}",
+                    list(&widths(&sm), 2),
+                    list(&integrals(&sm), 3),
+                    list(&widths(&sl), 2),
+                    list(&integrals(&sl), 3)
+                ),
+                agree: both(
+                    ok20(&sm),
+                    ok20(&sl),
+                    "read as: the narrowest peak at 1.5 ps, carrying the jump within 5%",
+                    "its 1.5-ps peak is the narrowest but carries 15% of the jump",
+                ),
+            },
+        ]
+    }
+
+    /// Every row of §2.7, in figure order.
+    pub fn rows() -> Vec<Row> {
+        let mut v = vec![fig210()];
+        v.extend(fig211_212());
+        v.extend(sine_rows());
+        v.extend(edge_rows());
+        v
+    }
+}
+
 /// Items not reproduced: (item, what it shows, verdict — "not reproducible" or "needs code" —
 /// and the reason).
 const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
@@ -1854,49 +2174,9 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
         "needs code: the kernel is not in sphstab (`mollifier` is the modified one)",
     ),
     (
-        "Thesis Fig 2.10",
-        "interpolation of (x − 0.5)⁴ without ghosts: errors up to 50% at the boundary",
-        "needs code: a finite-point-set interpolation and gradient command; particle counts not given",
-    ),
-    (
-        "Thesis Fig 2.12",
-        "(x − 0.5)⁴ with ghosts, coarse",
-        "needs code: as Fig 2.10",
-    ),
-    (
-        "Thesis Fig 2.14",
-        "sin x on (0, 3π), coarse",
-        "needs code: as Fig 2.10",
-    ),
-    (
-        "Thesis Fig 2.15",
-        "sin x on (0, π), very fine",
-        "needs code: as Fig 2.10",
-    ),
-    (
-        "Thesis Fig 2.16",
-        "sin x on (0, π), intermediate",
-        "needs code: as Fig 2.10",
-    ),
-    (
-        "Thesis Fig 2.17",
-        "falling edge, very low gradient",
-        "needs code: as Fig 2.10",
-    ),
-    (
         "Thesis Fig 2.18",
         "falling edge, low gradient",
-        "needs code: as Fig 2.10",
-    ),
-    (
-        "Thesis Fig 2.19",
-        "falling edge, high gradient",
-        "needs code: as Fig 2.10",
-    ),
-    (
-        "Thesis Fig 2.20",
-        "falling edge, discontinuous (5.5 ps recommended)",
-        "needs code: as Fig 2.10",
+        "not reproducible: the statement (\"all of the cover sizes start to behave in a similar manner\", §2.7.2) names no measurable property, and the edge's gradient is not given; the edge rows computed are Figs 2.17, 2.19, 2.20 (`sphstab interpolate --function edge --edge-width W --ghosts`)",
     ),
     (
         "Thesis Fig 4.6 (T-paper Fig 3)",
@@ -2035,7 +2315,7 @@ fn render(rows: &[Row]) -> String {
          transcribed from the seeds (`../shared/seeds/`: B00 = Belytschko, Guo, Liu, Xiao 2000; \
          V21 = Vignjevic, De Vuyst, Campbell 2021; B98 = Belytschko, Krongauz, Dolbow, Gerlach \
          1998; Thesis = 004, with the appended conference paper \"T-paper\"); errata E1–E17 and \
-         note N1 are in `analysis/ERRATA.md`. Units: ω²Δx²/c², κΔx, growth rates in c/Δx, Δt in \
+         notes N1, N2 are in `analysis/ERRATA.md`. Units: ω²Δx²/c², κΔx, growth rates in c/Δx, Δt in \
          Δx/c, unless a row says otherwise. A row marked *derived* computes its number in the \
          test from the paper's own formulas, not through sphstab's solver or engine.\n\n\
          Every numbered table and every figure with numeric content of the four seeds has a row: \
@@ -2147,7 +2427,6 @@ fn reproduction_md_matches_the_code() {
         f21,
         f22,
         thesis_kernels(),
-        thesis_gradient_gain(),
         thesis_dt(),
         thesis_speeds(),
         thesis_interface(),
@@ -2156,6 +2435,14 @@ fn reproduction_md_matches_the_code() {
         thesis_fig56(),
         thesis_fig59(),
     ];
+    // [T §2.7]: after the kernels' row, in figure order
+    let at = rows
+        .iter()
+        .position(|r| r.item.starts_with("Thesis Figs 2.3"))
+        .expect("the kernels' row")
+        + 1;
+    let mut rows = rows;
+    rows.splice(at..at, interp::rows());
     // a ✘ without an erratum fails here, before the file is compared (or rewritten)
     let verdicts: Vec<(&str, &str)> = rows
         .iter()

@@ -9,6 +9,7 @@ mod export;
 mod figures;
 mod files;
 mod flags;
+mod interpolate;
 mod kernels;
 mod map;
 mod merge;
@@ -76,6 +77,9 @@ pub(crate) enum Cmd {
     Map(map::Args),
     /// Anti-plane Galerkin stiffness K_jk for a quadrature pattern [B00 Table I].
     Stiffness(stiffness::Args),
+    /// Interpolation and gradient accuracy of a kernel on a finite 1D/2D particle set, ghosts
+    /// or not, against the exact values [T §2.7].
+    Interpolate(interpolate::Args),
     /// The Swegle perturbed-particle test (2D or 3D), measured against the engine's predictions
     /// (rates in c/Δx, Δt in Δx/c, each also in the test's own units).
     Swegle(swegle::Args),
@@ -168,6 +172,7 @@ fn main() {
         Cmd::Figures(a) => figures::run(a, b),
         Cmd::Map(a) => map::run(a, b),
         Cmd::Stiffness(a) => stiffness::run(a),
+        Cmd::Interpolate(a) => interpolate::run(a),
         Cmd::Swegle(a) => swegle::run(a, b),
         Cmd::Simulate(a) => simulate::run(a, b),
         Cmd::Tradeoff(a) => tradeoff::run(a, b),
