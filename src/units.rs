@@ -138,6 +138,12 @@ const TABLE: &[(&str, Unit)] = &[
     ("first_negative_k", Fixed("1/h")),
     ("k_max", Fixed("1/h")),
     ("wstar_k_max", Fixed("1/h")),
+    // `stiffness --body`: a finite body's largest eigenvalue
+    ("lambda_max_lumped", Fixed(OMEGA2)),
+    ("lambda_max_consistent", Fixed(OMEGA2)),
+    ("critical_dt_lumped", Fixed(DT)),
+    ("d_max", Fixed(LENGTH)),
+    ("bounds", Fixed("[name, (c/dx)^2]")),
     // `interpolate`: the test function's argument, and its derivatives
     ("interval", Fixed(ARG)),
     ("spacing", Fixed(ARG)),

@@ -60,12 +60,14 @@ use crate::vonneumann::closed_form as cf;
 use rayon::prelude::*;
 
 mod antiplane;
+mod finite_body;
 mod interpolation;
 mod scene;
 mod swegle;
 
 use antiplane::cutoff_marks;
 pub use antiplane::{AntiPlaneRoute, AntiPlaneSeries, KAPPA_THETA_DESC, OMEGA_DESC};
+pub use finite_body::{FiniteBodyRoute, FiniteBodySeries};
 pub use interpolation::{InterpolationQuantity, InterpolationSeries};
 pub use scene::{SceneQuantity, SceneRoute, SceneSeries};
 use serde::Deserialize;
@@ -170,6 +172,9 @@ pub struct FigureConfig {
     /// Interpolations of a test function (against position).
     #[serde(default)]
     pub interpolation: Vec<InterpolationSeries>,
+    /// Finite bodies' largest eigenvalues (against the support D_max).
+    #[serde(default)]
+    pub finite_body: Vec<FiniteBodySeries>,
     /// Abscissa description (default: that of the curves' kind; scene figures give theirs).
     pub x_desc: Option<String>,
     /// Ordinate description (default: that of the curves' kind; scene figures give theirs).
@@ -205,6 +210,9 @@ pub struct Panel {
     /// Interpolations of a test function.
     #[serde(default)]
     pub interpolation: Vec<InterpolationSeries>,
+    /// Finite bodies' largest eigenvalues.
+    #[serde(default)]
+    pub finite_body: Vec<FiniteBodySeries>,
 }
 
 fn default_points() -> usize {
@@ -312,6 +320,7 @@ struct PanelSpec<'a> {
     swegle: &'a [SwegleSeries],
     scene: &'a [SceneSeries],
     interpolation: &'a [InterpolationSeries],
+    finite_body: &'a [FiniteBodySeries],
 }
 
 impl FigureConfig {
@@ -325,6 +334,7 @@ impl FigureConfig {
                 swegle: &self.swegle,
                 scene: &self.scene,
                 interpolation: &self.interpolation,
+                finite_body: &self.finite_body,
             }];
         }
         self.panels
@@ -337,6 +347,7 @@ impl FigureConfig {
                 swegle: &p.swegle,
                 scene: &p.scene,
                 interpolation: &p.interpolation,
+                finite_body: &p.finite_body,
             })
             .collect()
     }
@@ -364,6 +375,8 @@ pub fn panel_curves(cfg: &FigureConfig) -> Result<Vec<Vec<Curve>>> {
                 p.scene.iter().map(|s| s.curve(&cfg.budget)).collect()
             } else if !p.interpolation.is_empty() {
                 p.interpolation.iter().map(|s| s.curve()).collect()
+            } else if !p.finite_body.is_empty() {
+                p.finite_body.iter().map(|s| s.curve()).collect()
             } else {
                 p.series.iter().map(|s| s.curve(cfg.points)).collect()
             }
@@ -401,17 +414,17 @@ impl FigureConfig {
                 "`output` = {o:?} must be a plain file name ending in .svg (no directory, no ..)"
             ));
         }
-        let curves = |what: &str, counts: [usize; 5]| {
+        let curves = |what: &str, counts: [usize; 6]| {
             let kinds = counts.iter().filter(|&&n| n > 0).count();
             let n: usize = counts.iter().sum();
             match kinds {
                 0 => Err(format!(
-                    "{what}: give 1 to 64 curves in `series` (1D), `antiplane` (2D), `swegle`, `scene` or `interpolation`"
+                    "{what}: give 1 to 64 curves in `series` (1D), `antiplane` (2D), `swegle`, `scene`, `interpolation` or `finite_body`"
                 )),
                 1 if n <= 64 => Ok(()),
                 1 => Err(format!("{what} has {n} curves: give 1 to 64")),
                 _ => Err(format!(
-                    "{what}: give one of `series` (1D), `antiplane` (2D), `swegle`, `scene`, `interpolation`, not several (their axes differ)"
+                    "{what}: give one of `series` (1D), `antiplane` (2D), `swegle`, `scene`, `interpolation`, `finite_body`, not several (their axes differ)"
                 )),
             }
         };
@@ -430,6 +443,7 @@ impl FigureConfig {
                     self.swegle.len(),
                     self.scene.len(),
                     self.interpolation.len(),
+                    self.finite_body.len(),
                 ],
             )?;
         } else {
@@ -438,6 +452,7 @@ impl FigureConfig {
                 || !self.swegle.is_empty()
                 || !self.scene.is_empty()
                 || !self.interpolation.is_empty()
+                || !self.finite_body.is_empty()
             {
                 return Err(
                     "give the curves either at the top level or in `panels`, not both".into(),
@@ -458,6 +473,7 @@ impl FigureConfig {
                         p.swegle.len(),
                         p.scene.len(),
                         p.interpolation.len(),
+                        p.finite_body.len(),
                     ],
                 )?;
                 range(&format!("`panels[{i}].y_range`"), p.y_range)?;
@@ -498,6 +514,8 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
                 )
             } else if !p.interpolation.is_empty() {
                 ("position x", "f, ∂f/∂x or ∂²f/∂x²", Vec::new())
+            } else if !p.finite_body.is_empty() {
+                ("support D_max (Δx)", "λ_max (c²/Δx²)", Vec::new())
             } else {
                 (KAPPA_DESC, OMEGA2_DESC, Vec::new())
             };

@@ -6,6 +6,7 @@ pub mod art_stress;
 pub mod atlas;
 pub mod box_operator;
 pub mod config;
+pub mod finite_body;
 pub mod interpolation;
 pub mod kernel_guide;
 pub mod pairing;

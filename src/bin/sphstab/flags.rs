@@ -51,6 +51,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("max_memory", "--max-memory"),
     ("max_steps", "--max-steps"),
     ("n", "--n"),
+    ("nodes", "--body"),
     ("particles", "--particles"),
     ("points", "--points"),
     ("plane", "--plane"),

@@ -39,12 +39,113 @@ pub struct Args {
     /// Use the consistent mass (default lumped, as Table I / eq 119).
     #[arg(long)]
     consistent: bool,
+    /// The largest eigenvalue of a finite body of N nodes per side instead ([B00] §5,
+    /// Figs 17–18): a bar of N nodes (--dim 1) or an N × N square (--dim 2), 2 Gauss points
+    /// per cell (2 × 2), free boundaries, lumped and consistent mass, against the bounds eq
+    /// 137 (1D) or eqs 146, 148 (2D). N in [3, 100000] (1D) or [3, 300] (2D); dense up to 1600
+    /// nodes, Lanczos (lumped mass only) beyond.
+    #[arg(long)]
+    body: Option<usize>,
+    /// Dimension of --body: 1 or 2 (default 2).
+    #[arg(long)]
+    dim: Option<usize>,
     /// JSON output (K_jk entries, κΔx and ωΔx/c; its "units" name them).
     #[arg(long)]
     json: bool,
 }
 
+/// `--body N`: the finite body's largest eigenvalue.
+fn body(a: &Args, n: usize) -> Result<()> {
+    if a.quadrature != "nodal" && a.quadrature != "cell-2x2" {
+        return Err(crate::query::not_in(
+            "--quadrature",
+            "--body (the finite body has 2 Gauss points per cell, 2 × 2 in 2D, as [B00] Figs 17–18)",
+        ));
+    }
+    if a.theta.is_some()
+        || a.points.is_some()
+        || a.consistent
+        || a.lattice != "square"
+        || a.gamma.is_some()
+    {
+        return Err(crate::query::not_in(
+            "--theta/--points/--consistent/--lattice/--gamma",
+            "--body (it reports the largest eigenvalue with both masses, on a square body)",
+        ));
+    }
+    let k = sphstab::kernel::by_name(&a.kernel)?;
+    let fam = ShapeFamily::by_name(&a.shape)?;
+    let dim = a.dim.unwrap_or(2);
+    let r = sphstab::studies::finite_body::finite_body(dim, n, k, a.support, fam)?;
+    if !(r.lambda_max_lumped.is_finite() && r.lambda_max_consistent.is_none_or(f64::is_finite)) {
+        return Err(sphstab::error::Error::NonFinite("the finite body's eigenvalue").into());
+    }
+    if a.json {
+        println!(
+            "{}",
+            sphstab::units::json(&r, sphstab::units::System::Normalised, true)?
+        );
+        return Ok(());
+    }
+    let shape = if dim == 1 {
+        format!("bar of {n} nodes")
+    } else {
+        format!("{n} × {n} square")
+    };
+    println!(
+        "finite body [B00 §5]: {shape}, {} / {}, D_max = {}, 2 Gauss points per cell{}, free boundaries ({})",
+        a.shape,
+        a.kernel,
+        sphstab::display::num(a.support),
+        if dim == 2 { " and axis" } else { "" },
+        if r.dense {
+            "dense eigensolver"
+        } else {
+            "Lanczos"
+        }
+    );
+    let plain = |x: f64| sphstab::display::num_sig(x, 6);
+    let ratios = |v: &[f64]| {
+        r.bounds
+            .iter()
+            .zip(v)
+            .map(|(b, x)| format!("{} / λ_max = {}", b.0, plain(*x)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    println!(
+        "λ_max (lumped mass) = {} c²/Δx² (critical leapfrog Δt = {} Δx/c); {}",
+        plain(r.lambda_max_lumped),
+        plain(r.critical_dt_lumped),
+        ratios(&r.ratio_lumped)
+    );
+    match (&r.lambda_max_consistent, &r.ratio_consistent) {
+        (Some(c), Some(rc)) => println!(
+            "λ_max (consistent mass) = {} c²/Δx²; {}",
+            plain(*c),
+            ratios(rc)
+        ),
+        _ => println!("λ_max (consistent mass): not computed beyond 1600 nodes"),
+    }
+    let b: Vec<String> = r
+        .bounds
+        .iter()
+        .map(|(n, v)| format!("{n}: {} c²/Δx²", plain(*v)))
+        .collect();
+    println!("bounds: {}", b.join(", "));
+    Ok(())
+}
+
 pub fn run(a: Args) -> Result<()> {
+    if let Some(n) = a.body {
+        return body(&a, n);
+    }
+    if a.dim.is_some() {
+        return Err(crate::query::not_in(
+            "--dim",
+            "no --body (the anti-plane stiffness is 2D; --dim 1 selects the finite bar of --body)",
+        ));
+    }
     let k = sphstab::kernel::by_name(&a.kernel)?;
     sphstab::error::check_range("--support", a.support, 0.0, 50.0, false, true)?;
     if a.support <= 1.0 {
