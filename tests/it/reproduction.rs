@@ -1474,7 +1474,7 @@ fn thesis_interface() -> Row {
         .flat_map(|r| {
             [
                 (r.reflected - r.reflected_exact).abs(),
-                (r.transmitted - r.transmitted_exact).abs(),
+                (r.transmitted.unwrap() - r.transmitted_exact).abs(),
             ]
         })
         .fold(0.0, f64::max);
@@ -1482,9 +1482,9 @@ fn thesis_interface() -> Row {
     // incident's sign (stress inverted) and transmitted > 1; increase → the opposite
     let signs = reps.iter().all(|r| {
         if r.density_ratio < 1.0 {
-            r.reflected > 0.0 && r.transmitted > 1.0
+            r.reflected > 0.0 && r.transmitted.unwrap() > 1.0
         } else {
-            r.reflected < 0.0 && r.transmitted < 1.0
+            r.reflected < 0.0 && r.transmitted.unwrap() < 1.0
         }
     });
     Row {
@@ -1505,7 +1505,13 @@ fn thesis_interface() -> Row {
         ours: format!(
             "measured v_r/v_i = {}, v_t/v_i = {} (pulse integrals)",
             list(&reps.iter().map(|r| r.reflected).collect::<Vec<_>>(), 4),
-            list(&reps.iter().map(|r| r.transmitted).collect::<Vec<_>>(), 4)
+            list(
+                &reps
+                    .iter()
+                    .map(|r| r.transmitted.unwrap())
+                    .collect::<Vec<_>>(),
+                4
+            )
         ),
         agree: verdict(
             worst < 0.01 && signs,
@@ -1514,6 +1520,88 @@ fn thesis_interface() -> Row {
             ),
         ),
     }
+}
+
+/// [T §4.6.3.6, Figs 4.18 and 4.19]: very large density jumps at mid-span (no ratio given:
+/// 100 and 10⁴ for the increase, 0.01 and 0.004 for the decrease, sphstab's choice; below ~0.003
+/// the transmitted pulse returns from the far end before the split and the run is refused).
+fn thesis_large_jumps() -> [Row; 2] {
+    use sphstab::solver::thesis_wave::{ThesisWave, run_thesis_wave};
+    let run = |r: f64| run_thesis_wave(&ThesisWave::new(FormKind::Nonlocal, k("m4"), r)).unwrap();
+    let base = run(1.0);
+    let up: Vec<_> = [100.0, 1e4].iter().map(|&r| run(r)).collect();
+    let down: Vec<_> = [0.01, 4e-3].iter().map(|&r| run(r)).collect();
+    // a fixed end reflects the particle velocity inverted (v_r = −v_i) and transmits nothing
+    let ok18 =
+        (up[1].reflected + 1.0).abs() < 0.05 && up[1].transmitted.is_some_and(|t| t.abs() < 0.05);
+    let dev18 = up
+        .iter()
+        .map(|r| (r.reflected - r.reflected_exact).abs())
+        .fold(0.0, f64::max);
+    // the step is set by the fast material: Δt/Δt_uniform = √(ρB/ρA), the steps grow as
+    // √(ρA/ρB); the interface acts as a free end (v_r → +v_i)
+    let dt_ratio: Vec<f64> = down.iter().map(|r| r.time_step / base.time_step).collect();
+    let ok19 = down
+        .iter()
+        .zip(&dt_ratio)
+        .all(|(r, q)| (q - r.density_ratio.sqrt()).abs() < 1e-9 * q)
+        && down
+            .iter()
+            .all(|r| (r.reflected - r.reflected_exact).abs() < 0.02);
+    let fmt_t = |r: &sphstab::solver::thesis_wave::ThesisWaveReport| {
+        r.transmitted.map_or(
+            "not measurable (the pulse outruns the bar)".to_string(),
+            |t| format!("{t:.4}"),
+        )
+    };
+    [
+        Row {
+            item: "Thesis Fig 4.18",
+            shows: "very large density increase at mid-span: the bar behaves as fixed there (ratio not given: ρB/ρA = 100 and 10⁴, sphstab's choice)",
+            how: "`sphstab simulate thesis-wave --form nonlocal --density-ratio 100,10000`",
+            paper: "the interface acts as a fixed end (§4.6.3.6, Fig 4.18); eq 4.45 gives v_r/v_i → −1, v_t/v_i → 0 as ρB/ρA → ∞".into(),
+            ours: format!(
+                "ρB/ρA = 100: v_r/v_i = {:.4} (exact {:.4}), v_t/v_i = {} (exact {:.4}); 10⁴: v_r/v_i = {:.4} (exact {:.4}), v_t/v_i = {} (exact {:.4})",
+                up[0].reflected,
+                up[0].reflected_exact,
+                fmt_t(&up[0]),
+                up[0].transmitted_exact,
+                up[1].reflected,
+                up[1].reflected_exact,
+                fmt_t(&up[1]),
+                up[1].transmitted_exact
+            ),
+            agree: verdict(
+                ok18,
+                &format!("read as: at 10⁴ the reflected velocity within 0.05 of −v_i (a fixed end) and the transmitted one below 0.05 v_i; both within {dev18:.4} of eq 4.45"),
+            ),
+        },
+        Row {
+            item: "Thesis Fig 4.19",
+            shows: "very large density decrease at mid-span: the time step becomes prohibitive (ratio not given: ρB/ρA = 0.01 and 0.004, sphstab's choice)",
+            how: "`sphstab simulate thesis-wave --form nonlocal --density-ratio 0.01,0.004 --json` (`time_step`, `steps`)",
+            paper: "\"the required time step becomes prohibitively small\" (§4.6.3.6, Fig 4.19; no number)".into(),
+            ours: format!(
+                "Δt over the uniform bar's (ρB = ρA, {} steps): {} at ρB/ρA = 0.01, 0.004 (√(ρB/ρA): the light half's c_B = c_A √(ρA/ρB) sets the step); steps {}, {} for a run {:.2}× and {:.2}× as long; the interface reflects as a free end: v_r/v_i = {:.4}, {:.4} (exact {:.4}, {:.4}); v_t/v_i: {}, {}",
+                base.steps,
+                list(&dt_ratio, 4),
+                down[0].steps,
+                down[1].steps,
+                down[0].steps as f64 * down[0].time_step / (base.steps as f64 * base.time_step),
+                down[1].steps as f64 * down[1].time_step / (base.steps as f64 * base.time_step),
+                down[0].reflected,
+                down[1].reflected,
+                down[0].reflected_exact,
+                down[1].reflected_exact,
+                fmt_t(&down[0]),
+                fmt_t(&down[1])
+            ),
+            agree: verdict(
+                ok19,
+                "read as: Δt falls as √(ρB/ρA) — 10× and 16× smaller — while the reflection follows eq 4.45 within 0.02; below ρB/ρA ≈ 0.003 the 0.15 m bar cannot hold the measurement (the run is refused)",
+            ),
+        },
+    ]
 }
 
 /// [T §4.7.3, Figs 4.20–4.22]: TL stable, the updated-Lagrangian (Eulerian-kernel) forms tensile
@@ -2274,16 +2362,6 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
         "needs code: as Fig 4.6; its table of speeds is a computed row",
     ),
     (
-        "Thesis Fig 4.18",
-        "very large density increase: the bar behaves as fixed at mid-span",
-        "needs code: the density ratio of `thesis-wave` is fixed (0.25, 0.5, 2, 4) and the thesis gives no ratio",
-    ),
-    (
-        "Thesis Fig 4.19",
-        "very large density decrease: Δt prohibitive",
-        "needs code: as Fig 4.18 (a free density ratio; the thesis gives no ratio and no number, only that \"the required time step becomes prohibitively small\")",
-    ),
-    (
         "Thesis Fig 5.1",
         "analytic T11 vs λ1, compressible neo-Hookean (eq 5.5), family of λ2",
         "needs code: a closed-form stress–stretch output (parameters not given)",
@@ -2469,6 +2547,7 @@ fn reproduction_md_matches_the_code() {
     );
     let (f21, f22, fig12, fig11) = rest;
     let [b00_f17, b00_f18] = b00_figs17_18();
+    let [t418, t419] = thesis_large_jumps();
     let rows = vec![
         b00_table1(),
         b00_table2(),
@@ -2498,6 +2577,8 @@ fn reproduction_md_matches_the_code() {
         thesis_dt(),
         thesis_speeds(),
         thesis_interface(),
+        t418,
+        t419,
         thesis_tension(),
         thesis_tensile_range(),
         thesis_fig56(),

@@ -37,6 +37,10 @@ pub struct Args {
     /// Write history.csv (t, max |v|, kinetic energy; SI) and final.vtk here.
     #[arg(long)]
     out: Option<std::path::PathBuf>,
+    /// thesis-wave only: the density ratios ρB/ρA to run, comma-separated, each in [1e-4, 1e4]
+    /// (default 0.25,0.5,2,4).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    density_ratio: Vec<f64>,
 }
 
 pub fn run(a: Args, budget: &Budget) -> Result<()> {
@@ -66,6 +70,12 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         )?;
         return crate::swegle::run(parsed, budget);
     }
+    if !a.density_ratio.is_empty() && a.scene != "thesis-wave" {
+        return Err(crate::query::not_in(
+            "--density-ratio",
+            "a scene other than thesis-wave (the Swegle box's is `sphstab swegle --density-ratio`)",
+        ));
+    }
     if a.scene == "thesis-wave" {
         if a.t_end.is_some() || a.out.is_some() || a.integrator.is_some() || a.euler_every.is_some()
         {
@@ -76,11 +86,16 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
         let form = sphstab::forms::FormKind::by_name(a.form.as_deref().unwrap_or("nonlocal"))?;
         let k = sphstab::kernel::by_name("m4")?;
+        let ratios = if a.density_ratio.is_empty() {
+            vec![0.25, 0.5, 2.0, 4.0]
+        } else {
+            a.density_ratio.clone()
+        };
         let mut rows = Vec::new();
-        for r in [0.25, 0.5, 2.0, 4.0] {
-            rows.push(sphstab::solver::thesis_wave::run_thesis_wave(
-                &sphstab::solver::thesis_wave::ThesisWave::new(form, k, r),
-            )?);
+        for r in ratios {
+            let mut cfg = sphstab::solver::thesis_wave::ThesisWave::new(form, k, r);
+            cfg.budget = *budget;
+            rows.push(sphstab::solver::thesis_wave::run_thesis_wave(&cfg)?);
         }
         if a.json {
             println!("{}", serde_json::to_string_pretty(&rows)?);
@@ -90,13 +105,17 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
                 form.name()
             );
             for r in rows {
+                let t = r
+                    .transmitted
+                    .map_or("not measurable".to_string(), |t| format!("{t:.4}"));
                 println!(
-                    "ρB/ρA = {:<5} reflected {:+.4} (exact {:+.4})  transmitted {:.4} (exact {:.4})",
+                    "ρB/ρA = {:<5} reflected {:+.4} (exact {:+.4})  transmitted {t} (exact {:.4})  Δt {:.3e} s, {} steps",
                     r.density_ratio,
                     r.reflected,
                     r.reflected_exact,
-                    r.transmitted,
-                    r.transmitted_exact
+                    r.transmitted_exact,
+                    r.time_step,
+                    r.steps
                 );
             }
         }
