@@ -2,6 +2,7 @@
 //! against the support D_max, or a \[B00\] §5 bound ([`FiniteBodySeries`]; the code of
 //! `sphstab stiffness --body`).
 
+use crate::budget::Budget;
 use crate::error::{Error, Result};
 use crate::kernel;
 use crate::plot::Curve;
@@ -55,7 +56,7 @@ pub struct FiniteBodySeries {
 
 impl FiniteBodySeries {
     /// The curve.
-    pub(super) fn curve(&self) -> Result<Curve> {
+    pub(super) fn curve(&self, budget: &Budget) -> Result<Curve> {
         if self.supports.is_empty() || self.supports.len() > 200 {
             return Err(Error::Incompatible(
                 "finite_body series: give 1 to 200 `supports`".into(),
@@ -68,7 +69,7 @@ impl FiniteBodySeries {
                 .supports
                 .par_iter()
                 .map(|&d| {
-                    let r = finite_body(self.dim, self.nodes, k, d, fam)?;
+                    let r = finite_body(self.dim, self.nodes, k, d, fam, budget)?;
                     match self.route {
                         FiniteBodyRoute::Lumped => Ok(r.lambda_max_lumped),
                         _ => r.lambda_max_consistent.ok_or_else(|| {

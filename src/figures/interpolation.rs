@@ -2,6 +2,7 @@
 //! on a finite particle set, or the exact function, against position
 //! ([`InterpolationSeries`]; the code of `sphstab interpolate`).
 
+use crate::budget::Budget;
 use crate::error::{Result, check_range};
 use crate::kernel;
 use crate::plot::Curve;
@@ -63,7 +64,7 @@ pub struct InterpolationSeries {
 
 impl InterpolationSeries {
     /// The interpolation this series draws.
-    pub fn config(&self) -> Result<InterpolationConfig> {
+    pub fn config(&self, budget: &Budget) -> Result<InterpolationConfig> {
         let f = TestFunction::by_name(&self.function, self.edge_width.unwrap_or(10.0))?;
         let k = kernel::by_name(self.kernel.as_deref().unwrap_or("mollifier"))?;
         let mut c = InterpolationConfig::new(f, k, self.h);
@@ -80,14 +81,15 @@ impl InterpolationSeries {
             c.normalisation = Normalisation::by_name(n)?;
         }
         c.ghosts = self.ghosts;
+        c.budget = *budget;
         c.validate()?;
         Ok(c)
     }
 
     /// The curve.
-    pub(super) fn curve(&self) -> Result<Curve> {
+    pub(super) fn curve(&self, budget: &Budget) -> Result<Curve> {
         check_range("h", self.h, 0.0, f64::MAX, false, true)?;
-        let c = self.config()?;
+        let c = self.config(budget)?;
         let r = interpolate(&c)?;
         let y = match (self.quantity, self.exact) {
             (InterpolationQuantity::Value, false) => r.f_approx,

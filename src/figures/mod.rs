@@ -374,9 +374,12 @@ pub fn panel_curves(cfg: &FigureConfig) -> Result<Vec<Vec<Curve>>> {
             } else if !p.scene.is_empty() {
                 p.scene.iter().map(|s| s.curve(&cfg.budget)).collect()
             } else if !p.interpolation.is_empty() {
-                p.interpolation.iter().map(|s| s.curve()).collect()
+                p.interpolation
+                    .iter()
+                    .map(|s| s.curve(&cfg.budget))
+                    .collect()
             } else if !p.finite_body.is_empty() {
-                p.finite_body.iter().map(|s| s.curve()).collect()
+                p.finite_body.iter().map(|s| s.curve(&cfg.budget)).collect()
             } else {
                 p.series.iter().map(|s| s.curve(cfg.points)).collect()
             }

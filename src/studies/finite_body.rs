@@ -18,7 +18,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::box_operator::{ArnoldiParams, fastest_mode};
-use crate::error::{Error, Result};
+use crate::budget::Budget;
+use crate::error::{Error, Result, fields};
 use crate::kernel::Kernel;
 use crate::params::check_count;
 use crate::shape::{KernelParams, ShapeFamily, eval_d};
@@ -33,6 +34,11 @@ pub const MAX_DENSE: usize = 1600;
 pub const NODES_1D: (usize, usize) = (3, 100_000);
 /// Nodes per side: 2D range.
 pub const NODES_2D: (usize, usize) = (3, 300);
+/// Shape-function products (a quadrature point's node pairs, or its nodes once per Lanczos
+/// product) counted as one particle-step against the budget's `max_steps`.
+pub const PRODUCTS_PER_STEP: f64 = 30.0;
+/// Lanczos products assumed by the budget estimate.
+const LANCZOS_PRODUCTS: f64 = 500.0;
 
 /// The mass matrix.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -309,6 +315,7 @@ pub fn finite_body(
     kernel: &'static dyn Kernel,
     d_max: f64,
     family: ShapeFamily,
+    budget: &Budget,
 ) -> Result<FiniteBody> {
     let (lo, hi) = match dim {
         1 => NODES_1D,
@@ -327,6 +334,26 @@ pub fn finite_body(
         kernel,
         h: d_max / kernel.zeta(),
     };
+    // the work: every quadrature point's node pairs (dense) or its nodes per Lanczos product
+    let count = nodes.pow(dim as u32);
+    let points = (2.0 * (nodes - 1) as f64).powi(dim as i32);
+    let cover = if dim == 1 {
+        2.0 * d_max
+    } else {
+        std::f64::consts::PI * d_max * d_max
+    };
+    let work = if count <= MAX_DENSE {
+        points * cover * cover
+    } else {
+        points * cover * LANCZOS_PRODUCTS
+    };
+    budget.work(
+        fields(&["nodes", "support", "dim"]),
+        &format!("the finite body ({count} nodes)"),
+        work,
+        "shape-function products",
+        budget.max_steps * PRODUCTS_PER_STEP,
+    )?;
     let (lumped, consistent, dense_ok) = if dim == 1 {
         solve(&assemble::<1>(nodes, family, kp)?, d_max, family)?
     } else {

@@ -1139,7 +1139,11 @@ fn b00_figs17_18() -> [Row; 2] {
     let ds = [1.5, 2.0, 2.5, 3.0, 4.0, 6.0];
     let ratios = |dim: usize, n: usize, kern: &str, which: usize, ds: &[f64]| -> Vec<f64> {
         ds.iter()
-            .map(|&d| finite_body(dim, n, k(kern), d, MLS).unwrap().ratio_lumped[which])
+            .map(|&d| {
+                finite_body(dim, n, k(kern), d, MLS, &sphstab::budget::Budget::default())
+                    .unwrap()
+                    .ratio_lumped[which]
+            })
             .collect()
     };
     let c41 = ratios(1, 41, "efg-cubic", 0, &ds);

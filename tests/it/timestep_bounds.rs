@@ -70,7 +70,15 @@ fn finite_bar_with_hat_shapes_is_the_linear_element_chain() {
     use sphstab::studies::finite_body::finite_body;
     let k = kernel::by_name("efg-cubic").unwrap();
     for n in [5, 41] {
-        let r = finite_body(1, n, k, 1.0001, ShapeFamily::Mls).unwrap();
+        let r = finite_body(
+            1,
+            n,
+            k,
+            1.0001,
+            ShapeFamily::Mls,
+            &sphstab::budget::Budget::default(),
+        )
+        .unwrap();
         assert!(
             (r.lambda_max_lumped - 4.0).abs() < 1e-10,
             "{n} nodes: lumped {}",
@@ -91,8 +99,24 @@ fn finite_bar_lanczos_matches_dense_and_lies_above_the_lattice() {
     use sphstab::studies::finite_body::finite_body;
     let k = kernel::by_name("efg-cubic").unwrap();
     for d in [1.5, 2.5] {
-        let dense = finite_body(1, 1600, k, d, ShapeFamily::Mls).unwrap();
-        let lanczos = finite_body(1, 1601, k, d, ShapeFamily::Mls).unwrap();
+        let dense = finite_body(
+            1,
+            1600,
+            k,
+            d,
+            ShapeFamily::Mls,
+            &sphstab::budget::Budget::default(),
+        )
+        .unwrap();
+        let lanczos = finite_body(
+            1,
+            1601,
+            k,
+            d,
+            ShapeFamily::Mls,
+            &sphstab::budget::Budget::default(),
+        )
+        .unwrap();
         assert!(dense.dense && !lanczos.dense);
         let rel =
             (dense.lambda_max_lumped - lanczos.lambda_max_lumped).abs() / dense.lambda_max_lumped;
@@ -110,7 +134,15 @@ fn finite_bar_lanczos_matches_dense_and_lies_above_the_lattice() {
         )
         .unwrap()
         .exact;
-        let small = finite_body(1, 101, k, d, ShapeFamily::Mls).unwrap();
+        let small = finite_body(
+            1,
+            101,
+            k,
+            d,
+            ShapeFamily::Mls,
+            &sphstab::budget::Budget::default(),
+        )
+        .unwrap();
         assert!(
             small.lambda_max_lumped >= lattice - 1e-3,
             "D_max = {d}: finite {} below the lattice {lattice}",

@@ -85,7 +85,7 @@ fn bad_interval(s: &str) -> anyhow::Error {
     anyhow::anyhow!("--interval: `{s}` is not a number or a multiple of pi (e.g. 0,1 or 0,3pi)")
 }
 
-fn config(a: &Args) -> Result<Vec<InterpolationConfig>> {
+fn config(a: &Args, budget: &sphstab::budget::Budget) -> Result<Vec<InterpolationConfig>> {
     if a.edge_width.is_some() && a.function != "edge" {
         bail!("--edge-width applies to --function edge only");
     }
@@ -120,6 +120,7 @@ fn config(a: &Args) -> Result<Vec<InterpolationConfig>> {
                 shape,
                 ghosts: a.ghosts,
                 normalisation,
+                budget: *budget,
             };
             c.validate()?;
             Ok(c)
@@ -226,8 +227,8 @@ fn csv(reps: &[InterpolationReport]) -> String {
     s
 }
 
-pub fn run(a: Args) -> Result<()> {
-    let cfgs = config(&a)?;
+pub fn run(a: Args, budget: &sphstab::budget::Budget) -> Result<()> {
+    let cfgs = config(&a, budget)?;
     if let Some(p) = &a.out {
         Files::new().output("--out", p).check()?;
     }

@@ -55,7 +55,7 @@ pub struct Args {
 }
 
 /// `--body N`: the finite body's largest eigenvalue.
-fn body(a: &Args, n: usize) -> Result<()> {
+fn body(a: &Args, n: usize, budget: &sphstab::budget::Budget) -> Result<()> {
     if a.quadrature != "nodal" && a.quadrature != "cell-2x2" {
         return Err(crate::query::not_in(
             "--quadrature",
@@ -76,7 +76,7 @@ fn body(a: &Args, n: usize) -> Result<()> {
     let k = sphstab::kernel::by_name(&a.kernel)?;
     let fam = ShapeFamily::by_name(&a.shape)?;
     let dim = a.dim.unwrap_or(2);
-    let r = sphstab::studies::finite_body::finite_body(dim, n, k, a.support, fam)?;
+    let r = sphstab::studies::finite_body::finite_body(dim, n, k, a.support, fam, budget)?;
     if !(r.lambda_max_lumped.is_finite() && r.lambda_max_consistent.is_none_or(f64::is_finite)) {
         return Err(sphstab::error::Error::NonFinite("the finite body's eigenvalue").into());
     }
@@ -136,9 +136,9 @@ fn body(a: &Args, n: usize) -> Result<()> {
     Ok(())
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, budget: &sphstab::budget::Budget) -> Result<()> {
     if let Some(n) = a.body {
-        return body(&a, n);
+        return body(&a, n, budget);
     }
     if a.dim.is_some() {
         return Err(crate::query::not_in(
