@@ -145,13 +145,14 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
     let mut run = Run::with_prescribed(model, z, &vec![None; n])?;
     // the incident pulse reaches the interface after (a − x0)/c_A; wait until the reflected and
     // transmitted pulses are clear of it, but stop before either reaches an end of the bar:
-    // the reflected head (it left the interface at t_hit at c_A) 60Δx short of the left end —
-    // nearer, the free end changes its measured integral (by 0.02 at ρB/ρA = 100 with 10Δx) —
+    // the reflected head (it left the interface at t_hit at c_A) two pulse widths short of the
+    // left end — nearer, the free end changes its measured integral (by 0.02 at ρB/ρA = 100
+    // with 10Δx) —
     // and the transmitted one (at c_B) 10Δx short of the right end
     let t_hit = (a - x0 - w / 2.0) / ca;
     let t_split = t_hit + w / ca;
     let clear = (a - x0) / ca + 1.5 * w / cb.min(ca);
-    let t_left = t_hit + (a - 60.0 * dx) / ca;
+    let t_left = t_hit + (a - 2.0 * w) / ca;
     let t_right = t_hit + (len - a - 10.0 * dx) / cb;
     let t_end = clear.min(t_left).min(t_right.max(t_split + 2.0 * dx / ca));
     let transmitted_ok = t_end <= t_right && t_end >= t_split;
