@@ -63,5 +63,6 @@ pub use params::{
     ArtificialStress, ArtificialViscosity, DELTA_RANGE, DIFFUSION_FORM_NAMES, DensityDiffusion,
     DiffusionForm, Material, ModelParams, ObjectiveRate, ViscosityPairs,
 };
+pub use rates::neo_hookean_cauchy;
 pub use state::{AuxRates, Comp, FieldKind, RateOut, State, StateView, Tensor, n_sym, voigt};
 pub use workspace::{RateWorkspace, default_skin};

@@ -605,6 +605,47 @@ fn cof_s<S: Scalar, const D: usize>(f: &Tensor<S, D>) -> Tensor<S, D> {
     c
 }
 
+/// The first Piola–Kirchhoff stress of the compressible neo-Hookean law \[T eq 3.62–3.64\],
+/// P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ (F⁻ᵀ = cof F / J): the one definition the total-Lagrangian rate
+/// and [`neo_hookean_cauchy`] use. In 2D the third stretch is 1 (plane strain).
+pub(crate) fn neo_hookean_piola<S: Scalar, const D: usize>(
+    f: &Tensor<S, D>,
+    lambda: f64,
+    shear: f64,
+) -> Tensor<S, D> {
+    let jac = det_s(f);
+    let cof = cof_s(f);
+    let lnj = jac.ln();
+    let mut p = [[S::zero(); D]; D];
+    for a in 0..D {
+        for b in 0..D {
+            let fit = cof[a][b] / jac;
+            p[a][b] = (f[a][b] - fit) * shear + lnj * fit * lambda;
+        }
+    }
+    p
+}
+
+/// The principal Cauchy stresses T = P Fᵀ / J of the neo-Hookean law ([`neo_hookean_piola`])
+/// at the principal stretches `stretch` (F = diag(λ_a); in 2D plane strain, λ3 = 1), with Lamé
+/// constants `lambda`, `shear` — \[T\] eq 5.5's T_aa, computed by the solver's own law.
+pub fn neo_hookean_cauchy<const D: usize>(stretch: [f64; D], lambda: f64, shear: f64) -> [f64; D] {
+    let mut f = [[0.0; D]; D];
+    for a in 0..D {
+        f[a][a] = stretch[a];
+    }
+    let p = neo_hookean_piola(&f, lambda, shear);
+    let jac: f64 = stretch.iter().product();
+    let mut t = [0.0; D];
+    for a in 0..D {
+        for b in 0..D {
+            t[a] += p[a][b] * f[a][b];
+        }
+        t[a] /= jac;
+    }
+    t
+}
+
 /// The total-Lagrangian rate: F = I + Σ_K (u_K − ū) ⊗ ∇φ_K(X_J) at every master J
 /// (nodal integration, \[B00\] eq 79 in D dimensions), m_K a_K = −Σ_J V0_J P_J ∇φ_K(X_J), with
 /// - hydro: the fluid itself, P = −p(J) cof F, p = K(ρ/ρ0 − 1), ρ = ρ_ref/J (transverse modes
@@ -674,20 +715,7 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
                 // P = −p cof F
                 cof_s(&f).map(|row| row.map(|c| -pr * c))
             }
-            Material::NeoHookean { lambda, shear } => {
-                // P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ, F⁻ᵀ = cof F / J
-                let jac = det_s(&f);
-                let cof = cof_s(&f);
-                let lnj = jac.ln();
-                let mut p = [[S::zero(); D]; D];
-                for a in 0..D {
-                    for b in 0..D {
-                        let fit = cof[a][b] / jac;
-                        p[a][b] = (f[a][b] - fit) * shear + lnj * fit * lambda;
-                    }
-                }
-                p
-            }
+            Material::NeoHookean { lambda, shear } => neo_hookean_piola(&f, lambda, shear),
             Material::Elastic {
                 lambda,
                 shear,

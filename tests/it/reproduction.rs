@@ -1737,6 +1737,91 @@ fn thesis_fig56() -> Row {
     }
 }
 
+/// [T §5.1, Figs 5.1 and 5.2]: the analytic T11(λ1) of eq 5.5 for fixed λ2 (plane strain,
+/// λ3 = 1), compressible and nearly incompressible (values not given: ν = 0.3, §5.3.1's
+/// validation material, and ν = 0.49, §5.3.2's), against sphstab's neo-Hookean law — the first
+/// Piola–Kirchhoff stress the total-Lagrangian rate integrates, turned into Cauchy stress by
+/// `neo_hookean_cauchy` — and against the thesis digest's independently derived values
+/// (`../shared/seeds/004_digest.md` §4.5).
+fn thesis_figs51_52() -> [Row; 2] {
+    use sphstab::forms::neo_hookean_cauchy;
+    // eq 5.5: T = (μ/J) diag(λ_i² − 1) + (λ/J) ln J I, J = λ1 λ2 (λ3 = 1)
+    let eq55 = |l1: f64, l2: f64, lam: f64, mu: f64| {
+        let j = l1 * l2;
+        (mu / j) * (l1 * l1 - 1.0) + (lam / j) * j.ln()
+    };
+    let row = |nu: f64, item: &'static str, what: &'static str, digest: &[(f64, f64, f64)]| {
+        let mu = 1.0;
+        let lam = 2.0 * nu / (1.0 - 2.0 * nu) * mu;
+        let mut worst: f64 = 0.0;
+        for l2 in [0.5, 1.0, 1.5, 2.0] {
+            for i in 0..=110 {
+                let l1 = 0.5 + 0.05 * i as f64;
+                let t = neo_hookean_cauchy([l1, l2], lam, mu)[0];
+                let e = eq55(l1, l2, lam, mu);
+                worst = worst.max((t - e).abs() / e.abs().max(1.0));
+            }
+        }
+        let ours: Vec<f64> = digest
+            .iter()
+            .map(|&(l1, l2, _)| neo_hookean_cauchy([l1, l2], lam, mu)[0])
+            .collect();
+        let dev = digest
+            .iter()
+            .zip(&ours)
+            .map(|(d, o)| (d.2 - o).abs())
+            .fold(0.0, f64::max);
+        let pts = digest
+            .iter()
+            .zip(&ours)
+            .map(|(d, o)| format!("({}, {}) {o:.4}", d.0, d.1))
+            .collect::<Vec<_>>()
+            .join(", ");
+        Row {
+            item,
+            shows: what,
+            how: "derived in the test through `sphstab::forms::neo_hookean_cauchy` (the solver's neo-Hookean law); a stretched neo-Hookean scene needs code (rows Thesis Figs 5.3–5.5)",
+            paper: "a family of curves T11(λ1) at fixed λ2 from eq 5.5 with λ3 = 1 (§5.1); parameter values not given".into(),
+            ours: format!(
+                "λ/μ = {:.1} (ν = {nu}): sphstab's law against eq 5.5 on λ2 = 0.5, 1, 1.5, 2 and λ1 = 0.5 … 6: largest relative difference {worst:.1e}; T11/μ at (λ1, λ2) = {pts}; the digest's derived values differ by at most {dev:.1e}",
+                lam / mu
+            ),
+            agree: verdict(
+                worst < 1e-13 && dev < 5e-5,
+                "derived: the curves are eq 5.5 itself; read as sphstab's law giving them to rounding",
+            ),
+        }
+    };
+    [
+        row(
+            0.3,
+            "Thesis Fig 5.1",
+            "analytic T11 vs λ1, compressible neo-Hookean (eq 5.5), a family of λ2",
+            &[
+                (1.5, 1.0, 1.2388),
+                (2.0, 1.0, 2.0199),
+                (3.0, 1.0, 3.2160),
+                (6.0, 1.0, 6.2813),
+                (2.0, 2.0, 1.2699),
+                (6.0, 2.0, 3.2273),
+            ],
+        ),
+        row(
+            0.49,
+            "Thesis Fig 5.2",
+            "as Fig 5.1, nearly incompressible (ν = 0.49)",
+            &[
+                (1.5, 1.0, 14.0785),
+                (2.0, 1.0, 18.4821),
+                (4.0, 1.0, 20.7321),
+                (6.0, 1.0, 20.4660),
+                (1.0, 2.0, 16.9821),
+                (6.0, 2.0, 13.0634),
+            ],
+        ),
+    ]
+}
+
 /// [T §5.4.2, Fig 5.9]: the speed of a plane-strain bar with free sides.
 fn thesis_fig59() -> Row {
     let (e, rho, nu) = (200e9f64, 8000.0, 0.3);
@@ -2366,16 +2451,6 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
         "needs code: as Fig 4.6; its table of speeds is a computed row",
     ),
     (
-        "Thesis Fig 5.1",
-        "analytic T11 vs λ1, compressible neo-Hookean (eq 5.5), family of λ2",
-        "needs code: a closed-form stress–stretch output (parameters not given)",
-    ),
-    (
-        "Thesis Fig 5.2",
-        "as Fig 5.1, nearly incompressible",
-        "needs code: as Fig 5.1",
-    ),
-    (
         "Thesis Fig 5.3 (T-paper Fig 3)",
         "neo-Hookean validation bar set-up (ρ = 8000, E = 200 GPa, ν = 0.3)",
         "needs code: a 1D neo-Hookean scene with a boundary pulse",
@@ -2552,6 +2627,7 @@ fn reproduction_md_matches_the_code() {
     let (f21, f22, fig12, fig11) = rest;
     let [b00_f17, b00_f18] = b00_figs17_18();
     let [t418, t419] = thesis_large_jumps();
+    let [t51, t52] = thesis_figs51_52();
     let rows = vec![
         b00_table1(),
         b00_table2(),
@@ -2585,6 +2661,8 @@ fn reproduction_md_matches_the_code() {
         t419,
         thesis_tension(),
         thesis_tensile_range(),
+        t51,
+        t52,
         thesis_fig56(),
         thesis_fig59(),
     ];
