@@ -29,8 +29,9 @@ pub struct Args {
     /// is h: --h is then the thesis's cover in particle spacings).
     #[arg(long, default_value = "mollifier")]
     kernel: String,
-    /// Smoothing lengths h/Δx in the kernel's own convention, comma-separated (one row each),
-    /// each in [0.05, 20] with a support ζh > Δx. Default 5.5 ([T] §2.7.3's compromise).
+    /// Smoothing lengths h/Δx in the kernel's own convention, comma-separated (one row each, at
+    /// most 64), each in [0.05, 20] with a support ζh > Δx. Default 5.5 ([T] §2.7.3's
+    /// compromise).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     h: Vec<f64>,
     /// Shape family: sph (the plain kernel sums of [T] eqs 2.24–2.25), shepard, corrected or
@@ -103,6 +104,9 @@ fn config(a: &Args, budget: &sphstab::budget::Budget) -> Result<Vec<Interpolatio
             (end(parts[0])?, end(parts[1])?)
         }
     };
+    if a.h.len() > 64 {
+        bail!("--h: give 1 to 64 values, got {}", a.h.len());
+    }
     let hs = if a.h.is_empty() {
         vec![5.5]
     } else {

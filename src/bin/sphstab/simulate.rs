@@ -37,8 +37,8 @@ pub struct Args {
     /// Write history.csv (t, max |v|, kinetic energy; SI) and final.vtk here.
     #[arg(long)]
     out: Option<std::path::PathBuf>,
-    /// thesis-wave only: the density ratios ρB/ρA to run, comma-separated, each in [1e-4, 1e4]
-    /// (default 0.25,0.5,2,4).
+    /// thesis-wave only: the density ratios ρB/ρA to run, comma-separated (at most 64), each in
+    /// [1e-4, 1e4] (default 0.25,0.5,2,4).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     density_ratio: Vec<f64>,
 }
@@ -86,6 +86,12 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
         let form = sphstab::forms::FormKind::by_name(a.form.as_deref().unwrap_or("nonlocal"))?;
         let k = sphstab::kernel::by_name("m4")?;
+        if a.density_ratio.len() > 64 {
+            anyhow::bail!(
+                "--density-ratio: give 1 to 64 values, got {}",
+                a.density_ratio.len()
+            );
+        }
         let ratios = if a.density_ratio.is_empty() {
             vec![0.25, 0.5, 2.0, 4.0]
         } else {
