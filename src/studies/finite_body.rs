@@ -141,16 +141,18 @@ impl<const D: usize> Points<D> {
     }
 }
 
-/// Gauss points of one cell [0, 1]^D: 2 per axis.
+/// Gauss points of one cell [0, 1]^D: the tensor product of the 2-point rule of
+/// [`points_1d`](crate::vonneumann::timestep_bounds::points_1d), the one the lattice bounds use.
 fn gauss_points<const D: usize>() -> Vec<([f64; D], f64)> {
-    let g = 0.5 / 3f64.sqrt();
-    let p1 = [(0.5 - g, 0.5), (0.5 + g, 0.5)];
+    let p1 = crate::vonneumann::timestep_bounds::points_1d(true);
     let mut out = Vec::new();
-    for m in 0..2usize.pow(D as u32) {
+    for m in 0..p1.len().pow(D as u32) {
         let mut x = [0.0; D];
         let mut w = 1.0;
-        for (a, xa) in x.iter_mut().enumerate() {
-            let (p, wp) = p1[(m >> a) & 1];
+        let mut rest = m;
+        for xa in x.iter_mut() {
+            let (p, wp) = p1[rest % p1.len()];
+            rest /= p1.len();
             *xa = p;
             w *= wp;
         }

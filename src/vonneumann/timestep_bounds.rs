@@ -49,7 +49,7 @@ impl Bounds {
 }
 
 /// Quadrature points in one cell [0, 1) (1D): nodal or 2-point Gauss.
-fn points_1d(gauss2: bool) -> Vec<(f64, f64)> {
+pub(crate) fn points_1d(gauss2: bool) -> Vec<(f64, f64)> {
     if gauss2 {
         let g = 0.5 / 3f64.sqrt();
         vec![(0.5 - g, 0.5), (0.5 + g, 0.5)]
