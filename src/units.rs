@@ -186,6 +186,13 @@ const TABLE: &[(&str, Unit)] = &[
     ("window", Run(Dim::Time)),
     ("rate", Run(Dim::Rate)),
     ("max_velocity", Run(Dim::Speed)),
+    // a scene's probes
+    ("probe_t", Run(Dim::Time)),
+    ("reference_position", Run(Dim::Length)),
+    ("displacement", Run(Dim::Length)),
+    ("velocity", Run(Dim::Speed)),
+    ("exact_velocity", Run(Dim::Speed)),
+    ("exact_stress", Run(Dim::Stress)),
     ("max_velocity_end", Run(Dim::Speed)),
     // the physical scales of a run with physical units
     ("dt_physical", Physical(Dim::Time)),

@@ -19,15 +19,31 @@ pub enum SceneRoute {
     Analytic,
 }
 
-/// Quantity of a scene profile.
+/// Quantity of a scene profile or probe history.
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "kebab-case")]
 pub enum SceneQuantity {
-    /// The stress the form reports ([`Scene1D::stress_profile`]).
+    /// The stress the form reports ([`crate::solver::scene::SceneReport::final_stress`]).
     #[default]
     Stress,
     /// The particle velocity.
     Velocity,
+    /// The displacement (probes only).
+    Displacement,
+    /// The stretch F (probes of the total-Lagrangian form only).
+    Stretch,
+}
+
+/// The abscissa of a probe series.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProbeAbscissa {
+    /// Time (s, times `x_scale`).
+    #[default]
+    Time,
+    /// The probe's stretch F (total-Lagrangian); the analytic route draws the material's
+    /// uniaxial-strain Cauchy stress T11(F) over the run's range of F.
+    Stretch,
 }
 
 /// A 1D scene's profile at its end time against the reference position X of every particle
@@ -35,8 +51,21 @@ pub enum SceneQuantity {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneSeries {
-    /// Built-in scene name (`uniform-bar`, `compressive-wave`, `tensile-wave`, `rod`).
+    /// Built-in scene name (`uniform-bar`, `compressive-wave`, `tensile-wave`, `rod`) or a
+    /// scene file (a path ending in `.json`, relative to the working directory, e.g.
+    /// `analysis/scenes/thesis-traction-pulse.json`).
     pub scene: String,
+    /// Keys merged into the scene before it runs (objects key by key, e.g.
+    /// `{"left": {"traction": {"smoothing": 2e-6}}}`), validated as the scene's own.
+    #[serde(default)]
+    pub overrides: Option<serde_json::Value>,
+    /// Index of the scene's probe whose history is drawn (instead of a profile at the end
+    /// time).
+    #[serde(default)]
+    pub probe: Option<usize>,
+    /// Abscissa of a probe history (default: time).
+    #[serde(default)]
+    pub against: ProbeAbscissa,
     /// Form (default: the scene's).
     pub form: Option<String>,
     /// Partition coefficient c (default: the scene's).
@@ -67,9 +96,26 @@ fn one() -> f64 {
 }
 
 impl SceneSeries {
-    /// The scene: the built-in with this series' form, c and end time.
+    /// The scene: the built-in or file with this series' overrides, form, c and end time.
     pub fn scene(&self) -> Result<Scene1D> {
-        let mut s = builtin(&self.scene)?;
+        let mut s = if self.scene.ends_with(".json") {
+            let text = std::fs::read_to_string(&self.scene).map_err(|e| Error::Config {
+                file: self.scene.clone(),
+                msg: format!("cannot read the scene file: {e}"),
+            })?;
+            crate::solver::scene::parse(&self.scene, &text)?
+        } else {
+            builtin(&self.scene)?
+        };
+        if let Some(o) = &self.overrides {
+            let mut doc = serde_json::to_value(&s).map_err(|e| Error::Config {
+                file: self.scene.clone(),
+                msg: e.to_string(),
+            })?;
+            merge(&mut doc, o);
+            let text = doc.to_string();
+            s = crate::solver::scene::parse(&format!("{} with overrides", self.scene), &text)?;
+        }
         if let Some(f) = &self.form {
             s.form = f.clone();
         }
@@ -91,6 +137,9 @@ impl SceneSeries {
             budget: *budget,
             ..self.scene()?
         };
+        if let Some(p) = self.probe {
+            return self.probe_curve(&s, p);
+        }
         let x: Vec<f64> = s
             .reference_positions()
             .iter()
@@ -106,6 +155,7 @@ impl SceneSeries {
                 let q = match self.quantity {
                     SceneQuantity::Stress => sigma,
                     SceneQuantity::Velocity => v,
+                    _ => return Err(self.probes_only()),
                 };
                 (q, "analytic".to_string())
             }
@@ -116,8 +166,9 @@ impl SceneSeries {
                     .take()
                     .ok_or(Error::NonFinite("scene series: no final state"))?;
                 let q = match self.quantity {
-                    SceneQuantity::Stress => s.stress_profile(&z),
+                    SceneQuantity::Stress => std::mem::take(&mut r.final_stress),
                     SceneQuantity::Velocity => z.v.iter().map(|[v]| *v).collect(),
+                    _ => return Err(self.probes_only()),
                 };
                 let mut l = s.form.clone();
                 if matches!(FormKind::by_name(&s.form)?, FormKind::Lnl | FormKind::Cll) {
@@ -132,5 +183,117 @@ impl SceneSeries {
             y: q.iter().map(|v| v * self.y_scale).collect(),
             dashed: self.dashed,
         })
+    }
+}
+
+/// Merges `over` into `doc`: objects key by key (recursively), anything else replaced.
+fn merge(doc: &mut serde_json::Value, over: &serde_json::Value) {
+    match (doc, over) {
+        (serde_json::Value::Object(d), serde_json::Value::Object(o)) => {
+            for (k, v) in o {
+                merge(d.entry(k.clone()).or_insert(serde_json::Value::Null), v);
+            }
+        }
+        (d, o) => *d = o.clone(),
+    }
+}
+
+impl SceneSeries {
+    fn probes_only(&self) -> Error {
+        Error::Incompatible(
+            format!(
+                "scene series `{}`: the displacement and the stretch are drawn for a `probe`, not along the bar",
+                self.scene
+            )
+            .into(),
+        )
+    }
+
+    /// The history of probe `p` of scene `s`: the run's, or the analytic solution's
+    /// ([`Scene1D::end_waves_at`] at the run's record times; T11(F) of the material against
+    /// the stretch).
+    fn probe_curve(&self, s: &Scene1D, p: usize) -> Result<Curve> {
+        if p >= s.probes.len() {
+            return Err(Error::OutOfRange {
+                field: "probe",
+                value: p as f64,
+                range: format!("the scene has {} probes", s.probes.len()).into(),
+            });
+        }
+        let r = s.run(())?;
+        let h = &r.probes[p];
+        let pick = |q: SceneQuantity, exact: bool| -> Result<Vec<f64>> {
+            let v = match (q, exact) {
+                (SceneQuantity::Stress, false) => h.stress.clone(),
+                (SceneQuantity::Velocity, false) => h.velocity.clone(),
+                (SceneQuantity::Displacement, false) => h.displacement.clone(),
+                (SceneQuantity::Stretch, _) => h.stretch.clone(),
+                (SceneQuantity::Stress, true) => h.exact_stress.clone(),
+                (SceneQuantity::Velocity, true) => h.exact_velocity.clone(),
+                (SceneQuantity::Displacement, true) => Vec::new(),
+            };
+            if v.is_empty() {
+                return Err(Error::Incompatible(
+                    format!(
+                        "scene series `{}`: probe {p} has no {}{} (the form or the scene's `analytic` does not give it)",
+                        self.scene,
+                        if exact { "analytic " } else { "" },
+                        match q {
+                            SceneQuantity::Stress => "stress",
+                            SceneQuantity::Velocity => "velocity",
+                            SceneQuantity::Displacement => "displacement",
+                            SceneQuantity::Stretch => "stretch",
+                        }
+                    )
+                    .into(),
+                ));
+            }
+            Ok(v)
+        };
+        let exact = self.route == SceneRoute::Analytic;
+        let (x, y) = match self.against {
+            ProbeAbscissa::Time => (r.probe_t.clone(), pick(self.quantity, exact)?),
+            ProbeAbscissa::Stretch => {
+                let f = pick(SceneQuantity::Stretch, false)?;
+                if exact {
+                    let m = s.material_model()?;
+                    let (lo, hi) = f
+                        .iter()
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                            (a.min(v), b.max(v))
+                        });
+                    let xs: Vec<f64> = (0..=200)
+                        .map(|i| lo + (hi - lo) * i as f64 / 200.0)
+                        .collect();
+                    let ys = xs.iter().map(|&l| uniaxial_cauchy(&m, l)).collect();
+                    (xs, ys)
+                } else {
+                    (f, pick(self.quantity, false)?)
+                }
+            }
+        };
+        let label = match (exact, self.against) {
+            (true, ProbeAbscissa::Time) => "analytic".to_string(),
+            (true, ProbeAbscissa::Stretch) => "material law T11(λ1)".to_string(),
+            (false, _) => format!("X = {} m", crate::display::num(h.reference_position)),
+        };
+        Ok(Curve {
+            label: self.label.clone().unwrap_or(label),
+            x: x.iter().map(|v| v * self.x_scale).collect(),
+            y: y.iter().map(|v| v * self.y_scale).collect(),
+            dashed: self.dashed,
+        })
+    }
+}
+
+/// The uniaxial-strain (λ2 = λ3 = 1) Cauchy stress T11 of material `m` at stretch `l`: the
+/// neo-Hookean law's ([`crate::forms::neo_hookean_cauchy`]), or the 1D linear law's
+/// P = C(F − 1) without pre-stress (T = P in 1D).
+fn uniaxial_cauchy(m: &crate::forms::Material, l: f64) -> f64 {
+    match *m {
+        crate::forms::Material::NeoHookean { lambda, shear } => {
+            crate::forms::neo_hookean_cauchy([l], lambda, shear)[0]
+        }
+        other => other.modulus() * (l - 1.0),
     }
 }

@@ -646,6 +646,105 @@ pub fn neo_hookean_cauchy<const D: usize>(stretch: [f64; D], lambda: f64, shear:
     t
 }
 
+/// The deformation gradient at master `st` of the total-Lagrangian rate ([`rate_tl`]):
+/// F = I + Σ_K (u_K − ū) ⊗ ∇φ_K(X_J), ū = Σ_K φ_K u_K / Σ_K φ_K, from the displacements `u`.
+pub(crate) fn tl_deformation_gradient<S: Scalar, const D: usize>(
+    st: &[(usize, f64, [f64; D])],
+    u: &[[S; D]],
+) -> Tensor<S, D> {
+    let sphi: f64 = st.iter().map(|e| e.1).sum();
+    let mut ubar = [S::zero(); D];
+    for &(k, phi, _) in st {
+        for a in 0..D {
+            ubar[a] += u[k][a] * phi;
+        }
+    }
+    let ubar = ubar.map(|x| x / sphi);
+    let mut f = [[S::zero(); D]; D];
+    for (a, row) in f.iter_mut().enumerate() {
+        row[a] = S::cst(1.0);
+    }
+    for &(k, _, gr) in st {
+        for a in 0..D {
+            let du = u[k][a] - ubar[a];
+            for b in 0..D {
+                f[a][b] += du * gr[b];
+            }
+        }
+    }
+    f
+}
+
+/// The first Piola–Kirchhoff stress P(F) at master `j` of the total-Lagrangian rate
+/// ([`rate_tl`]; its material laws are listed there).
+pub(crate) fn tl_piola<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    j: usize,
+    f: &Tensor<S, D>,
+) -> Tensor<S, D> {
+    let s0 = m.sigma0;
+    match m.p.material {
+        Material::Hydro { bulk } => {
+            let jac = det_s(f);
+            let rho_ref = m.mass[j] / m.vol_ref[j];
+            let pr = ((S::cst(rho_ref) / jac) / m.p.rho0 - 1.0) * bulk;
+            // P = −p cof F
+            cof_s(f).map(|row| row.map(|c| -pr * c))
+        }
+        Material::NeoHookean { lambda, shear } => neo_hookean_piola(f, lambda, shear),
+        Material::Elastic {
+            lambda,
+            shear,
+            rate: ObjectiveRate::Truesdell,
+        } if D == 1 => {
+            // 1D: the Truesdell law σ̇ = (C + σ)Ḟ/F integrates exactly to
+            // P = σ = (σ0 + C)F − C (\[B00\] eq 81's tangent C + σ0 at F = 1)
+            let mut p = [[S::zero(); D]; D];
+            p[0][0] = f[0][0] * (s0 + lambda + 2.0 * shear) - (lambda + 2.0 * shear);
+            p
+        }
+        Material::Elastic {
+            lambda,
+            shear,
+            rate,
+        } => {
+            let (lam, g) = match rate {
+                ObjectiveRate::Truesdell => (lambda, shear),
+                ObjectiveRate::Jaumann => (lambda + s0, shear - s0),
+            };
+            let mut e = [[S::zero(); D]; D];
+            for a in 0..D {
+                for b in 0..D {
+                    let mut s = S::zero();
+                    for c in 0..D {
+                        s += f[c][a] * f[c][b];
+                    }
+                    e[a][b] = (s - if a == b { 1.0 } else { 0.0 }) * 0.5;
+                }
+            }
+            let mut tr = e[0][0];
+            for a in 1..D {
+                tr += e[a][a];
+            }
+            let mut sm = [[S::zero(); D]; D];
+            for a in 0..D {
+                for b in 0..D {
+                    sm[a][b] = e[a][b] * (2.0 * g) + if a == b { tr * lam + s0 } else { S::zero() };
+                }
+            }
+            let mut p = [[S::zero(); D]; D];
+            for a in 0..D {
+                for b in 0..D {
+                    for c in 0..D {
+                        p[a][b] += f[a][c] * sm[c][b];
+                    }
+                }
+            }
+            p
+        }
+    }
+}
+
 /// The total-Lagrangian rate: F = I + Σ_K (u_K − ū) ⊗ ∇φ_K(X_J) at every master J
 /// (nodal integration, \[B00\] eq 79 in D dimensions), m_K a_K = −Σ_J V0_J P_J ∇φ_K(X_J), with
 /// - hydro: the fluid itself, P = −p(J) cof F, p = K(ρ/ρ0 − 1), ρ = ρ_ref/J (transverse modes
@@ -663,7 +762,6 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
     out: RateOut<'_, S, D>,
     ws: &mut RateWorkspace<S, D>,
 ) -> Result<()> {
-    let s0 = m.sigma0;
     if let Some(xo) = out.x {
         xo.copy_from_slice(z.v);
     }
@@ -687,87 +785,7 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
     }));
     let u = &ws.disp;
     for (j, st) in m.ref_master.iter().enumerate() {
-        let sphi: f64 = st.iter().map(|e| e.1).sum();
-        let mut ubar = [S::zero(); D];
-        for &(k, phi, _) in st {
-            for a in 0..D {
-                ubar[a] += u[k][a] * phi;
-            }
-        }
-        let ubar = ubar.map(|x| x / sphi);
-        let mut f = [[S::zero(); D]; D];
-        for (a, row) in f.iter_mut().enumerate() {
-            row[a] = S::cst(1.0);
-        }
-        for &(k, _, gr) in st {
-            for a in 0..D {
-                let du = u[k][a] - ubar[a];
-                for b in 0..D {
-                    f[a][b] += du * gr[b];
-                }
-            }
-        }
-        let p = match m.p.material {
-            Material::Hydro { bulk } => {
-                let jac = det_s(&f);
-                let rho_ref = m.mass[j] / m.vol_ref[j];
-                let pr = ((S::cst(rho_ref) / jac) / m.p.rho0 - 1.0) * bulk;
-                // P = −p cof F
-                cof_s(&f).map(|row| row.map(|c| -pr * c))
-            }
-            Material::NeoHookean { lambda, shear } => neo_hookean_piola(&f, lambda, shear),
-            Material::Elastic {
-                lambda,
-                shear,
-                rate: ObjectiveRate::Truesdell,
-            } if D == 1 => {
-                // 1D: the Truesdell law σ̇ = (C + σ)Ḟ/F integrates exactly to
-                // P = σ = (σ0 + C)F − C (\[B00\] eq 81's tangent C + σ0 at F = 1)
-                let mut p = [[S::zero(); D]; D];
-                p[0][0] = f[0][0] * (s0 + lambda + 2.0 * shear) - (lambda + 2.0 * shear);
-                p
-            }
-            Material::Elastic {
-                lambda,
-                shear,
-                rate,
-            } => {
-                let (lam, g) = match rate {
-                    ObjectiveRate::Truesdell => (lambda, shear),
-                    ObjectiveRate::Jaumann => (lambda + s0, shear - s0),
-                };
-                let mut e = [[S::zero(); D]; D];
-                for a in 0..D {
-                    for b in 0..D {
-                        let mut s = S::zero();
-                        for c in 0..D {
-                            s += f[c][a] * f[c][b];
-                        }
-                        e[a][b] = (s - if a == b { 1.0 } else { 0.0 }) * 0.5;
-                    }
-                }
-                let mut tr = e[0][0];
-                for a in 1..D {
-                    tr += e[a][a];
-                }
-                let mut sm = [[S::zero(); D]; D];
-                for a in 0..D {
-                    for b in 0..D {
-                        sm[a][b] =
-                            e[a][b] * (2.0 * g) + if a == b { tr * lam + s0 } else { S::zero() };
-                    }
-                }
-                let mut p = [[S::zero(); D]; D];
-                for a in 0..D {
-                    for b in 0..D {
-                        for c in 0..D {
-                            p[a][b] += f[a][c] * sm[c][b];
-                        }
-                    }
-                }
-                p
-            }
-        };
+        let p = tl_piola(m, j, &tl_deformation_gradient(st, u));
         let w = m.vol_ref[j];
         for &(k, _, gr) in st {
             for a in 0..D {
@@ -808,6 +826,133 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
 }
 
 impl<const D: usize> Model<D> {
+    /// The stress each particle of state `z` carries, the one its momentum equation uses:
+    /// for the total-Lagrangian form the Cauchy stress T = P Fᵀ/J of its law at the particle's
+    /// deformation gradient ([`rate_tl`]; in 1D T = P), for the others the integrated stress
+    /// (σ, or (1 − c)σ + cτ for the mixed forms: [`State::total_stress`]). Empty for a form
+    /// with neither (a hydrodynamic material in an Eulerian form, the stress-point forms,
+    /// whose stress lives on the stress points).
+    pub fn particle_stress(&self, z: &State<f64, D>) -> Vec<Tensor<f64, D>> {
+        if self.p.form != FormKind::TotalLagrangian {
+            return z.total_stress(self.p.c_partition);
+        }
+        (0..z.x.len())
+            .filter_map(|i| self.particle_stress_of(z, i))
+            .collect()
+    }
+
+    /// [`Model::particle_stress`] of particle `i` alone (None for a form without a particle
+    /// stress, or `i` out of range).
+    pub fn particle_stress_of(&self, z: &State<f64, D>, i: usize) -> Option<Tensor<f64, D>> {
+        if self.p.form != FormKind::TotalLagrangian {
+            let s = z.sigma.get(i)?;
+            let Some(t) = z.tau.get(i) else {
+                return Some(*s);
+            };
+            let c = self.p.c_partition;
+            return Some(std::array::from_fn(|a| {
+                std::array::from_fn(|b| (1.0 - c) * s[a][b] + c * t[a][b])
+            }));
+        }
+        let f = self.deformation_gradient_of(z, i)?;
+        let p = tl_piola(self, i, &f);
+        let jac = det_s(&f);
+        let mut t = [[0.0; D]; D];
+        for a in 0..D {
+            for b in 0..D {
+                for c in 0..D {
+                    t[a][b] += p[a][c] * f[b][c];
+                }
+                t[a][b] /= jac;
+            }
+        }
+        Some(t)
+    }
+
+    /// The deformation gradient F of particle `i` of a total-Lagrangian state `z` (the F of
+    /// its rate, [`rate_tl`]); None for the other forms or `i` out of range.
+    pub fn deformation_gradient_of(&self, z: &State<f64, D>, i: usize) -> Option<Tensor<f64, D>> {
+        if self.p.form != FormKind::TotalLagrangian {
+            return None;
+        }
+        let st = self.ref_master.get(i)?;
+        let mut u = Vec::with_capacity(st.len());
+        let mut local = Vec::with_capacity(st.len());
+        for (slot, &(k, phi, gr)) in st.iter().enumerate() {
+            u.push(std::array::from_fn(|a| z.x[k][a] - self.x_ref[k][a]));
+            local.push((slot, phi, gr));
+        }
+        Some(tl_deformation_gradient(&local, &u))
+    }
+
+    /// The force m_K a_K (the force of M a = f for a consistent mass) on each particle of the
+    /// reference configuration at rest under the uniform stress σ = e_a ⊗ e_a (`axis` = a):
+    /// zero on a particle whose support the body fills, and near a face normal to e_a the
+    /// discrete ∮ φ_K n_a dΓ of the form (the momentum equation's boundary integral, + on a
+    /// face of outward normal −e_a). A prescribed normal stress s̄ on such a face is the load
+    /// f_K = −s̄ b_K on the particles near it: it makes the uniform stress s̄ an equilibrium of
+    /// the form there, and its resultant is s̄ times the face area that the particles carry.
+    /// - total-Lagrangian: b_K = −e_a Σ_J V_J ∂φ_K/∂X_a(X_J) (the rate's P at F = I);
+    /// - the others: the rate at rest with every stress field (σ, τ, stress points) = e_a ⊗ e_a
+    ///   and ρ = m/V.
+    ///
+    /// Errors for a hydrodynamic material (its stress is a pressure from the density), and for
+    /// a form that a uniform stress does not move anywhere (nonlocal, local, lnl: their
+    /// momentum equation takes σ_J − σ_I).
+    pub fn unit_stress_force(&self, axis: usize) -> Result<Vec<[f64; D]>> {
+        if axis >= D {
+            return Err(crate::error::Error::OutOfRange {
+                field: "axis",
+                value: axis as f64,
+                range: format!("must be < {D}").into(),
+            });
+        }
+        if matches!(self.p.material, Material::Hydro { .. }) {
+            return Err(crate::error::Error::Incompatible(
+                "a prescribed stress (traction) needs an elastic or neo-Hookean material, not a hydrodynamic one".into(),
+            ));
+        }
+        let n = self.x_ref.len();
+        if self.p.form == FormKind::TotalLagrangian {
+            let mut b = vec![[0.0; D]; n];
+            for (j, st) in self.ref_master.iter().enumerate() {
+                for &(k, _, gr) in st {
+                    b[k][axis] -= self.vol_ref[j] * gr[axis];
+                }
+            }
+            return Ok(b);
+        }
+        let mut unit = [[0.0; D]; D];
+        unit[axis][axis] = 1.0;
+        let mut z = self.rest_state(self.p.rho0);
+        for (r, (m, v)) in z.rho.iter_mut().zip(self.mass.iter().zip(&self.vol_ref)) {
+            *r = m / v;
+        }
+        z.sigma.iter_mut().for_each(|s| *s = unit);
+        z.tau.iter_mut().for_each(|s| *s = unit);
+        z.sp_sigma.iter_mut().for_each(|s| *s = unit);
+        let mut out = State::default();
+        self.rate(&z, &mut out)?;
+        if out.v.iter().all(|a| a.iter().all(|c| c.abs() < 1e-12)) {
+            return Err(crate::error::Error::Incompatible(
+                format!(
+                    "a prescribed stress (traction) needs a form whose momentum equation sees a uniform stress at a free boundary; {} takes the difference σ_J − σ_I, so a uniform stress exerts no force and there is nothing to load (use total-lagrangian, classical or cll)",
+                    self.p.form.name()
+                )
+                .into(),
+            ));
+        }
+        Ok(match self.mass_operator() {
+            super::chain_data::MassOperator::Consistent(_) => out.v,
+            super::chain_data::MassOperator::Lumped => out
+                .v
+                .iter()
+                .zip(&self.mass)
+                .map(|(a, m)| a.map(|c| c * m))
+                .collect(),
+        })
+    }
+
     /// The rate function of the system (same definitions as the 1D forms). `out` is resized
     /// to the shape of `z`. Allocates a fresh [`RateWorkspace`]: the analysis' entry point; a
     /// time loop uses [`Model::rate_with`] or [`Model::rate_into`].

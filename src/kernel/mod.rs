@@ -65,6 +65,23 @@ pub trait Kernel: Send + Sync + std::fmt::Debug {
     fn customary_h(&self) -> (f64, f64);
 }
 
+/// The 1D kernel's cumulative integral I(q) = ∫_{−∞}^{q} σ_1 f(|r|) dr (the fraction of the
+/// normalised 1D kernel left of q, in units of h): 0 for q ≤ −ζ, ½ at 0, 1 for q ≥ ζ. A step
+/// smoothed by the continuous SPH interpolation with smoothing length h is I(t/h)
+/// (`solver::scene::Pulse`). Gauss–Legendre quadrature on the pieces of [0, |q|] between
+/// multiples of ½ (4 panels of 20 points each): the B-splines' pieces are integrated exactly.
+pub fn cumulative_1d(k: &dyn Kernel, q: f64) -> f64 {
+    let z = k.zeta();
+    if q <= -z {
+        return 0.0;
+    }
+    if q >= z {
+        return 1.0;
+    }
+    let half = k.sigma(1) * numeric::integrate_by_halves(|r| k.f(1, r), q.abs());
+    if q < 0.0 { 0.5 - half } else { 0.5 + half }
+}
+
 /// W(r, h) in dimension `dim` for a scalar distance `r ≥ 0` of any [`Scalar`] type
 /// (value and exact derivative for dual numbers).
 #[inline]

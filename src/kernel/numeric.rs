@@ -102,6 +102,33 @@ pub(super) fn first_root(g: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
     b
 }
 
+/// The Gauss–Legendre rule of [`GL_ORDER`] points, computed once.
+fn gl_nodes() -> &'static [(f64, f64)] {
+    static NODES: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
+    NODES.get_or_init(|| gauss_legendre(GL_ORDER))
+}
+
+/// ∫_0^b g(q) dq, b ≥ 0, by Gauss–Legendre quadrature on 4 panels in each interval between
+/// the multiples of ½ below b (and from the last one to b): every piecewise-polynomial kernel
+/// here (the B-splines, whose pieces join at multiples of ½) is then integrated piece by piece,
+/// exactly to rounding; the smooth ones to rounding as well.
+pub(super) fn integrate_by_halves(g: impl Fn(f64) -> f64, b: f64) -> f64 {
+    let mut sum = 0.0;
+    let mut a = 0.0;
+    while a < b {
+        let end = (a + 0.5).min(b);
+        let width = (end - a) / 4.0;
+        for panel in 0..4 {
+            let mid = a + (panel as f64 + 0.5) * width;
+            for &(x, wt) in gl_nodes() {
+                sum += 0.5 * width * wt * g(mid + 0.5 * width * x);
+            }
+        }
+        a = end;
+    }
+    sum
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -41,6 +41,11 @@ pub struct Run<const D: usize = 2> {
     pub fixed: Vec<bool>,
     /// Boundary auxiliary-state treatment.
     pub boundary: BoundaryDensity,
+    /// External forces on the particles (N, or N per unit area in 1D and per unit thickness
+    /// in 2D: the units of the model's masses times an acceleration), held constant over each
+    /// step; empty: none. A time-dependent load is set before every step at the step's
+    /// midpoint t + Δt/2 ([`Run::set_load`]).
+    load: Vec<[f64; D]>,
     /// Time.
     pub t: f64,
     /// Steps taken.
@@ -191,6 +196,7 @@ fn split_aux_mut<const D: usize>(q: &mut [f64], lens: [usize; 6]) -> AuxRates<'_
 pub struct System<'a, const D: usize> {
     model: &'a Model<D>,
     fixed: &'a [bool],
+    load: &'a [[f64; D]],
     frozen_aux: bool,
     lens: [usize; 6],
     bufs: &'a SystemBuffers<D>,
@@ -208,10 +214,18 @@ impl<'a, const D: usize> System<'a, D> {
         Self {
             model,
             fixed,
+            load: &[],
             frozen_aux: boundary == BoundaryDensity::Frozen,
             lens: bufs.layout.lens(fixed.len(), D),
             bufs,
         }
+    }
+
+    /// The system with external forces `load` (one per particle, or empty: none) added to
+    /// the rate's forces.
+    pub fn with_load(mut self, load: &'a [[f64; D]]) -> Self {
+        self.load = load;
+        self
     }
 
     /// Writes the auxiliary state of `z` into the flat `q` (cleared first).
@@ -272,9 +286,24 @@ impl<'a, const D: usize> System<'a, D> {
 }
 
 impl<const D: usize> System<'_, D> {
-    /// Fixed particles do not accelerate. With a consistent mass, `a` holds the force f on
-    /// entry and is replaced by the solution of M a = f first.
+    /// Adds the external forces; fixed particles do not accelerate. With a consistent mass,
+    /// `a` holds the force f on entry and is replaced by the solution of M a = f first.
     fn mask_accel(&self, a: &mut [f64]) {
+        if !self.load.is_empty() {
+            let consistent = self.bufs.mass.is_some();
+            for ((ai, f), m) in a
+                .as_chunks_mut::<D>()
+                .0
+                .iter_mut()
+                .zip(self.load)
+                .zip(&self.model.mass)
+            {
+                let w = if consistent { 1.0 } else { 1.0 / m };
+                for (c, fc) in ai.iter_mut().zip(f) {
+                    *c += fc * w;
+                }
+            }
+        }
         if let Some(lu) = &self.bufs.mass {
             let mut guard = self.bufs.solve.borrow_mut();
             let (f, work) = &mut *guard;
@@ -388,6 +417,7 @@ impl<const D: usize> Run<D> {
             z,
             fixed,
             boundary,
+            load: Vec::new(),
             t: 0.0,
             steps: 0,
             bufs,
@@ -452,6 +482,25 @@ impl<const D: usize> Run<D> {
         }
     }
 
+    /// Sets the external forces of the following steps (one per particle; an empty vector
+    /// removes them). They are held constant over a step: a load that varies in time is set
+    /// before each step at the step's midpoint, which integrates its impulse to second order
+    /// in Δt with every integrator.
+    pub fn set_load(&mut self, load: Vec<[f64; D]>) -> Result<()> {
+        if !load.is_empty() && load.len() != self.z.x.len() {
+            return Err(Error::Incompatible(
+                "load: one force per particle (or none)".into(),
+            ));
+        }
+        self.load = load;
+        Ok(())
+    }
+
+    /// The external forces (empty: none).
+    pub fn load(&self) -> &[[f64; D]] {
+        &self.load
+    }
+
     /// The time integrator.
     pub fn integrator(&self) -> Integrator {
         self.stepper.integrator
@@ -487,7 +536,8 @@ impl<const D: usize> Run<D> {
         self.check_state()?;
         let z = &mut self.z;
         let q = &mut self.bufs.q;
-        let sys = System::new(&self.model, &self.fixed, self.boundary, &self.bufs.sys);
+        let sys = System::new(&self.model, &self.fixed, self.boundary, &self.bufs.sys)
+            .with_load(&self.load);
         sys.flatten_into(z, q);
         let (x, v) = (z.x.as_flattened_mut(), z.v.as_flattened_mut());
         if self.stepper.integrator == Integrator::Kdk {

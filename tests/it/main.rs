@@ -43,6 +43,7 @@ mod long_run;
 mod stable_dt;
 
 // the reference solver against the engine
+mod boundary_loads;
 mod pair_reuse;
 mod rate_workspace;
 mod rod;
