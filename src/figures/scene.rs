@@ -44,6 +44,10 @@ pub enum ProbeAbscissa {
     /// The probe's stretch F (total-Lagrangian); the analytic route draws the material's
     /// uniaxial-strain Cauchy stress T11(F) over the run's range of F.
     Stretch,
+    /// The stretch applied to a bar whose left end is held: 1 + u_k/(X_k − origin), u_k the
+    /// displacement of probe k = `stretch_probe` (the pulled end); the analytic route as for
+    /// `stretch`.
+    AppliedStretch,
 }
 
 /// A 1D scene's profile at its end time against the reference position X of every particle
@@ -66,6 +70,9 @@ pub struct SceneSeries {
     /// Abscissa of a probe history (default: time).
     #[serde(default)]
     pub against: ProbeAbscissa,
+    /// The probe at the pulled end, for `against: applied-stretch`.
+    #[serde(default)]
+    pub stretch_probe: Option<usize>,
     /// Form (default: the scene's).
     pub form: Option<String>,
     /// Partition coefficient c (default: the scene's).
@@ -253,8 +260,29 @@ impl SceneSeries {
         let exact = self.route == SceneRoute::Analytic;
         let (x, y) = match self.against {
             ProbeAbscissa::Time => (r.probe_t.clone(), pick(self.quantity, exact)?),
-            ProbeAbscissa::Stretch => {
-                let f = pick(SceneQuantity::Stretch, false)?;
+            ProbeAbscissa::Stretch | ProbeAbscissa::AppliedStretch => {
+                let f = if self.against == ProbeAbscissa::Stretch {
+                    pick(SceneQuantity::Stretch, false)?
+                } else {
+                    let k = self
+                        .stretch_probe
+                        .filter(|&k| k < r.probes.len())
+                        .ok_or_else(|| Error::OutOfRange {
+                            field: "stretch_probe",
+                            value: self.stretch_probe.map_or(-1.0, |k| k as f64),
+                            range: format!(
+                                "against applied-stretch needs the pulled end's probe, one of 0..{}",
+                                r.probes.len()
+                            )
+                            .into(),
+                        })?;
+                    let span = r.probes[k].reference_position - s.origin;
+                    r.probes[k]
+                        .displacement
+                        .iter()
+                        .map(|u| 1.0 + u / span)
+                        .collect()
+                };
                 if exact {
                     let m = s.material_model()?;
                     let (lo, hi) = f
@@ -274,7 +302,7 @@ impl SceneSeries {
         };
         let label = match (exact, self.against) {
             (true, ProbeAbscissa::Time) => "analytic".to_string(),
-            (true, ProbeAbscissa::Stretch) => "material law T11(λ1)".to_string(),
+            (true, _) => "material law T11(λ1)".to_string(),
             (false, _) => format!("X = {} m", crate::display::num(h.reference_position)),
         };
         Ok(Curve {

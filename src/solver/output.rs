@@ -85,6 +85,18 @@ pub fn vtk_state<const D: usize>(
     form: FormKind,
     c_partition: f64,
 ) -> String {
+    vtk_state_with_stress(title, z, form, &z.total_stress(c_partition))
+}
+
+/// [`vtk_state`] with `stress` (one per particle, or empty) written as the stress: a form
+/// whose stress is not a state, the total-Lagrangian one, passes its law's
+/// ([`crate::forms::Model::particle_stress`]).
+pub fn vtk_state_with_stress<const D: usize>(
+    title: &str,
+    z: &State<f64, D>,
+    form: FormKind,
+    total: &[Tensor<f64, D>],
+) -> String {
     const NAMES: [&str; 6] = [
         "sigma_xx", "sigma_yy", "sigma_xy", "sigma_zz", "sigma_xz", "sigma_yz",
     ];
@@ -114,7 +126,7 @@ pub fn vtk_state<const D: usize>(
             }
         }
     };
-    stress("", &z.total_stress(c_partition));
+    stress("", total);
     if !z.tau.is_empty() {
         let (ps, pt) = stress_part_names(form).unwrap_or(("sigma", "tau"));
         stress(&format!("_{ps}"), &z.sigma);

@@ -3,7 +3,7 @@
 use crate::flags::InFile;
 use anyhow::{Context, Result};
 use sphstab::budget::Budget;
-use sphstab::solver::output::{csv, vtk_state};
+use sphstab::solver::output::{csv, vtk_state_with_stress};
 use sphstab::solver::scene::{builtin, parse};
 
 /// Flags of `simulate`.
@@ -139,10 +139,13 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         if std::path::Path::new(&a.scene).is_file() {
             files = files.input("<SCENE>", &a.scene);
         }
-        files
+        files = files
             .output("--out", dir.join("history.csv"))
-            .output("--out", dir.join("final.vtk"))
-            .check()?;
+            .output("--out", dir.join("final.vtk"));
+        if !scene.probes.is_empty() {
+            files = files.output("--out", dir.join("probes.csv"));
+        }
+        files.check()?;
     }
     if let Some(f) = &a.form {
         scene.override_form(f);
@@ -176,15 +179,20 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         );
         std::fs::write(dir.join("history.csv"), h)
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
+        if !r.probes.is_empty() {
+            std::fs::write(dir.join("probes.csv"), probes_csv(&r))
+                .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
+        }
         if let Some(z) = &r.final_state {
             let form = sphstab::forms::FormKind::by_name(r.form)?;
+            let stress: Vec<[[f64; 1]; 1]> = r.final_stress.iter().map(|&s| [[s]]).collect();
             std::fs::write(
                 dir.join("final.vtk"),
-                vtk_state(
+                vtk_state_with_stress(
                     &format!("{} {} t={}", r.name, r.form, sphstab::display::num(r.t)),
                     z,
                     form,
-                    scene.c_partition,
+                    &stress,
                 ),
             )
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
@@ -215,6 +223,33 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
             .map(|e| format!("{e:.4e}"))
             .unwrap_or("n/a".into()),
     );
+    if !r.probes.is_empty() {
+        let parts: Vec<String> = r
+            .probes
+            .iter()
+            .map(|p| {
+                let (lo, hi) = p
+                    .stress
+                    .iter()
+                    .fold((0.0f64, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
+                if p.stress.is_empty() {
+                    format!(
+                        "X = {} m: no stress",
+                        sphstab::display::num(p.reference_position)
+                    )
+                } else {
+                    format!(
+                        "X = {} m: [{lo:.4e}, {hi:.4e}]",
+                        sphstab::display::num(p.reference_position)
+                    )
+                }
+            })
+            .collect();
+        println!(
+            "probes, stress range (Pa): {}; histories in probes.csv (--out) and `probes` (--json)",
+            parts.join("; ")
+        );
+    }
     if let Some(s) = r.stress {
         let c = r
             .c_partition
@@ -233,6 +268,39 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The probes' histories as CSV: `t`, then for each probe at X the columns `u@X`, `v@X`,
+/// `stress@X` (if the form has one), `stretch@X` (total-Lagrangian), `v_exact@X` and
+/// `stress_exact@X` (with the `end-pulse` solution), SI units.
+fn probes_csv(r: &sphstab::solver::scene::SceneReport) -> String {
+    let mut header = vec!["t".to_string()];
+    let mut cols: Vec<&[f64]> = Vec::new();
+    for p in &r.probes {
+        let x = sphstab::display::num(p.reference_position);
+        for (name, v) in [
+            ("u", &p.displacement),
+            ("v", &p.velocity),
+            ("stress", &p.stress),
+            ("stretch", &p.stretch),
+            ("v_exact", &p.exact_velocity),
+            ("stress_exact", &p.exact_stress),
+        ] {
+            if !v.is_empty() {
+                header.push(format!("{name}@{x}"));
+                cols.push(v);
+            }
+        }
+    }
+    let names: Vec<&str> = header.iter().map(String::as_str).collect();
+    csv(
+        &names,
+        r.probe_t.iter().enumerate().map(|(i, &t)| {
+            std::iter::once(t)
+                .chain(cols.iter().map(|c| c[i]))
+                .collect()
+        }),
+    )
 }
 
 /// Largest scene file read (a scene is a few hundred bytes; this stops an endless device).
