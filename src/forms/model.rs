@@ -44,6 +44,11 @@ pub struct Model<const D: usize> {
     pub vol_ref: Vec<f64>,
     /// Isotropic pre-stress σ0 of the total-Lagrangian law.
     pub sigma0: f64,
+    /// The particles whose momentum equation takes the classical (plus) form of the stress
+    /// divergence instead of the difference form: the boundary layer of the difference forms
+    /// (nonlocal, local, lnl), which alone do not see a free surface \[V21 §7.4, Fig 18(b)\].
+    /// Empty: none. Set it with [`Model::set_classical_layer`].
+    pub(crate) classical_layer: Vec<bool>,
     /// Reference stencils (total-Lagrangian): (master, φ, ∇φ) at each master.
     pub(crate) ref_master: Vec<Vec<(usize, f64, [f64; D])>>,
     /// The data of the 1D-only forms of \[B00\] (stress points, Lagrangian reference
@@ -170,6 +175,7 @@ impl<const D: usize> Model<D> {
             x_ref,
             vol_ref,
             sigma0,
+            classical_layer: Vec::new(),
             ref_master: Vec::new(),
             chain: None,
         };
@@ -344,6 +350,33 @@ impl<const D: usize> Model<D> {
     pub fn mass_operator(&self) -> &MassOperator {
         const LUMPED: &MassOperator = &MassOperator::Lumped;
         self.chain.as_ref().map_or(LUMPED, |c| &c.mass_op)
+    }
+
+    /// Marks the particles whose momentum equation takes the classical (plus) form
+    /// (`layer[i]`; one entry per particle, or empty for none): \[V21 §7.4\]'s free-surface
+    /// treatment of the difference forms. Refused for the other forms, whose momentum is
+    /// already the plus form (classical, cll) or not a stress divergence of this kind.
+    pub fn set_classical_layer(&mut self, layer: Vec<bool>) -> Result<()> {
+        if layer.iter().any(|&b| b)
+            && !matches!(
+                self.p.form,
+                FormKind::Nonlocal | FormKind::Local | FormKind::Lnl
+            )
+        {
+            return Err(Error::Incompatible(
+                field("classical_layers")
+                    + " (a boundary layer in the classical form) applies to the difference forms nonlocal, local and lnl, not "
+                    + field("form")
+                    + format!(" {}", self.p.form.name()),
+            ));
+        }
+        if !layer.is_empty() && layer.len() != self.x_ref.len() {
+            return Err(Error::Incompatible(
+                "classical layer: one entry per particle (or none)".into(),
+            ));
+        }
+        self.classical_layer = layer;
+        Ok(())
     }
 
     /// Number of stress points (stress-point forms: one per interval; 0 otherwise).

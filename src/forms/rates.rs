@@ -355,11 +355,22 @@ fn accelerations<S: Scalar, const D: usize>(
     acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
         let (rho_i, si) = (z.rho[i], &sig[i]);
         let si_r = over_rho2(si, rho_i * rho_i);
+        // a particle of the classical boundary layer takes the plus form [V21 §7.4]
+        let layer = diff_form && m.classical_layer.get(i).copied().unwrap_or(false);
         let (mut fa, mut fav, mut far) = ([S::zero(); D], [S::zero(); D], [S::zero(); D]);
         st.for_each::<false>(m, z.x, vol, i, |nb| {
             let j = nb.j;
             if sum_form {
                 add(&mut fa, sum_term(&si_r, &sig[j], z.rho[j], nb.g));
+            } else if layer {
+                // the classical kernel gradient V_J ∇_I W_IJ (the local form's stencil holds
+                // the corrected one, which no more sees a free surface than the difference)
+                let g = if form == FormKind::Local {
+                    nb.gw.map(|c| c / z.rho[j] * m.mass[j])
+                } else {
+                    nb.g
+                };
+                add(&mut fa, sum_term(&si_r, &sig[j], z.rho[j], g));
             } else if diff_form {
                 add(&mut fa, diff_term(si, &sig[j], nb.g));
             }
@@ -395,18 +406,27 @@ fn accelerations<S: Scalar, const D: usize>(
         });
         let mut a = match form {
             FormKind::Classical => fa,
+            FormKind::Nonlocal | FormKind::Local if layer => fa,
             FormKind::Nonlocal | FormKind::Local => fa.map(|x| x / rho_i),
             FormKind::Lnl | FormKind::Cll => {
-                let p = if form == FormKind::Lnl {
+                let p = if form == FormKind::Lnl && !layer {
                     fa.map(|x| x / rho_i)
                 } else {
                     fa
                 };
                 let mut q = [S::zero(); D];
-                st.for_each::<true>(m, z.x, vol, i, |nb| {
-                    add(&mut q, diff_term(&tau[i], &tau[nb.j], nb.g));
-                });
-                let q = q.map(|x| x / rho_i);
+                if layer {
+                    let ti_r = over_rho2(&tau[i], rho_i * rho_i);
+                    st.for_each::<true>(m, z.x, vol, i, |nb| {
+                        let g = nb.gw.map(|c| c / z.rho[nb.j] * m.mass[nb.j]);
+                        add(&mut q, sum_term(&ti_r, &tau[nb.j], z.rho[nb.j], g));
+                    });
+                } else {
+                    st.for_each::<true>(m, z.x, vol, i, |nb| {
+                        add(&mut q, diff_term(&tau[i], &tau[nb.j], nb.g));
+                    });
+                    q = q.map(|x| x / rho_i);
+                }
                 let mut r = [S::zero(); D];
                 for k in 0..D {
                     r[k] = p[k] * (1.0 - c) + q[k] * c;

@@ -267,6 +267,11 @@ pub struct Scene1D {
     /// Right end layer.
     #[serde(default)]
     pub right: Option<EndLayer>,
+    /// Particles at the left and right ends whose momentum equation takes the classical (plus)
+    /// form: the free-surface treatment of the difference forms nonlocal, local and lnl
+    /// \[V21 §7.4, Fig 18(b): the last four particles at the free end\]. Default none.
+    #[serde(default, skip_serializing_if = "is_zero_pair")]
+    pub classical_layers: [usize; 2],
     /// Monaghan viscosity (α, β).
     #[serde(default)]
     pub artificial_viscosity: Option<(f64, f64)>,
@@ -304,6 +309,10 @@ pub struct Scene1D {
 /// in [SCALE_RANGE.0, SCALE_RANGE.1]: far beyond, squared distances and masses leave the range
 /// of f64 (a bar of 1e150 m stops moving, one of 1e-150 m diverges at the first step).
 pub const SCALE_RANGE: (f64, f64) = (1e-30, 1e30);
+
+fn is_zero_pair(p: &[usize; 2]) -> bool {
+    *p == [0, 0]
+}
 
 /// Most probes a scene records.
 pub const MAX_PROBES: usize = 64;
@@ -638,6 +647,18 @@ impl Scene1D {
                 true,
             )?;
         }
+        if self.classical_layers[0] + self.classical_layers[1] + 2 > self.particles {
+            return Err(Error::OutOfRange {
+                field: "classical_layers",
+                value: (self.classical_layers[0] + self.classical_layers[1]) as f64,
+                range: format!(
+                    "must leave at least 2 particles in the difference form: at most {} for {} particles",
+                    self.particles - 2,
+                    self.particles
+                )
+                .into(),
+            });
+        }
         if l + r + 2 > self.particles {
             return Err(Error::OutOfRange {
                 field: "left.layers + right.layers",
@@ -760,6 +781,16 @@ impl Scene1D {
     /// (A key at its default acts as much as an absent one: a scene written back by serde
     /// holds every key.)
     fn check_keys_apply(&self, form: FormKind) -> Result<()> {
+        if self.classical_layers != [0, 0]
+            && !matches!(form, FormKind::Nonlocal | FormKind::Local | FormKind::Lnl)
+        {
+            return Err(Error::Incompatible(
+                field("classical_layers")
+                    + " (a boundary layer in the classical form) applies to the difference forms nonlocal, local and lnl, not "
+                    + field("form")
+                    + format!(" {}", form.name()),
+            ));
+        }
         if self.c_partition != half() && !matches!(form, FormKind::Lnl | FormKind::Cll) {
             return Err(Error::Incompatible(
                 field("c_partition")
@@ -801,12 +832,19 @@ impl Scene1D {
     }
 
     /// Replaces the form (`simulate --form`): a `c_partition` the file gave then applies only
-    /// if the new form is lnl or cll, and returns to its default otherwise (the override
+    /// if the new form is lnl or cll, `classical_layers` only if it is a difference form
+    /// (nonlocal, local, lnl), and each returns to its default otherwise (the override
     /// replaces the scene's choice of form with what goes with it).
     pub fn override_form(&mut self, form: &str) {
         self.form = form.to_string();
         if !matches!(FormKind::by_name(form), Ok(FormKind::Lnl | FormKind::Cll)) {
             self.c_partition = half();
+        }
+        if !matches!(
+            FormKind::by_name(form),
+            Ok(FormKind::Nonlocal | FormKind::Local | FormKind::Lnl)
+        ) {
+            self.classical_layers = [0, 0];
         }
     }
 
@@ -881,7 +919,11 @@ impl Scene1D {
             ls_length: dx,
         };
         let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
-        let model = Model::new(p, x_ref, vec![dx; n], self.rho0, self.initial_stress, None)?;
+        let mut model = Model::new(p, x_ref, vec![dx; n], self.rho0, self.initial_stress, None)?;
+        if self.classical_layers != [0, 0] {
+            let [l, r] = self.classical_layers;
+            model.set_classical_layer((0..n).map(|i| i < l || i >= n - r).collect())?;
+        }
         let mut z = model.rest_state(self.rho0);
         if let InitialVelocity::Point { index, .. } = self.initial_velocity
             && index >= n

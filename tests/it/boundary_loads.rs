@@ -340,3 +340,45 @@ fn bad_ends_and_probes_are_refused_by_name() {
         "initial_velocity",
     );
 }
+
+/// [V21 §7.4, Fig 18]: the difference forms do not see the free end — 2 μs after the
+/// compressive wave reaches it, the unloaded zone still carries a large part of the impact
+/// stress — and four particles in the classical (plus) form there release it, as the analytic
+/// solution (σ = 0 behind the release front) requires. Measured (2026-12-04), mean |σ|/ρcv0 in
+/// the unloaded zone at t = 12 μs: nonlocal 0.237, local 0.263, lnl 3.639 without the layer,
+/// every form below 0.01 with it (row V21 Fig 18(b) of REPRODUCTION.md).
+#[test]
+fn a_classical_layer_gives_the_difference_forms_a_free_end() {
+    use sphstab::solver::scene::builtin;
+    let unloaded = |form: &str, layers: usize| {
+        let mut s = builtin("compressive-wave").unwrap();
+        s.form = form.into();
+        s.classical_layers = [0, layers];
+        s.t_end = 1.2e-5;
+        let r = s.run(|_| {}).unwrap();
+        let (n, len) = (s.particles, s.length);
+        let (c, z) = (5000.0, 8000.0 * 5000.0);
+        let dx = len / (n - 1) as f64;
+        // the release front left the free end at L/c and is at L − c (t − L/c); the zone from
+        // 10Δx behind it to the free end has σ = 0
+        let front = len - c * (r.t - len / c);
+        let zone: Vec<f64> = (0..n)
+            .filter(|&i| i as f64 * dx > front + 10.0 * dx)
+            .map(|i| r.final_stress[i].abs() / (z * 50.0))
+            .collect();
+        zone.iter().sum::<f64>() / zone.len() as f64
+    };
+    for form in ["nonlocal", "local", "lnl"] {
+        let (without, with) = (unloaded(form, 0), unloaded(form, 4));
+        assert!(without > 0.1, "{form}: {without} without the layer");
+        assert!(with < 0.1, "{form}: {with} with four classical particles");
+    }
+    // the layer is refused where it cannot act
+    let mut s = builtin("compressive-wave").unwrap();
+    s.classical_layers = [0, 4];
+    let e = s.validate().unwrap_err().to_string();
+    assert!(
+        e.contains("classical_layers") && e.contains("classical"),
+        "{e}"
+    );
+}
