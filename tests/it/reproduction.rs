@@ -1715,6 +1715,51 @@ fn thesis_tensile_range() -> Row {
     }
 }
 
+/// [T §2.2.2, eq 2.17, Fig 2.6]: the classical mollifier w = e^{−1/(1−r²)} (Reddy), which is not
+/// one of sphstab's kernels (`mollifier` is the thesis's modified one, eq 2.19): its
+/// normalisation and inflection derived here from the formula, against the seed digest's values
+/// (`../shared/seeds/004_digest.md` §1.4: ∫w = 0.4439938162, G_1D = 2.2522836, G_2D = 2.1435658,
+/// G_3D = 2.2671167, inflection 3^{−1/4} = 0.75984).
+fn thesis_fig26() -> Row {
+    let w = |r: f64| {
+        let s = 1.0 - r * r;
+        if s <= 0.0 { 0.0 } else { (-1.0 / s).exp() }
+    };
+    let i1 = simpson(w, -1.0, 1.0, 20_000);
+    let i2 = 2.0 * PI * simpson(|r| r * w(r), 0.0, 1.0, 20_000);
+    let i3 = 4.0 * PI * simpson(|r| r * r * w(r), 0.0, 1.0, 20_000);
+    let g = [1.0 / i1, 1.0 / i2, 1.0 / i3];
+    let digest = [2.2522836, 2.1435658, 2.2671167];
+    // w'' = 2(3r⁴ − 1) e^{−1/(1−r²)}/(1 − r²)⁴ (digest §1.4): the inflection is the root of 3r⁴ − 1;
+    // checked against a central difference of w itself
+    let q = bisect(|r| 3.0 * r.powi(4) - 1.0, 0.0, 1.0);
+    let d2 = |r: f64| (w(r + 1e-4) - 2.0 * w(r) + w(r - 1e-4)) / 1e-8;
+    let sign_change = d2(q - 1e-3) < 0.0 && d2(q + 1e-3) > 0.0;
+    let dev = g
+        .iter()
+        .zip(&digest)
+        .map(|(a, b)| (a / b - 1.0).abs())
+        .fold(0.0, f64::max);
+    Row {
+        item: "Thesis Fig 2.6",
+        shows: "the classical mollifier e^{−1/(1−r²)} (eq 2.17; not one of sphstab's kernels, whose `mollifier` is the modified one of eq 2.19)",
+        how: "derived in the test from eq 2.17 (Simpson, 20,000 intervals)",
+        paper: "W = G e^{−1/(1−r²)} on r < 1, C∞ with compact support; no closed-form integral, so G is found by numerical quadrature (§2.2.2)".into(),
+        ours: format!(
+            "derived: ∫_{{−1}}^{{1}} w = {i1:.10}; G_1D, G_2D, G_3D = {} (the digest's {}: largest relative difference {dev:.1e}); w(0) = e^{{−1}} = {:.6}; w'' changes sign at r = 3^{{−1/4}} = {q:.5} (a finite difference of w agrees: {}), so W'' > 0 on {:.1}% of the 1D support",
+            list(&g, 7),
+            list(&digest, 7),
+            w(0.0),
+            if sign_change { "yes" } else { "no" },
+            100.0 * (1.0 - q)
+        ),
+        agree: verdict(
+            dev < 1e-6 && sign_change,
+            "derived: the figure plots eq 2.17; read as its normalisation and shape reproduced from the formula",
+        ),
+    }
+}
+
 /// [T §4.6.3.5] unnumbered table: the printed wave speeds are c_L with ν = 0.3.
 fn thesis_speeds() -> Row {
     let sets = [(8000.0, 200e9), (8000.0, 100e9), (4000.0, 200e9)];
@@ -2822,11 +2867,6 @@ const NOT_REPRODUCED: &[(&str, &str, &str)] = &[
         "not reproducible: the material is in B98's ref. [7], not in the paper",
     ),
     (
-        "Thesis Fig 2.6",
-        "classical mollifier e^{−1/(1−r²)} (eq 2.17)",
-        "needs code: the kernel is not in sphstab (`mollifier` is the modified one)",
-    ),
-    (
         "Thesis Fig 2.18",
         "falling edge, low gradient",
         "not reproducible: the statement (\"all of the cover sizes start to behave in a similar manner\", §2.7.2) names no measurable property, and the edge's gradient is not given; the edge rows computed are Figs 2.17, 2.19, 2.20 (`sphstab interpolate --function edge --edge-width W --ghosts`)",
@@ -3039,7 +3079,9 @@ fn reproduction_md_matches_the_code() {
         .expect("the kernels' row")
         + 1;
     let mut rows = rows;
-    rows.splice(at..at, interp::rows());
+    let mut thesis_2 = vec![thesis_fig26()];
+    thesis_2.extend(interp::rows());
+    rows.splice(at..at, thesis_2);
     // [T §4.6.3]: before the time-step row; [T §5.3]: after Figs 5.1, 5.2
     let at = rows
         .iter()
