@@ -109,9 +109,9 @@ fn gl_nodes() -> &'static [(f64, f64)] {
 }
 
 /// ∫_0^b g(q) dq, b ≥ 0, by Gauss–Legendre quadrature on 4 panels in each interval between
-/// the multiples of ½ below b (and from the last one to b): every piecewise-polynomial kernel
-/// here (the B-splines, whose pieces join at multiples of ½) is then integrated piece by piece,
-/// exactly to rounding; the smooth ones to rounding as well.
+/// the multiples of ½ below b (and from the last one to b): the B-splines, whose pieces join at
+/// multiples of ½, are then integrated piece by piece, exactly to rounding (m4 against its
+/// closed form to 1e-13); every kernel's I(ζ) = 1 to 1e-9 (`tests/it/boundary_loads.rs`).
 pub(super) fn integrate_by_halves(g: impl Fn(f64) -> f64, b: f64) -> f64 {
     let mut sum = 0.0;
     let mut a = 0.0;
