@@ -331,6 +331,23 @@ fn bad_ends_and_probes_are_refused_by_name() {
         "right.traction.amplitude",
     );
     refused(r#""probes": [0.2]"#, "probes");
+    // the analytic histories of many probes over many reflections are budgeted too: 64 probes,
+    // 4 particles, 10 s (3e6 steps, 1.2e7 particle-steps, within the default budget) would
+    // need ~2e14 pulse evaluations
+    let many: Vec<String> = (0..64).map(|i| format!("{}", 0.001 * i as f64)).collect();
+    let text = format!(
+        r#"{{"name": "t", "form": "total-lagrangian", "kernel": "m4", "h_over_dx": 2.0,
+        "shape": "mls", "modulus": 200e9, "rho0": 8000.0, "particles": 4, "origin": 0.0,
+        "length": 0.1, "t_end": 10.0, "dt": 0.5, "initial_velocity": {{"kind": "rest"}},
+        "analytic": "end-pulse", "probes": [{}]}}"#,
+        many.join(", ")
+    );
+    let e = parse("t.json", &text)
+        .unwrap()
+        .validate()
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("probes") && e.contains("analytic"), "{e}");
     refused(
         r#""material": {"kind": "neo-hookean", "poisson": 0.5}"#,
         "material.poisson",
