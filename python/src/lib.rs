@@ -17,7 +17,8 @@ use sphstab::budget::Budget;
 use sphstab::error::Error;
 use sphstab::forms::State;
 use sphstab::progress::Progress;
-use sphstab::studies::swegle::{FinalState, SwegleSpec};
+use sphstab::solver::output::FinalState;
+use sphstab::studies::swegle::SwegleSpec;
 use sphstab::units::{self, System};
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -493,6 +494,7 @@ fn swegle_json<'py>(
         r.history_full.iter().map(|row| row.to_vec()),
     )?;
     let fin = match &r.final_state {
+        Some(FinalState::One(z)) => particles(py, z)?,
         Some(FinalState::Two(z)) => particles(py, z)?,
         Some(FinalState::Three(z)) => particles(py, z)?,
         None => PyDict::new(py),
@@ -548,7 +550,9 @@ fn simulate_json<'py>(
         r.history.iter().map(|&(t, v, e)| vec![t, v, e]),
     )?;
     let fin = match &r.final_state {
-        Some(z) => particles(py, z)?,
+        Some(FinalState::One(z)) => particles(py, z)?,
+        Some(FinalState::Two(z)) => particles(py, z)?,
+        Some(FinalState::Three(z)) => particles(py, z)?,
         None => PyDict::new(py),
     };
     let doc = units::json(&r, System::Si, true).map_err(json_error)?;

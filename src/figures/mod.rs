@@ -31,9 +31,9 @@
 //!   "swegle": [ { "form": "classical", "kernel": "m4", "h": 1.2, "density_ratio": 0.99 } ] }
 //! ```
 //!
-//! or `scene` series — a 1D scene run by [`crate::solver::scene::Scene1D::run`] (the code of
+//! or `scene` series — a 1D scene run by [`crate::solver::scene::Scene::run`] (the code of
 //! `sphstab simulate`), or its analytic solution
-//! ([`crate::solver::scene::Scene1D::exact_profile`]), as a stress or velocity profile along
+//! ([`crate::solver::scene::Scene::exact_profile`]), as a stress or velocity profile along
 //! the bar at the scene's end time ([`SceneSeries`]); `x_desc` and `y_desc` name the axes:
 //!
 //! ```json

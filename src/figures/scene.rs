@@ -5,17 +5,17 @@ use crate::budget::Budget;
 use crate::error::{Error, Result};
 use crate::forms::FormKind;
 use crate::plot::Curve;
-use crate::solver::scene::{Scene1D, builtin};
+use crate::solver::scene::{Scene, builtin};
 use serde::Deserialize;
 
 /// How a scene curve is computed.
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "kebab-case")]
 pub enum SceneRoute {
-    /// The scene run by [`Scene1D::run`].
+    /// The scene run by [`Scene::run`].
     #[default]
     Run,
-    /// The scene's analytic solution at its end time ([`Scene1D::exact_profile`]).
+    /// The scene's analytic solution at its end time ([`Scene::exact_profile`]).
     Analytic,
 }
 
@@ -104,7 +104,7 @@ fn one() -> f64 {
 
 impl SceneSeries {
     /// The scene: the built-in or file with this series' overrides, form, c and end time.
-    pub fn scene(&self) -> Result<Scene1D> {
+    pub fn scene(&self) -> Result<Scene> {
         let mut s = if self.scene.ends_with(".json") {
             let text = std::fs::read_to_string(&self.scene).map_err(|e| Error::Config {
                 file: self.scene.clone(),
@@ -140,7 +140,7 @@ impl SceneSeries {
     pub(super) fn curve(&self, budget: &Budget) -> Result<Curve> {
         crate::error::check_range("x_scale", self.x_scale, 0.0, f64::MAX, false, true)?;
         crate::error::check_range("y_scale", self.y_scale, 0.0, f64::MAX, false, true)?;
-        let s = Scene1D {
+        let s = Scene {
             budget: *budget,
             ..self.scene()?
         };
@@ -172,11 +172,13 @@ impl SceneSeries {
                     .final_state
                     .take()
                     .ok_or(Error::NonFinite("scene series: no final state"))?;
-                let q = match self.quantity {
+                // along the row nearest to the axis (every particle in 1D)
+                let q: Vec<f64> = match self.quantity {
                     SceneQuantity::Stress => std::mem::take(&mut r.final_stress),
-                    SceneQuantity::Velocity => z.v.iter().map(|[v]| *v).collect(),
+                    SceneQuantity::Velocity => z.axial_velocity(),
                     _ => return Err(self.probes_only()),
                 };
+                let q = r.centre_row.iter().map(|&i| q[i]).collect::<Vec<_>>();
                 let mut l = s.form.clone();
                 if matches!(FormKind::by_name(&s.form)?, FormKind::Lnl | FormKind::Cll) {
                     l += &format!(" (c = {})", s.c_partition);
@@ -217,9 +219,9 @@ impl SceneSeries {
     }
 
     /// The history of probe `p` of scene `s`: the run's, or the analytic solution's
-    /// ([`Scene1D::end_waves_at`] at the run's record times; T11(F) of the material against
+    /// ([`Scene::end_waves_at`] at the run's record times; T11(F) of the material against
     /// the stretch).
-    fn probe_curve(&self, s: &Scene1D, p: usize) -> Result<Curve> {
+    fn probe_curve(&self, s: &Scene, p: usize) -> Result<Curve> {
         if p >= s.probes.len() {
             return Err(Error::OutOfRange {
                 field: "probe",

@@ -60,6 +60,65 @@ fn vtk<const D: usize>(
     s
 }
 
+/// The final particle state of a run, in its dimension.
+#[derive(Clone, Debug)]
+pub enum FinalState {
+    /// A 1D run.
+    One(State<f64, 1>),
+    /// A 2D run.
+    Two(State<f64, 2>),
+    /// A 3D run.
+    Three(State<f64, 3>),
+}
+
+impl FinalState {
+    /// Legacy VTK of the particles of a run of `form` with partition coefficient
+    /// `c_partition` ([`vtk_state`]; 3D points in every dimension).
+    pub fn vtk(&self, title: &str, form: FormKind, c_partition: f64) -> String {
+        match self {
+            FinalState::One(z) => vtk_state(title, z, form, c_partition),
+            FinalState::Two(z) => vtk_state(title, z, form, c_partition),
+            FinalState::Three(z) => vtk_state(title, z, form, c_partition),
+        }
+    }
+
+    /// The velocity's first (x) component of every particle.
+    pub fn axial_velocity(&self) -> Vec<f64> {
+        match self {
+            FinalState::One(z) => z.v.iter().map(|v| v[0]).collect(),
+            FinalState::Two(z) => z.v.iter().map(|v| v[0]).collect(),
+            FinalState::Three(z) => z.v.iter().map(|v| v[0]).collect(),
+        }
+    }
+
+    /// The dimension.
+    pub fn dim(&self) -> usize {
+        match self {
+            FinalState::One(_) => 1,
+            FinalState::Two(_) => 2,
+            FinalState::Three(_) => 3,
+        }
+    }
+}
+
+impl From<State<f64, 1>> for FinalState {
+    fn from(z: State<f64, 1>) -> Self {
+        FinalState::One(z)
+    }
+}
+
+impl From<State<f64, 2>> for FinalState {
+    fn from(z: State<f64, 2>) -> Self {
+        FinalState::Two(z)
+    }
+}
+
+impl From<State<f64, 3>> for FinalState {
+    fn from(z: State<f64, 3>) -> Self {
+        FinalState::Three(z)
+    }
+}
+
 /// The names of the two stress parts of a mixed form (σ, τ): lnl mixes the nonlocal and the
 /// local stress, cll the classical and the local one; None for the other forms.
 pub fn stress_part_names(form: FormKind) -> Option<(&'static str, &'static str)> {

@@ -25,6 +25,37 @@ pub enum BoundaryDensity {
     Frozen,
 }
 
+/// A ghost particle of one or more symmetry planes: the image of a `source` particle, so that
+/// the source's neighbourhood is whole across the plane. Across the planes x_a = p_a of the
+/// axes a with `sign[a]` = −1 (`offset[a]` = 2 p_a; 0 and +1 on the other axes):
+/// x_g = S x_s + b, v_g = S v_s + ḃ, ρ_g = ρ_s, σ_g = S σ_s S (S = diag(sign), b = `offset`,
+/// ḃ = `offset_rate`, the velocity of a moving plane doubled, held over a step like a load:
+/// [`Run::step`] advances b by ḃ Δt). A ghost takes part in every sum
+/// of the rate function as a particle; its own rates are replaced by the mirrored rates of
+/// its source, so the integrators keep it the image of its source (exactly, up to rounding,
+/// which [`Run::step`] removes at each step's start and end). The ghost is a particle of the
+/// model (reference position, volume, mass: its source's mirrored).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mirror<const D: usize> {
+    /// The ghost's particle index.
+    pub ghost: usize,
+    /// Its source's particle index (a particle that is not itself a ghost).
+    pub source: usize,
+    /// S: −1 on the axes reflected, +1 on the others.
+    pub sign: [f64; D],
+    /// b (m): twice the plane's position on the reflected axes, 0 on the others.
+    pub offset: [f64; D],
+    /// ḃ (m/s): twice the plane's velocity on the reflected axes.
+    pub offset_rate: [f64; D],
+}
+
+impl<const D: usize> Mirror<D> {
+    /// σ_g = S σ_s S.
+    fn tensor(&self, s: &Tensor<f64, D>) -> Tensor<f64, D> {
+        std::array::from_fn(|a| std::array::from_fn(|b| self.sign[a] * self.sign[b] * s[a][b]))
+    }
+}
+
 /// A run in D dimensions.
 ///
 /// The time loop allocates nothing once its buffers have grown (first step): positions and
@@ -46,6 +77,9 @@ pub struct Run<const D: usize = 2> {
     /// step; empty: none. A time-dependent load is set before every step at the step's
     /// midpoint t + Δt/2 ([`Run::set_load`]).
     load: Vec<[f64; D]>,
+    /// The ghost particles of symmetry planes ([`Mirror`]; empty: none), set by
+    /// [`Run::set_mirror`].
+    mirror: Vec<Mirror<D>>,
     /// Time.
     pub t: f64,
     /// Steps taken.
@@ -197,6 +231,7 @@ pub struct System<'a, const D: usize> {
     model: &'a Model<D>,
     fixed: &'a [bool],
     load: &'a [[f64; D]],
+    mirror: &'a [Mirror<D>],
     frozen_aux: bool,
     lens: [usize; 6],
     bufs: &'a SystemBuffers<D>,
@@ -215,6 +250,7 @@ impl<'a, const D: usize> System<'a, D> {
             model,
             fixed,
             load: &[],
+            mirror: &[],
             frozen_aux: boundary == BoundaryDensity::Frozen,
             lens: bufs.layout.lens(fixed.len(), D),
             bufs,
@@ -225,6 +261,13 @@ impl<'a, const D: usize> System<'a, D> {
     /// the rate's forces.
     pub fn with_load(mut self, load: &'a [[f64; D]]) -> Self {
         self.load = load;
+        self
+    }
+
+    /// The system with the ghost particles `mirror` ([`Mirror`]): their rates are replaced by
+    /// their sources' mirrored ones.
+    pub fn with_mirror(mut self, mirror: &'a [Mirror<D>]) -> Self {
+        self.mirror = mirror;
         self
     }
 
@@ -311,14 +354,34 @@ impl<const D: usize> System<'_, D> {
             f.extend_from_slice(a);
             lu.solve(f, a, work);
         }
-        for (ai, &f) in a.as_chunks_mut::<D>().0.iter_mut().zip(self.fixed) {
+        let a = a.as_chunks_mut::<D>().0;
+        for (ai, &f) in a.iter_mut().zip(self.fixed) {
             let keep = if f { 0.0 } else { 1.0 };
             *ai = ai.map(|c| c * keep);
         }
+        for m in self.mirror {
+            let s = a[m.source];
+            a[m.ghost] = std::array::from_fn(|k| m.sign[k] * s[k]);
+        }
     }
 
-    /// Frozen boundary particles keep their density and stress.
+    /// Frozen boundary particles keep their density and stress; ghosts take their sources'
+    /// mirrored rates.
     fn mask_qrate(&self, r: &mut [f64]) {
+        if !self.mirror.is_empty() {
+            let out = split_aux_mut::<D>(r, self.lens);
+            for m in self.mirror {
+                if !out.rho.is_empty() {
+                    out.rho[m.ghost] = out.rho[m.source];
+                }
+                if !out.sigma.is_empty() {
+                    out.sigma[m.ghost] = m.tensor(&out.sigma[m.source]);
+                }
+                if !out.tau.is_empty() {
+                    out.tau[m.ghost] = m.tensor(&out.tau[m.source]);
+                }
+            }
+        }
         if self.frozen_aux {
             let out = split_aux_mut::<D>(r, self.lens);
             for (i, _) in self.fixed.iter().enumerate().filter(|(_, f)| **f) {
@@ -418,6 +481,7 @@ impl<const D: usize> Run<D> {
             fixed,
             boundary,
             load: Vec::new(),
+            mirror: Vec::new(),
             t: 0.0,
             steps: 0,
             bufs,
@@ -501,6 +565,65 @@ impl<const D: usize> Run<D> {
         &self.load
     }
 
+    /// Sets the ghost particles of symmetry planes ([`Mirror`]) and makes each the image of
+    /// its source now. Errors if an index is out of range, a source is itself a ghost, a
+    /// ghost is listed twice, a sign is not ±1, or the form carries stress points (the 1D
+    /// chain forms, whose stress points have no image).
+    pub fn set_mirror(&mut self, mirror: Vec<Mirror<D>>) -> Result<()> {
+        let n = self.z.x.len();
+        let mut ghost = vec![false; n];
+        for m in &mirror {
+            if m.ghost >= n || m.source >= n || m.ghost == m.source || ghost[m.ghost] {
+                return Err(Error::Incompatible(
+                    "mirror: every ghost and source must be a particle, each ghost listed once and not its own source".into(),
+                ));
+            }
+            ghost[m.ghost] = true;
+            if m.sign.iter().any(|s| s.abs() != 1.0) {
+                return Err(Error::Incompatible("mirror: every sign must be ±1".into()));
+            }
+        }
+        if mirror.iter().any(|m| ghost[m.source]) {
+            return Err(Error::Incompatible(
+                "mirror: a source may not be a ghost (give a corner's ghost the composed reflection of a particle)".into(),
+            ));
+        }
+        if !mirror.is_empty() && self.bufs.sys.layout.sp > 0 {
+            return Err(Error::Incompatible(
+                "symmetry planes are not available for the stress-point forms (their stress points have no image)".into(),
+            ));
+        }
+        self.mirror = mirror;
+        self.sync_mirror();
+        Ok(())
+    }
+
+    /// The ghost particles of symmetry planes. A moving plane sets `offset_rate` before each
+    /// step (its value at the step's midpoint); each step advances `offset` by `offset_rate`
+    /// Δt.
+    pub fn mirror_mut(&mut self) -> &mut [Mirror<D>] {
+        &mut self.mirror
+    }
+
+    /// Makes every ghost the image of its source ([`Mirror`]).
+    fn sync_mirror(&mut self) {
+        let z = &mut self.z;
+        for m in &self.mirror {
+            let (g, s) = (m.ghost, m.source);
+            z.x[g] = std::array::from_fn(|k| m.sign[k] * z.x[s][k] + m.offset[k]);
+            z.v[g] = std::array::from_fn(|k| m.sign[k] * z.v[s][k] + m.offset_rate[k]);
+            if !z.rho.is_empty() {
+                z.rho[g] = z.rho[s];
+            }
+            if !z.sigma.is_empty() {
+                z.sigma[g] = m.tensor(&z.sigma[s]);
+            }
+            if !z.tau.is_empty() {
+                z.tau[g] = m.tensor(&z.tau[s]);
+            }
+        }
+    }
+
     /// The time integrator.
     pub fn integrator(&self) -> Integrator {
         self.stepper.integrator
@@ -534,10 +657,12 @@ impl<const D: usize> Run<D> {
 
     fn step_here(&mut self, dt: f64) -> Result<()> {
         self.check_state()?;
+        self.sync_mirror();
         let z = &mut self.z;
         let q = &mut self.bufs.q;
         let sys = System::new(&self.model, &self.fixed, self.boundary, &self.bufs.sys)
-            .with_load(&self.load);
+            .with_load(&self.load)
+            .with_mirror(&self.mirror);
         sys.flatten_into(z, q);
         let (x, v) = (z.x.as_flattened_mut(), z.v.as_flattened_mut());
         if self.stepper.integrator == Integrator::Kdk {
@@ -550,6 +675,13 @@ impl<const D: usize> Run<D> {
         if z.v.iter().any(|p| p.iter().any(|c| !c.is_finite())) {
             return Err(Error::NonFinite("solver state (the run diverged)"));
         }
+        // a moving plane: b advances by ḃ Δt (ḃ held over the step, as a load)
+        for m in &mut self.mirror {
+            for (b, r) in m.offset.iter_mut().zip(m.offset_rate) {
+                *b += r * dt;
+            }
+        }
+        self.sync_mirror();
         self.t += dt;
         self.steps += 1;
         Ok(())

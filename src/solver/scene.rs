@@ -1,12 +1,23 @@
-//! Scenes as JSON (1D bars; the 2D Swegle box has its own command), with built-ins by name:
-//! `uniform-bar` \[V21 §7.1\], `compressive-wave` \[V21 §7.4\], `tensile-wave` \[V21 §7.5\] and
-//! `rod` \[B00 §4.1.2\]. Unknown fields are rejected with the field named.
+//! Scenes as JSON: bars along x in 1D, 2D or 3D (`dim`; the 2D Swegle box has its own
+//! command), with built-ins by name: `uniform-bar` \[V21 §7.1\], `compressive-wave`
+//! \[V21 §7.4\], `tensile-wave` \[V21 §7.5\] and `rod` \[B00 §4.1.2\]. Unknown fields are
+//! rejected with the field named.
+//!
+//! One scene type for every dimension: a bar of `particles` columns along x and a `section`
+//! of n_y (× n_z) particles across, on a square (cubic) lattice of spacing Δx. The ends
+//! (`left`, `right`) act on whole columns; each side face is free or a symmetry plane
+//! (`sides`), whose ghost particles ([`crate::solver::Mirror`]) make the bar's neighbourhoods
+//! whole across it, so that half, a quarter or an eighth of a symmetric bar is simulated, and a
+//! bar between symmetry planes on every side is in uniaxial (1D) strain.
 //!
 //! Each built-in carries its analytic solution (linear elasticity, small strain; the velocity
-//! field, which every form has), and a run reports the relative L2 error of the velocity of the
-//! free particles at `t_end`: ‖v − v_exact‖₂ / ‖v_exact‖₂ (or / (v_scale √N) where v_exact ≡ 0).
+//! field, which every form has), and a run reports the relative L2 error of the axial velocity
+//! of the free particles at `t_end`: ‖v − v_exact‖₂ / ‖v_exact‖₂ (or / (v_scale √N) where
+//! v_exact ≡ 0). In 2D and 3D an analytic solution needs symmetry planes on every side (the
+//! 1D-strain bar), with c = √((λ + 2G)/ρ0).
 
-use super::run::Run;
+use super::output::FinalState;
+use super::run::{Mirror, Run};
 use crate::budget::{Budget, fmt_count};
 use crate::error::{Error, Result, field, fields};
 use crate::forms::{
@@ -190,13 +201,60 @@ fn end_field(name: &str) -> &'static str {
         .unwrap_or("left/right")
 }
 
+/// A side face of a 2D or 3D bar.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum Side {
+    /// A free (traction-free) surface.
+    #[default]
+    Free,
+    /// A symmetry plane half a spacing beyond the outermost particles: ghost particles mirror
+    /// the bar across it (no normal motion, no shear traction on the plane).
+    Symmetry,
+}
+
+/// A probe's position: X on the bar's axis (`0.05`), or the point [X, Y(, Z)] (the lattice row
+/// nearest to (Y, Z) is read).
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(untagged)]
+pub enum Probe {
+    /// X (m), on the axis.
+    Axis(f64),
+    /// [X, Y(, Z)] (m).
+    Point(Vec<f64>),
+}
+
+impl Probe {
+    /// X (m).
+    pub fn x(&self) -> f64 {
+        match self {
+            Probe::Axis(x) => *x,
+            Probe::Point(p) => p.first().copied().unwrap_or(f64::NAN),
+        }
+    }
+
+    /// The transverse coordinates (Y, Z) given (empty: on the axis).
+    pub fn across(&self) -> &[f64] {
+        match self {
+            Probe::Axis(_) => &[],
+            Probe::Point(p) => p.get(1..).unwrap_or(&[]),
+        }
+    }
+}
+
 /// The material of a scene.
-#[derive(Clone, Debug, Default, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(rename_all = "kebab-case", tag = "kind", deny_unknown_fields)]
 pub enum SceneMaterial {
-    /// The 1D law σ̇ = (C + σ) ∂v/∂x of modulus C = `modulus` (\[B00\] eq 29).
-    #[default]
-    Linear,
+    /// In 1D the law σ̇ = (C + σ) ∂v/∂x of modulus C = `modulus` (\[B00\] eq 29); in 2D
+    /// (plane strain) and 3D the hypo-elastic law with the Truesdell rate, of Young's modulus
+    /// E = `modulus` and Poisson ratio `poisson` (λ = Eν/((1 + ν)(1 − 2ν)), G = E/(2(1 + ν));
+    /// its uniaxial-strain law is the 1D one with C = λ + 2G).
+    Linear {
+        /// Poisson ratio ν in [−0.99, 0.5) (2D and 3D only).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        poisson: Option<f64>,
+    },
     /// Compressible neo-Hookean \[T eq 3.62–3.64\] in uniaxial strain (λ2 = λ3 = 1), with
     /// Young's modulus `modulus` and Poisson ratio `poisson`: P = μ(F − 1/F) + λ ln F / F, the
     /// small-strain (P-wave) modulus λ + 2μ; `total-lagrangian` only.
@@ -204,6 +262,12 @@ pub enum SceneMaterial {
         /// Poisson ratio ν in [−0.99, 0.5).
         poisson: f64,
     },
+}
+
+impl Default for SceneMaterial {
+    fn default() -> Self {
+        SceneMaterial::Linear { poisson: None }
+    }
 }
 
 /// Analytic solution of a built-in.
@@ -224,12 +288,15 @@ pub enum Analytic {
     EndPulse,
 }
 
-/// A 1D scene.
+/// A scene: a bar along x in 1D, 2D or 3D.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub struct Scene1D {
+pub struct Scene {
     /// Name (free text).
     pub name: String,
+    /// Dimension: 1 (default), 2 (plane strain) or 3.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub dim: usize,
     /// Form.
     pub form: String,
     /// Kernel.
@@ -253,8 +320,21 @@ pub struct Scene1D {
     /// Initial stress σ0 (Pa, + tension).
     #[serde(default)]
     pub initial_stress: f64,
-    /// Number of particles.
+    /// Number of particles along x (columns of the section in 2D and 3D).
     pub particles: usize,
+    /// Particles across the bar, spacing Δx: [n_y] in 2D, [n_y, n_z] in 3D (none in 1D).
+    /// The section is centred on the axis, unless one side of an axis is a symmetry plane
+    /// and the other free: that plane is then at 0 (the mid-plane of the whole bar).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub section: Vec<usize>,
+    /// The side faces, [lower, upper] for y (and z): `free` (default) or `symmetry`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sides: Vec<[Side; 2]>,
+    /// The rate λ̇ (1/s) of a homogeneous transverse stretch λ(t) = 1 + ∫λ̇ dt about the axis,
+    /// as a pulse: every symmetry plane at P moves to λ(t) P, and the end layers' transverse
+    /// velocity follows (λ̇ Y, λ̇ Z). Needs a symmetry plane off the axis.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transverse_stretch_rate: Option<Pulse>,
     /// Position of the first particle (m).
     pub origin: f64,
     /// Bar length between the first and the last particle (m).
@@ -294,11 +374,12 @@ pub struct Scene1D {
     /// Analytic solution for the error norm.
     #[serde(default)]
     pub analytic: Option<Analytic>,
-    /// Reference positions X (m) of the probes, at most [`MAX_PROBES`], each in [origin,
-    /// origin + length]: the displacement, velocity and stress there are recorded at every
-    /// step ([`ProbeHistory`]; linear between the two particles around X).
+    /// Reference positions of the probes, at most [`MAX_PROBES`], X in [origin, origin +
+    /// length] (and Y, Z within the section): the axial displacement, velocity and stress
+    /// there are recorded at every step ([`ProbeHistory`]; linear between the two particles
+    /// around X of the lattice row nearest to (Y, Z)).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub probes: Vec<f64>,
+    pub probes: Vec<Probe>,
     /// The budget the run must stay within (not read from the file: [`Budget::default`]
     /// unless the caller sets it).
     #[serde(skip)]
@@ -320,12 +401,18 @@ pub const MAX_PROBES: usize = 64;
 fn half() -> f64 {
     0.5
 }
+fn one() -> usize {
+    1
+}
+fn is_one(d: &usize) -> bool {
+    *d == 1
+}
 fn dt_default() -> f64 {
     0.2
 }
 
 /// Built-in scenes by name.
-pub fn builtin(name: &str) -> Result<Scene1D> {
+pub fn builtin(name: &str) -> Result<Scene> {
     let text = match name {
         "uniform-bar" => UNIFORM_BAR,
         "compressive-wave" => COMPRESSIVE_WAVE,
@@ -343,7 +430,7 @@ pub fn builtin(name: &str) -> Result<Scene1D> {
 }
 
 /// Parses a scene; errors name the file and the field.
-pub fn parse(file: &str, text: &str) -> Result<Scene1D> {
+pub fn parse(file: &str, text: &str) -> Result<Scene> {
     crate::error::parse_json(file, text)
 }
 
@@ -402,6 +489,12 @@ pub struct SceneReport {
     pub form: &'static str,
     /// Time integrator (CLI name).
     pub integrator: &'static str,
+    /// Dimension.
+    pub dim: usize,
+    /// Particles (without the ghosts).
+    pub particles: usize,
+    /// Ghost particles of the symmetry planes.
+    pub ghosts: usize,
     /// Time reached (s).
     pub t: f64,
     /// Steps.
@@ -438,22 +531,30 @@ pub struct SceneReport {
     /// History: (t, max |v|, kinetic energy).
     #[serde(skip)]
     pub history: Vec<(f64, f64, f64)>,
-    /// The final stress of every particle ([`Model::particle_stress`]; empty for a form
-    /// without one).
+    /// The particles of the lattice row nearest to the axis, one per column (every particle
+    /// in 1D): the bar's profile along x.
+    #[serde(skip)]
+    pub centre_row: Vec<usize>,
+    /// The final axial stress σ_xx of every particle ([`Model::particle_stress`]; empty for
+    /// a form without one), in lattice order (ghosts left out).
     #[serde(skip)]
     pub final_stress: Vec<f64>,
-    /// Final positions, velocities and (if carried) stresses.
+    /// Final positions, velocities and stresses of the particles (ghosts left out; the
+    /// total-Lagrangian form's σ is its law's stress, [`Model::particle_stress`]).
     #[serde(skip)]
-    pub final_state: Option<State<f64, 1>>,
+    pub final_state: Option<FinalState>,
 }
 
 /// What a probe recorded at reference position X, at the times [`SceneReport::probe_t`]: each
-/// quantity linear between the two particles around X (exact on a particle).
+/// axial quantity linear between the two particles around X (exact on a particle).
 #[derive(Clone, Debug, Serialize)]
 pub struct ProbeHistory {
     /// X (m).
     pub reference_position: f64,
-    /// Displacement u = x − X (m).
+    /// The transverse coordinates (Y, Z) the probe named (empty: on the axis).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub across: Vec<f64>,
+    /// Axial displacement u = x − X (m).
     pub displacement: Vec<f64>,
     /// Velocity (m/s).
     pub velocity: Vec<f64>,
@@ -464,7 +565,7 @@ pub struct ProbeHistory {
     /// empty for the other forms.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub stretch: Vec<f64>,
-    /// The `end-pulse` solution's velocity at X ([`Scene1D::end_waves_at`]; empty for a
+    /// The `end-pulse` solution's velocity at X ([`Scene::end_waves_at`]; empty for a
     /// scene without it).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub exact_velocity: Vec<f64>,
@@ -473,10 +574,22 @@ pub struct ProbeHistory {
     pub exact_stress: Vec<f64>,
 }
 
-/// The particles and weights of a scene's probes: probe p reads (1 − w) q_i + w q_{i+1} of
-/// each quantity q, (i, w) = `at[p]`.
+impl ProbeHistory {
+    /// The probe's position as a label: `X`, or `X;Y(;Z)` for a point off the axis.
+    pub fn label(&self) -> String {
+        std::iter::once(self.reference_position)
+            .chain(self.across.iter().copied())
+            .map(crate::display::num)
+            .collect::<Vec<_>>()
+            .join(";")
+    }
+}
+
+/// The particles and weights of a scene's probes: probe p reads (1 − w) q_a + w q_b of each
+/// quantity q, (a, b, w) = `at[p]` (a, b: the particles of two neighbouring columns in one
+/// lattice row).
 struct ProbeSet {
-    at: Vec<(usize, f64)>,
+    at: Vec<(usize, usize, f64)>,
     /// Whether the form has a particle stress.
     stress: bool,
     /// Whether it has a deformation gradient (total-Lagrangian).
@@ -484,16 +597,21 @@ struct ProbeSet {
 }
 
 impl ProbeSet {
-    fn new(scene: &Scene1D, model: &Model<1>) -> Self {
+    fn new<const D: usize>(scene: &Scene, geo: &Geometry, model: &Model<D>) -> Self {
         let n = scene.particles;
         let dx = scene.length / (n - 1) as f64;
         let at = scene
             .probes
             .iter()
-            .map(|&x| {
-                let f = ((x - scene.origin) / dx).clamp(0.0, (n - 1) as f64);
+            .map(|p| {
+                let f = ((p.x() - scene.origin) / dx).clamp(0.0, (n - 1) as f64);
                 let i = (f.floor() as usize).min(n - 2);
-                (i, f - i as f64)
+                let row = geo.nearest_row(p.across());
+                (
+                    i * geo.per_column + row,
+                    (i + 1) * geo.per_column + row,
+                    f - i as f64,
+                )
             })
             .collect();
         let z = model.rest_state(scene.rho0);
@@ -508,28 +626,69 @@ impl ProbeSet {
         self.at.is_empty()
     }
 
-    /// Appends the current values of `run` to the histories `h`.
-    fn record(&self, run: &Run<1>, h: &mut [ProbeHistory]) {
+    /// Appends the current axial values of `run` to the histories `h`.
+    fn record<const D: usize>(&self, run: &Run<D>, h: &mut [ProbeHistory]) {
         let z = &run.z;
         let m = &run.model;
-        for (&(i, w), p) in self.at.iter().zip(h) {
+        for (&(i, j, w), p) in self.at.iter().zip(h) {
             let mix = |a: f64, b: f64| (1.0 - w) * a + w * b;
-            p.displacement.push(mix(
-                z.x[i][0] - m.x_ref[i][0],
-                z.x[i + 1][0] - m.x_ref[i + 1][0],
-            ));
-            p.velocity.push(mix(z.v[i][0], z.v[i + 1][0]));
+            p.displacement
+                .push(mix(z.x[i][0] - m.x_ref[i][0], z.x[j][0] - m.x_ref[j][0]));
+            p.velocity.push(mix(z.v[i][0], z.v[j][0]));
             if self.stress {
-                let s = |j: usize| m.particle_stress_of(z, j).map_or(0.0, |t| t[0][0]);
-                let (a, b) = (s(i), if w > 0.0 { s(i + 1) } else { 0.0 });
+                let s = |k: usize| m.particle_stress_of(z, k).map_or(0.0, |t| t[0][0]);
+                let (a, b) = (s(i), if w > 0.0 { s(j) } else { 0.0 });
                 p.stress.push(mix(a, b));
             }
             if self.stretch {
-                let f = |j: usize| m.deformation_gradient_of(z, j).map_or(1.0, |f| f[0][0]);
-                let (a, b) = (f(i), if w > 0.0 { f(i + 1) } else { 1.0 });
+                let f = |k: usize| m.deformation_gradient_of(z, k).map_or(1.0, |f| f[0][0]);
+                let (a, b) = (f(i), if w > 0.0 { f(j) } else { 1.0 });
                 p.stretch.push(mix(a, b));
             }
         }
+    }
+}
+
+/// The particles of a scene: the real ones in lattice order (x outermost, then y, then z),
+/// then the ghosts of its symmetry planes.
+struct Geometry {
+    /// Reference positions (x, y, z; the coordinates beyond the dimension 0).
+    x: Vec<[f64; 3]>,
+    /// Number of real particles.
+    real: usize,
+    /// Particles per column (n_y n_z; 1 in 1D).
+    per_column: usize,
+    /// The transverse coordinates of the lattice rows, per transverse axis.
+    across: Vec<Vec<f64>>,
+    /// The ghosts, particle `real + g`: (source, S, b0) of [`Mirror`]; a transverse stretch λ
+    /// moves every plane P to λ P, so b = λ b0.
+    ghosts: Vec<(usize, [f64; 3], [f64; 3])>,
+}
+
+impl Geometry {
+    /// The column (x index) of particle `i` (a ghost's is its source's).
+    fn column(&self, i: usize) -> usize {
+        let src = if i < self.real {
+            i
+        } else {
+            self.ghosts[i - self.real].0
+        };
+        src / self.per_column
+    }
+
+    /// The lattice row nearest to the transverse point `p` (missing coordinates: 0).
+    fn nearest_row(&self, p: &[f64]) -> usize {
+        let mut row = 0;
+        for (a, coords) in self.across.iter().enumerate() {
+            let target = p.get(a).copied().unwrap_or(0.0);
+            let j = coords
+                .iter()
+                .enumerate()
+                .min_by(|(_, u), (_, w)| (*u - target).abs().total_cmp(&(*w - target).abs()))
+                .map_or(0, |(j, _)| j);
+            row = row * coords.len() + j;
+        }
+        row
     }
 }
 
@@ -542,7 +701,7 @@ pub struct StressSummary {
     /// Largest stress over every particle.
     pub max: f64,
     /// max |σ − σ_exact| over the free particles, divided by max |σ_exact| over them: the
-    /// scene's analytic stress ([`Scene1D::exact_profile`]); null without an analytic solution
+    /// scene's analytic stress ([`Scene::exact_profile`]); null without an analytic solution
     /// or where σ_exact vanishes on every free particle.
     pub error_max: Option<f64>,
 }
@@ -562,9 +721,9 @@ const SCENE_NAMES: ParamNames = ParamNames {
     dt: "dt",
 };
 
-impl Scene1D {
+impl Scene {
     /// Validates every field through the same checks as the questions' fields, then the
-    /// resources (memory, particle-steps) against [`Scene1D::budget`]. Returns (form, kernel,
+    /// resources (memory, particle-steps) against [`Scene::budget`]. Returns (form, kernel,
     /// shape).
     pub fn validate(&self) -> Result<(FormKind, &'static dyn kernel::Kernel, ShapeFamily)> {
         let form = FormKind::by_name(&self.form)?;
@@ -574,7 +733,9 @@ impl Scene1D {
             None => form.default_shape(),
         };
         form.check_shape(shape)?;
+        crate::error::check_range("dim", self.dim as f64, 1.0, 3.0, true, true)?;
         crate::error::check_range("particles", self.particles as f64, 4.0, 1e7, true, true)?;
+        self.check_section(form)?;
         let (lo, hi) = SCALE_RANGE;
         crate::error::check_range("length", self.length, lo, hi, true, true)?;
         crate::error::check_range("modulus", self.modulus, lo, hi, true, true)?;
@@ -637,15 +798,33 @@ impl Scene1D {
                 range: format!("give at most {MAX_PROBES} probes").into(),
             });
         }
-        for &x in &self.probes {
+        for p in &self.probes {
             crate::error::check_range(
                 "probes",
-                x,
+                p.x(),
                 self.origin,
                 self.origin + self.length,
                 true,
                 true,
             )?;
+            if let Probe::Point(q) = p
+                && q.len() != self.dim
+            {
+                return Err(Error::OutOfRange {
+                    field: "probes",
+                    value: q.len() as f64,
+                    range: format!(
+                        "a probe point has dim = {} coordinates [X{}]",
+                        self.dim,
+                        [", Y", ", Y, Z"][..self.dim - 1].concat()
+                    )
+                    .into(),
+                });
+            }
+            for (a, &y) in p.across().iter().enumerate() {
+                let (lo, hi) = self.section_bounds(a, dx);
+                crate::error::check_range("probes", y, lo, hi, true, true)?;
+            }
         }
         if self.classical_layers[0] + self.classical_layers[1] + 2 > self.particles {
             return Err(Error::OutOfRange {
@@ -674,8 +853,8 @@ impl Scene1D {
         // resources (the budget): stencils of ~2R/Δx + 1 neighbours (index, φ, φ', φ'':
         // 32 B) per particle and evaluation point, ~60 f64 of state, integrator copies and
         // scratch per particle, the history (3 f64 per step)
-        let n = self.particles as f64;
-        let neighbours = 2.0 * k.zeta() * self.h_over_dx + 1.0;
+        let n = self.particle_estimate(k.zeta() * self.h_over_dx);
+        let neighbours = (2.0 * k.zeta() * self.h_over_dx + 1.0).powi(self.dim as i32);
         let steps = (self.t_end / (self.dt * dx / c)).ceil();
         self.budget.steps(
             field("t_end")
@@ -691,7 +870,7 @@ impl Scene1D {
         )?;
         if self.analytic == Some(Analytic::EndPulse) && !self.probes.is_empty() {
             // the probes' analytic histories: at every record, 4 image terms per pair of
-            // bar crossings (Scene1D::end_waves_at), each a pulse evaluation, counted as a
+            // bar crossings (Scene::end_waves_at), each a pulse evaluation, counted as a
             // particle-step (measured, thesis-traction-pulse.json with 64 probes to 300 μs:
             // 1.3e7 evaluations took 0.42 s, the run's 1.0e7 particle-steps 0.98 s)
             let crossings = (self.t_end * c / (2.0 * self.length)).floor() + 1.0;
@@ -712,8 +891,8 @@ impl Scene1D {
         self.budget.memory(
             fields(&["particles", "h_over_dx"]),
             &format!(
-                "the scene ({} particles, ~{neighbours:.0} neighbours each)",
-                self.particles
+                "the scene ({} particles, ghosts included, ~{neighbours:.0} neighbours each)",
+                fmt_count(n)
             ),
             n * (neighbours * 32.0 * 3.0 + 480.0)
                 + 8.0 * steps * (3.0 + 7.0 * self.probes.len() as f64),
@@ -721,11 +900,45 @@ impl Scene1D {
         Ok((form, k, shape))
     }
 
-    /// The model's material: `linear` is the 1D bar of modulus C; `neo-hookean` has
-    /// λ = Eν/((1 + ν)(1 − 2ν)), μ = E/(2(1 + ν)).
+    /// The model's material: `linear` is the 1D bar of modulus C in 1D, the hypo-elastic
+    /// solid (Truesdell rate) of E = `modulus` and ν = `poisson` in 2D and 3D; `neo-hookean`
+    /// has λ = Eν/((1 + ν)(1 − 2ν)), μ = E/(2(1 + ν)).
     pub fn material_model(&self) -> Result<Material> {
+        let lame = |e: f64, nu: f64| {
+            (
+                e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+                e / (2.0 * (1.0 + nu)),
+            )
+        };
         Ok(match self.material {
-            SceneMaterial::Linear => Material::bar(self.modulus),
+            SceneMaterial::Linear { poisson: None } if self.dim == 1 => Material::bar(self.modulus),
+            SceneMaterial::Linear { poisson: Some(_) } if self.dim == 1 => {
+                return Err(Error::Incompatible(
+                    field("material.poisson")
+                        + " applies with "
+                        + field("dim")
+                        + " 2 or 3 (the 1D law has the one modulus C)",
+                ));
+            }
+            SceneMaterial::Linear { poisson: None } => {
+                return Err(Error::Incompatible(
+                    field("dim")
+                        + format!(" {} needs ", self.dim)
+                        + field("material.poisson")
+                        + " (the linear solid of Young's modulus E = "
+                        + field("modulus")
+                        + " and Poisson ratio ν)",
+                ));
+            }
+            SceneMaterial::Linear { poisson: Some(nu) } => {
+                crate::error::check_range("material.poisson", nu, -0.99, 0.5, true, false)?;
+                let (lambda, shear) = lame(self.modulus, nu);
+                Material::Elastic {
+                    lambda,
+                    shear,
+                    rate: crate::forms::ObjectiveRate::Truesdell,
+                }
+            }
             SceneMaterial::NeoHookean { poisson } => {
                 crate::error::check_range("material.poisson", poisson, -0.99, 0.5, true, false)?;
                 if self.initial_stress != 0.0 {
@@ -735,13 +948,240 @@ impl Scene1D {
                         range: "must be 0 with the neo-hookean material (its reference state is unstressed)".into(),
                     });
                 }
-                let e = self.modulus;
-                Material::NeoHookean {
-                    lambda: e * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson)),
-                    shear: e / (2.0 * (1.0 + poisson)),
-                }
+                let (lambda, shear) = lame(self.modulus, poisson);
+                Material::NeoHookean { lambda, shear }
             }
         })
+    }
+
+    /// Checks `section`, `sides`, `transverse_stretch_rate` and what depends on the dimension
+    /// (`initial_stress`, the analytic solution) for form `form`.
+    fn check_section(&self, form: FormKind) -> Result<()> {
+        let across = self.dim - 1;
+        if self.section.len() != across {
+            return Err(Error::OutOfRange {
+                field: "section",
+                value: self.section.len() as f64,
+                range: format!(
+                    "give dim − 1 = {across} particle counts ([n_y] in 2D, [n_y, n_z] in 3D, none in 1D)"
+                )
+                .into(),
+            });
+        }
+        for &m in &self.section {
+            crate::error::check_range("section", m as f64, 1.0, 1e4, true, true)?;
+        }
+        let total = self.particles as f64 * self.section.iter().map(|&m| m as f64).product::<f64>();
+        crate::error::check_range("particles × section", total, 4.0, 1e7, true, true)?;
+        if !self.sides.is_empty() && self.sides.len() != across {
+            return Err(Error::OutOfRange {
+                field: "sides",
+                value: self.sides.len() as f64,
+                range: format!(
+                    "give dim − 1 = {across} pairs [lower, upper] (y, then z), or none (free)"
+                )
+                .into(),
+            });
+        }
+        let symmetric = self.sides.iter().flatten().any(|&s| s == Side::Symmetry);
+        if symmetric && !form.in_every_dimension() {
+            return Err(Error::Incompatible(
+                field("sides")
+                    + format!(
+                        " symmetry is not available for {} (its stress points have no image)",
+                        form.name()
+                    ),
+            ));
+        }
+        if self.dim > 1 && self.initial_stress != 0.0 {
+            return Err(Error::Incompatible(
+                field("initial_stress")
+                    + " applies with "
+                    + field("dim")
+                    + " 1 (a 2D or 3D bar starts unstressed)",
+            ));
+        }
+        if self.dim > 1
+            && self.analytic.is_some()
+            && !self.sides.iter().flatten().all(|&s| s == Side::Symmetry)
+        {
+            return Err(Error::Incompatible(
+                field("analytic")
+                    + " (a 1D solution) needs symmetry planes on every side in 2D and 3D: give "
+                    + field("sides")
+                    + " symmetry (the bar in uniaxial strain)",
+            ));
+        }
+        if let Some(p) = &self.transverse_stretch_rate {
+            let dx = self.length / (self.particles - 1) as f64;
+            let off_axis =
+                (0..across).any(|a| self.planes(a, dx).iter().flatten().any(|&pl| pl != 0.0));
+            if !off_axis {
+                return Err(Error::Incompatible(
+                    field("transverse_stretch_rate")
+                        + " moves the symmetry planes off the axis: give "
+                        + field("sides")
+                        + " a symmetry plane that is not the mid-plane",
+                ));
+            }
+            let c = (self.tangent_modulus() / self.rho0).sqrt();
+            p.check("transverse_stretch_rate", 100.0 * c / self.length.max(dx))?;
+        }
+        Ok(())
+    }
+
+    /// The side conditions [lower, upper] of transverse axis `a` (0: y, 1: z).
+    fn sides_of(&self, a: usize) -> [Side; 2] {
+        self.sides.get(a).copied().unwrap_or_default()
+    }
+
+    /// The coordinates of the lattice rows along transverse axis `a` (spacing `dx`).
+    fn row_coordinates(&self, a: usize, dx: f64) -> Vec<f64> {
+        let m = self.section[a];
+        let first = match self.sides_of(a) {
+            [Side::Symmetry, Side::Free] => 0.5 * dx,
+            [Side::Free, Side::Symmetry] => -(m as f64 - 0.5) * dx,
+            _ => -0.5 * (m - 1) as f64 * dx,
+        };
+        (0..m).map(|j| first + j as f64 * dx).collect()
+    }
+
+    /// The positions of the symmetry planes [lower, upper] of transverse axis `a`, half a
+    /// spacing beyond the outermost rows (None: a free side).
+    fn planes(&self, a: usize, dx: f64) -> [Option<f64>; 2] {
+        let y = self.row_coordinates(a, dx);
+        let (lo, hi) = (y[0] - 0.5 * dx, y[y.len() - 1] + 0.5 * dx);
+        let [sl, su] = self.sides_of(a);
+        [
+            (sl == Side::Symmetry).then_some(lo),
+            (su == Side::Symmetry).then_some(hi),
+        ]
+    }
+
+    /// The range of transverse coordinate `a` a probe may name: the section and half a
+    /// spacing beyond.
+    fn section_bounds(&self, a: usize, dx: f64) -> (f64, f64) {
+        let y = self.row_coordinates(a, dx);
+        (y[0] - 0.5 * dx, y[y.len() - 1] + 0.5 * dx)
+    }
+
+    /// The depth of the ghost layer beyond a symmetry plane, for support radius `support`
+    /// and spacing `dx`. A ghost at depth d is at least d + Δx/2 from every particle of the
+    /// bar. A form whose rates are one pass over the pairs (an Eulerian form with plain
+    /// kernel gradients, `sph` shapes) needs the ghosts within R of the bar: depth R + Δx/2,
+    /// which leaves a margin of Δx for the particles' motion. A form that computes a quantity
+    /// from its neighbours and then uses the neighbours' (the total-Lagrangian F, a corrected
+    /// gradient) needs each such ghost's own neighbourhood whole: depth 2R.
+    fn ghost_depth(&self, support: f64, dx: f64) -> f64 {
+        let one_pass = FormKind::by_name(&self.form).is_ok_and(|f| {
+            let shape = match &self.shape {
+                Some(s) => ShapeFamily::by_name(s).ok(),
+                None => Some(f.default_shape()),
+            };
+            f != FormKind::TotalLagrangian && shape == Some(ShapeFamily::Sph)
+        });
+        if one_pass {
+            support + 0.5 * dx
+        } else {
+            2.0 * support
+        }
+    }
+
+    /// The number of particles, ghosts included (an upper estimate for the budget), with a
+    /// support radius of `support_dx` spacings.
+    fn particle_estimate(&self, support_dx: f64) -> f64 {
+        let rows = self.ghost_depth(support_dx, 1.0).ceil();
+        (0..self.dim.saturating_sub(1)).fold(self.particles as f64, |n, a| {
+            let sym = self
+                .sides_of(a)
+                .iter()
+                .filter(|&&s| s == Side::Symmetry)
+                .count();
+            // both planes: the images repeat with period 2 n_a beyond each plane
+            n * (self.section.get(a).copied().unwrap_or(1) as f64 + sym as f64 * rows)
+        })
+    }
+
+    /// The scene's particles ([`Geometry`]) with spacing `dx` and support radius `support`.
+    fn geometry(&self, dx: f64, support: f64) -> Geometry {
+        let across: Vec<Vec<f64>> = (0..self.dim - 1)
+            .map(|a| self.row_coordinates(a, dx))
+            .collect();
+        let per_column: usize = self.section.iter().product();
+        let mut x = Vec::with_capacity(self.particles * per_column);
+        for i in 0..self.particles {
+            let xi = self.origin + i as f64 * dx;
+            for r in 0..per_column {
+                let mut p = [xi, 0.0, 0.0];
+                let mut rest = r;
+                for a in (0..across.len()).rev() {
+                    let m = across[a].len();
+                    p[a + 1] = across[a][rest % m];
+                    rest /= m;
+                }
+                x.push(p);
+            }
+        }
+        let real = x.len();
+        // images: (position, source, S, b0, the plane it was last reflected across)
+        type Image = ([f64; 3], usize, [f64; 3], [f64; 3], Option<usize>);
+        let mut images: Vec<Image> = x
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| (p, i, [1.0; 3], [0.0; 3], None))
+            .collect();
+        let depth = self.ghost_depth(support, dx);
+        for a in 0..across.len() {
+            let planes = self.planes(a, dx);
+            let (lo, hi) = (
+                across[a][0] - 0.5 * dx,
+                across[a][across[a].len() - 1] + 0.5 * dx,
+            );
+            // reflect every image across this axis' planes until the images lie beyond the
+            // ghost depth (with two planes the reflections alternate outwards)
+            let mut frontier: Vec<usize> = (0..images.len()).collect();
+            while !frontier.is_empty() {
+                let mut next = Vec::new();
+                for &e in &frontier {
+                    for (side, plane) in planes.iter().enumerate() {
+                        let Some(pl) = *plane else { continue };
+                        if images[e].4 == Some(side) {
+                            continue;
+                        }
+                        let (pos, src, sign, b, _) = images[e];
+                        let mut q = pos;
+                        q[a + 1] = 2.0 * pl - pos[a + 1];
+                        let outside = (lo - q[a + 1]).max(q[a + 1] - hi);
+                        if outside >= depth {
+                            continue;
+                        }
+                        let mut sign2 = sign;
+                        let mut b2 = b;
+                        sign2[a + 1] = -sign[a + 1];
+                        b2[a + 1] = 2.0 * pl - b[a + 1];
+                        images.push((q, src, sign2, b2, Some(side)));
+                        next.push(images.len() - 1);
+                    }
+                }
+                frontier = next;
+            }
+            // later axes reflect these images again: clear the last-plane marks
+            for im in &mut images {
+                im.4 = None;
+            }
+        }
+        let ghosts = images[real..]
+            .iter()
+            .map(|&(_, src, sign, b, _)| (src, sign, b))
+            .collect();
+        x.extend(images[real..].iter().map(|im| im.0));
+        Geometry {
+            x,
+            real,
+            per_column,
+            across,
+            ghosts,
+        }
     }
 
     /// The small-strain tangent modulus of the material: C (`linear`), λ + 2μ
@@ -910,18 +1350,31 @@ impl Scene1D {
 
     /// Builds and runs the scene, telling `progress` the fraction done.
     pub fn run(&self, progress: impl Progress) -> Result<SceneReport> {
+        match self.dim {
+            1 => self.run_in::<1>(progress),
+            2 => self.run_in::<2>(progress),
+            3 => self.run_in::<3>(progress),
+            d => Err(Error::OutOfRange {
+                field: "dim",
+                value: d as f64,
+                range: "must be 1, 2 or 3".into(),
+            }),
+        }
+    }
+
+    fn run_in<const D: usize>(&self, progress: impl Progress) -> Result<SceneReport>
+    where
+        FinalState: From<State<f64, D>>,
+    {
         let (form, k, shape) = self.validate()?;
         let n = self.particles;
         let dx = self.length / (n - 1) as f64;
-        let x = self.reference_positions();
         let c = (self.tangent_modulus() / self.rho0).sqrt();
+        let h = self.h_over_dx * dx;
         let p = ModelParams {
             form,
             shape,
-            kp: KernelParams {
-                kernel: k,
-                h: self.h_over_dx * dx,
-            },
+            kp: KernelParams { kernel: k, h },
             material: self.material_model()?,
             rho0: self.rho0,
             c_partition: self.c_partition,
@@ -938,27 +1391,65 @@ impl Scene1D {
             alpha_s: 0.0,
             ls_length: dx,
         };
-        let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
-        let mut model = Model::new(p, x_ref, vec![dx; n], self.rho0, self.initial_stress, None)?;
+        let geo = self.geometry(dx, k.zeta() * h);
+        let (real, total) = (geo.real, geo.x.len());
+        let x_ref: Vec<[f64; D]> = geo
+            .x
+            .iter()
+            .map(|q| std::array::from_fn(|a| q[a]))
+            .collect();
+        let vol = dx.powi(D as i32);
+        let mut model = Model::new(
+            p,
+            x_ref.clone(),
+            vec![vol; total],
+            self.rho0,
+            self.initial_stress,
+            None,
+        )?;
         if self.classical_layers != [0, 0] {
             let [l, r] = self.classical_layers;
-            model.set_classical_layer((0..n).map(|i| i < l || i >= n - r).collect())?;
+            model.set_classical_layer(
+                (0..total)
+                    .map(|i| {
+                        let col = geo.column(i);
+                        col < l || col >= n - r
+                    })
+                    .collect(),
+            )?;
         }
         let mut z = model.rest_state(self.rho0);
         if let InitialVelocity::Point { index, .. } = self.initial_velocity
-            && index >= n
+            && index >= real
         {
             return Err(Error::OutOfRange {
                 field: "initial_velocity.index",
                 value: index as f64,
-                range: format!("must be < particles = {n}").into(),
+                range: format!("must be < the number of particles, {real}").into(),
             });
         }
-        let v_init = self.initial_velocities(&x);
-        z.v = v_init.iter().map(|&v| [v]).collect();
-        let prescribed = self.prescribed_at(&v_init, 0.0, k);
+        let x_axial: Vec<f64> = x_ref[..real].iter().map(|q| q[0]).collect();
+        let v_init = self.initial_velocities(&x_axial);
+        for (v, &vi) in z.v.iter_mut().zip(&v_init) {
+            v[0] = vi;
+        }
+        let stretch = self.transverse_stretch_rate.as_ref();
+        let lam_rate = |t: f64| stretch.map_or(0.0, |p| p.at(k, t));
+        // a prescribed particle: its axial value, and (λ̇ Y, λ̇ Z) across
+        let full = |axial: Vec<Option<f64>>, rate: f64| -> Vec<Option<[f64; D]>> {
+            let mut out: Vec<Option<[f64; D]>> = axial
+                .into_iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    v.map(|v| std::array::from_fn(|a| if a == 0 { v } else { rate * x_ref[i][a] }))
+                })
+                .collect();
+            out.resize(total, None);
+            out
+        };
+        let prescribed = self.prescribed_at(&v_init, 0.0, k, geo.per_column);
         let free: Vec<bool> = prescribed.iter().map(|p| p.is_none()).collect();
-        let pv: Vec<Option<[f64; 1]>> = prescribed.iter().map(|p| p.map(|v| [v])).collect();
+        let pv = full(prescribed.clone(), lam_rate(0.0));
         // the traction ends' load pattern: −b_K on the particles of the loaded half
         let tractions =
             [self.left.as_ref(), self.right.as_ref()].map(|e| e.and_then(|e| e.traction.as_ref()));
@@ -968,21 +1459,31 @@ impl Scene1D {
             Vec::new()
         };
         let mid = self.origin + 0.5 * self.length;
-        let pulsed = self
-            .left
-            .as_ref()
-            .is_some_and(|e| e.velocity_pulse.is_some())
-            || self
-                .right
-                .as_ref()
-                .is_some_and(|e| e.velocity_pulse.is_some());
+        let pulsed = stretch.is_some()
+            || [&self.left, &self.right]
+                .into_iter()
+                .flatten()
+                .any(|e| e.velocity_pulse.is_some());
         let mut run = Run::with_prescribed(model, z, &pv)?;
+        run.set_mirror(
+            geo.ghosts
+                .iter()
+                .enumerate()
+                .map(|(g, &(source, sign, b0))| Mirror {
+                    ghost: real + g,
+                    source,
+                    sign: std::array::from_fn(|a| sign[a]),
+                    offset: std::array::from_fn(|a| b0[a]),
+                    offset_rate: [0.0; D],
+                })
+                .collect(),
+        )?;
         let integ = self.integrator()?;
         run.set_integrator(integ);
         let dt = self.dt * dx / c;
         let steps = (self.t_end / dt).ceil() as usize;
         let dt = self.t_end / steps as f64;
-        let mass = self.rho0 * dx;
+        let mass = self.rho0 * vol;
         let mut history = Vec::with_capacity(steps + 1);
         let mut vmax: f64 = 0.0;
         let runaway = RUNAWAY_FACTOR
@@ -992,13 +1493,14 @@ impl Scene1D {
                     .flatten()
                     .fold(0.0f64, |m, v| m.max(v.abs()))
                 + self.pulse_speed_bound(c));
-        let probes = ProbeSet::new(self, &run.model);
+        let probes = ProbeSet::new(self, &geo, &run.model);
         let mut probe_t = Vec::with_capacity(if probes.is_empty() { 0 } else { steps + 1 });
         let mut probe_h: Vec<ProbeHistory> = self
             .probes
             .iter()
-            .map(|&x| ProbeHistory {
-                reference_position: x,
+            .map(|p| ProbeHistory {
+                reference_position: p.x(),
+                across: p.across().to_vec(),
                 displacement: Vec::with_capacity(steps + 1),
                 velocity: Vec::with_capacity(steps + 1),
                 stress: Vec::new(),
@@ -1011,28 +1513,34 @@ impl Scene1D {
             probe_t.push(run.t);
             probes.record(&run, &mut probe_h);
         }
+        let speed = |v: &[f64; D]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
         let start = std::time::Instant::now();
         for s in 0..steps {
-            // time-dependent ends, held at the step's midpoint
+            // time-dependent ends and planes, held at the step's midpoint
             let t_mid = run.t + 0.5 * dt;
             if !unit.is_empty() {
                 let [sl, sr] = tractions.map(|t| t.map_or(0.0, |p| p.at(k, t_mid)));
                 let load = unit
                     .iter()
-                    .zip(&x)
-                    .map(|(b, &xi)| [-(if xi < mid { sl } else { sr }) * b[0]])
+                    .zip(&x_ref)
+                    .map(|(b, xi)| {
+                        let s = if xi[0] < mid { sl } else { sr };
+                        std::array::from_fn(|a| -s * b[a])
+                    })
                     .collect();
                 run.set_load(load)?;
             }
+            let rate = lam_rate(t_mid);
+            if stretch.is_some() {
+                for (m, g) in run.mirror_mut().iter_mut().zip(&geo.ghosts) {
+                    m.offset_rate = std::array::from_fn(|a| rate * g.2[a]);
+                }
+            }
             if pulsed {
-                for (v, p) in run
-                    .z
-                    .v
-                    .iter_mut()
-                    .zip(self.prescribed_at(&v_init, t_mid, k))
-                {
+                let now = full(self.prescribed_at(&v_init, t_mid, k, geo.per_column), rate);
+                for (v, p) in run.z.v.iter_mut().zip(now) {
                     if let Some(p) = p {
-                        *v = [p];
+                        *v = p;
                     }
                 }
             }
@@ -1044,7 +1552,7 @@ impl Scene1D {
                     max_amplitude: f64::INFINITY,
                 });
             }
-            let vm = run.z.v.iter().fold(0.0f64, |m, [v]| m.max(v.abs()));
+            let vm = run.z.v[..real].iter().map(speed).fold(0.0f64, f64::max);
             if vm > runaway {
                 return Err(Error::Diverged {
                     step: s + 1,
@@ -1054,7 +1562,12 @@ impl Scene1D {
                 });
             }
             vmax = vmax.max(vm);
-            let ke = 0.5 * mass * run.z.v.iter().map(|[v]| v * v).sum::<f64>();
+            let ke = 0.5
+                * mass
+                * run.z.v[..real]
+                    .iter()
+                    .map(|v| v.iter().map(|c| c * c).sum::<f64>())
+                    .sum::<f64>();
             history.push((run.t, vm, ke));
             if !probes.is_empty() {
                 probe_t.push(run.t);
@@ -1068,10 +1581,15 @@ impl Scene1D {
             }
         }
         let runtime_s = start.elapsed().as_secs_f64();
-        let error = self.exact_profile(run.t).map(|(exact, _)| {
+        // the analytic solution per column, at every real particle
+        let exact = self.exact_profile(run.t).map(|(v, s)| {
+            let at = |f: &[f64]| (0..real).map(|i| f[geo.column(i)]).collect::<Vec<_>>();
+            (at(&v), at(&s))
+        });
+        let error = exact.as_ref().map(|(exact, _)| {
             let (mut num, mut den, mut cnt) = (0.0, 0.0, 0usize);
             let mut scale: f64 = 0.0;
-            for i in (0..n).filter(|&i| free[i]) {
+            for i in (0..real).filter(|&i| free[i]) {
                 num += (run.z.v[i][0] - exact[i]).powi(2);
                 den += exact[i].powi(2);
                 cnt += 1;
@@ -1093,17 +1611,28 @@ impl Scene1D {
                 }
             }
         }
-        let final_stress: Vec<f64> = run
-            .model
-            .particle_stress(&run.z)
-            .iter()
-            .map(|[[s]]| *s)
-            .collect();
-        let stress = self.stress_summary(&final_stress, run.t, &free);
+        let mut tensors = run.model.particle_stress(&run.z);
+        tensors.truncate(real);
+        let final_stress: Vec<f64> = tensors.iter().map(|t| t[0][0]).collect();
+        let stress = Self::stress_summary(&final_stress, exact.as_ref().map(|e| &e.1[..]), &free);
+        let mut z = run.z;
+        for f in [&mut z.x, &mut z.v] {
+            f.truncate(real);
+        }
+        z.rho.truncate(real);
+        z.sigma.truncate(real);
+        z.tau.truncate(real);
+        if form == FormKind::TotalLagrangian {
+            // the law's stress at each particle's F, for the snapshot (the form has no σ state)
+            z.sigma = tensors;
+        }
         Ok(SceneReport {
             name: self.name.clone(),
             form: form.name(),
             integrator: integ.name(),
+            dim: D,
+            particles: real,
+            ghosts: total - real,
             t: run.t,
             steps: run.steps,
             dt: dt * c / dx,
@@ -1119,8 +1648,11 @@ impl Scene1D {
             probe_t,
             probes: probe_h,
             history,
+            centre_row: (0..n)
+                .map(|i| i * geo.per_column + geo.nearest_row(&[]))
+                .collect(),
             final_stress,
-            final_state: Some(run.z),
+            final_state: Some(z.into()),
         })
     }
 
@@ -1162,10 +1694,16 @@ impl Scene1D {
             .collect()
     }
 
-    /// The prescribed velocity of every particle at time `t` (None: free), from the end
-    /// layers (their constant velocity or pulse, with the scene's kernel `k`) and the initial
-    /// velocities `v`.
-    fn prescribed_at(&self, v: &[f64], t: f64, k: &dyn kernel::Kernel) -> Vec<Option<f64>> {
+    /// The prescribed axial velocity of every particle at time `t` (None: free), from the end
+    /// layers (their constant velocity or pulse, with the scene's kernel `k`; a layer is
+    /// `per_column` particles) and the initial velocities `v`.
+    fn prescribed_at(
+        &self,
+        v: &[f64],
+        t: f64,
+        k: &dyn kernel::Kernel,
+        per_column: usize,
+    ) -> Vec<Option<f64>> {
         let n = v.len();
         let mut prescribed = vec![None; n];
         let value = |e: &EndLayer, vi: f64| match (&e.velocity_pulse, e.velocity) {
@@ -1174,12 +1712,16 @@ impl Scene1D {
             (None, None) => vi,
         };
         if let Some(l) = &self.left {
-            for (i, p) in prescribed.iter_mut().enumerate().take(l.layers.min(n)) {
+            for (i, p) in prescribed
+                .iter_mut()
+                .enumerate()
+                .take((l.layers * per_column).min(n))
+            {
                 *p = Some(value(l, v[i]));
             }
         }
         if let Some(r) = &self.right {
-            let first = n.saturating_sub(r.layers);
+            let first = n.saturating_sub(r.layers * per_column);
             for (p, &vi) in prescribed.iter_mut().zip(v).skip(first) {
                 *p = Some(value(r, vi));
             }
@@ -1195,15 +1737,15 @@ impl Scene1D {
     }
 
     /// The scene's analytic solution at time `t` at the reference positions
-    /// ([`Scene1D::reference_positions`]): (velocity, stress), None without `analytic`. The
-    /// velocity is the one the error norm of [`Scene1D::run`] uses. The stress follows from it
+    /// ([`Scene::reference_positions`]): (velocity, stress), None without `analytic`. The
+    /// velocity is the one the error norm of [`Scene::run`] uses. The stress follows from it
     /// for sphstab's 1D law σ̇ = (C + σ) ∂v/∂x (\[B00\] eq 72):
     /// - `uniform-strain` (v = g X): x = X(1 + g t), ∂v/∂x = g/(1 + g t), so C + σ =
     ///   (C + σ0)(1 + g t), **σ = σ0 + (C + σ0) g t** (0 for an initial velocity that is not
     ///   `linear`);
     /// - `wall-impact` (linear, small strain, c = √(C/ρ0)): across a front moving right σ
     ///   jumps by −ρ0 c \[v\], so σ = σ0 + ρ0 c (v_0 − v) behind the wall's front;
-    /// - `end-pulse`: [`Scene1D::end_waves_at`] at every particle.
+    /// - `end-pulse`: [`Scene::end_waves_at`] at every particle.
     pub fn exact_profile(&self, t: f64) -> Option<(Vec<f64>, Vec<f64>)> {
         let a = self.analytic?;
         let n = self.particles;
@@ -1317,13 +1859,14 @@ impl Scene1D {
         Some((v, sigma))
     }
 
-    /// The [`StressSummary`] of the final stress `s` (one per particle) at time `t` (`free`:
-    /// the particles whose velocity is not prescribed); None for a form without a stress.
-    fn stress_summary(&self, s: &[f64], t: f64, free: &[bool]) -> Option<StressSummary> {
+    /// The [`StressSummary`] of the final axial stress `s` (one per particle) against the
+    /// analytic one `exact` (`free`: the particles whose velocity is not prescribed); None for
+    /// a form without a stress.
+    fn stress_summary(s: &[f64], exact: Option<&[f64]>, free: &[bool]) -> Option<StressSummary> {
         if s.is_empty() {
             return None;
         }
-        let error_max = self.exact_profile(t).and_then(|(_, exact)| {
+        let error_max = exact.and_then(|exact| {
             let (mut err, mut scale) = (0.0f64, 0.0f64);
             for i in (0..s.len()).filter(|&i| free[i]) {
                 err = err.max((s[i] - exact[i]).abs());

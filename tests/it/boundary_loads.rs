@@ -8,7 +8,7 @@
 use sphstab::forms::{FormKind, Material, Model, ModelParams, State};
 use sphstab::kernel::{self, cumulative_1d};
 use sphstab::shape::{KernelParams, ShapeFamily};
-use sphstab::solver::scene::{Pulse, Scene1D, parse};
+use sphstab::solver::scene::{Pulse, Scene, parse};
 
 /// The m4 (cubic B-spline) kernel's 1D cumulative integral in closed form: σ1 = 2/3,
 /// f = 1 − 3q²/2 + 3q³/4 on [0, 1], (2 − q)³/4 on [1, 2];
@@ -87,7 +87,7 @@ fn the_cumulative_kernel_and_the_pulse_match_their_closed_forms() {
 /// A 0.15 m steel bar (E = 200 GPa, ρ = 8000, c = 5000 m/s), total-Lagrangian with MLS shapes
 /// and m4 at h = 2Δx, 601 particles, a traction pulse (−100 kPa, 10 μs, smoothing 1 μs) on the
 /// left end, the right end fixed, probes at 0.05 and 0.1 m.
-fn steel_bar(left: &str) -> Scene1D {
+fn steel_bar(left: &str) -> Scene {
     parse(
         "test",
         &format!(

@@ -51,6 +51,7 @@ mod scenes;
 mod solver2d;
 mod swegle;
 mod swegle3d;
+mod symmetry;
 
 // golden data of the engine and the solver
 mod golden;

@@ -484,20 +484,20 @@ fn v21_fig7() -> Row {
 // ---------------------------------------------------------------------------------------------
 // Time-domain rows (the solver of `simulate` and `swegle`) and the thesis rows.
 
-use sphstab::forms::State;
-use sphstab::solver::scene::{self, InitialVelocity, Scene1D, SceneReport};
-use sphstab::studies::swegle::{FinalState, SwegleConfig, run_swegle};
+use sphstab::solver::output::FinalState;
+use sphstab::solver::scene::{self, InitialVelocity, Scene, SceneReport};
+use sphstab::studies::swegle::{SwegleConfig, run_swegle};
 
 /// A built-in scene changed by `edit`, then sent through the JSON route of `simulate FILE`
 /// (serialised and parsed back, so every field is validated as a scene file is).
-fn scene_with(name: &str, edit: impl FnOnce(&mut Scene1D)) -> Scene1D {
+fn scene_with(name: &str, edit: impl FnOnce(&mut Scene)) -> Scene {
     let mut s = scene::builtin(name).unwrap();
     edit(&mut s);
     scene::parse(&s.name, &serde_json::to_string(&s).unwrap()).unwrap()
 }
 
 /// Reference positions X_i = origin + iΔx and Δx of a scene.
-fn ref_x(s: &Scene1D) -> (Vec<f64>, f64) {
+fn ref_x(s: &Scene) -> (Vec<f64>, f64) {
     let dx = s.length / (s.particles - 1) as f64;
     (
         (0..s.particles).map(|i| s.origin + i as f64 * dx).collect(),
@@ -516,8 +516,11 @@ struct Bar {
     tau: Vec<f64>,
 }
 
-impl From<State<f64, 1>> for Bar {
-    fn from(z: State<f64, 1>) -> Self {
+impl From<FinalState> for Bar {
+    fn from(z: FinalState) -> Self {
+        let FinalState::One(z) = z else {
+            panic!("a 1D scene's final state")
+        };
         Bar {
             x: z.x.iter().map(|[a]| *a).collect(),
             v: z.v.iter().map(|[a]| *a).collect(),
@@ -527,7 +530,7 @@ impl From<State<f64, 1>> for Bar {
     }
 }
 
-fn total_stress(s: &Scene1D, z: &Bar) -> Vec<f64> {
+fn total_stress(s: &Scene, z: &Bar) -> Vec<f64> {
     if z.tau.is_empty() {
         z.sigma.clone()
     } else {
@@ -540,7 +543,7 @@ fn total_stress(s: &Scene1D, z: &Bar) -> Vec<f64> {
     }
 }
 
-fn run_scene(s: &Scene1D) -> (SceneReport, Bar) {
+fn run_scene(s: &Scene) -> (SceneReport, Bar) {
     let mut r = s.run(|_| {}).unwrap();
     let z = r.final_state.take().unwrap();
     (r, z.into())
@@ -735,7 +738,7 @@ fn v21_fig13() -> Row {
 
 /// Compressive-wave profile measures at the scene's t_end: (plateau stress behind the front,
 /// front offset from c t in Δx).
-fn compressive_front(s: &Scene1D) -> (f64, f64, Bar) {
+fn compressive_front(s: &Scene) -> (f64, f64, Bar) {
     let (_, z) = run_scene(s);
     let (x, dx) = ref_x(s);
     let wall = s.origin + (s.left.as_ref().unwrap().layers - 1) as f64 * dx;
@@ -1096,7 +1099,7 @@ fn b00_figs6_7() -> Row {
         .find(|h| h.1 >= 10.0 * v0)
         .map_or(f64::NAN, |h| h.0);
     // Fig 7: displacement along the rod at 4.3e-5 s
-    let disp = |s: &Scene1D| {
+    let disp = |s: &Scene| {
         let s = {
             let mut s = s.clone();
             s.t_end = 4.3e-5;
@@ -2257,17 +2260,17 @@ mod interp {
 /// shapes (linear-exact at the ends, as the thesis's ghost particles make its boundary values),
 /// a 10 μs pulse smoothed over h_t = 3 μs ("large"), 1 μs ("intermediate") and 0 ("none").
 mod probes {
-    use super::{Row, erratum, list, verdict};
-    use sphstab::solver::scene::{ProbeHistory, Scene1D, SceneReport, parse};
+    use super::{FinalState, Row, erratum, list, verdict};
+    use sphstab::solver::scene::{ProbeHistory, Scene, SceneReport, parse};
 
     const AMPLITUDE: f64 = 1e5;
 
-    fn scene(file: &str) -> Scene1D {
+    fn scene(file: &str) -> Scene {
         let path = format!("{}/analysis/scenes/{file}", env!("CARGO_MANIFEST_DIR"));
         parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap()
     }
 
-    fn bar(smoothing: f64, t_end: f64) -> Scene1D {
+    fn bar(smoothing: f64, t_end: f64) -> Scene {
         let mut s = scene("thesis-traction-pulse.json");
         s.left
             .as_mut()
@@ -2280,7 +2283,7 @@ mod probes {
         s
     }
 
-    fn run(s: &Scene1D) -> SceneReport {
+    fn run(s: &Scene) -> SceneReport {
         s.run(|_| {}).unwrap()
     }
 
@@ -2576,7 +2579,9 @@ mod probes {
             s.h_over_dx = 5.5;
             s.shape = Some(shape.into());
             let mut r = run(&s);
-            let z = r.final_state.take().unwrap();
+            let Some(FinalState::One(z)) = r.final_state.take() else {
+                panic!("a 1D final state")
+            };
             let dx = s.length / (s.particles - 1) as f64;
             z.x.windows(2)
                 .map(|w| (w[1][0] - w[0][0]) / dx)

@@ -107,7 +107,7 @@ fn scene_viscosity_pairs() {
         serde_json::from_str(&serde_json::to_string(&one).unwrap()).unwrap();
     v["artificial_viscosity_pairs"] = serde_json::json!("two-sided");
     let two = parse("s.json", &v.to_string()).unwrap();
-    let ke = |s: &sphstab::solver::scene::Scene1D| s.run(|_| {}).unwrap().history.last().unwrap().2;
+    let ke = |s: &sphstab::solver::scene::Scene| s.run(|_| {}).unwrap().history.last().unwrap().2;
     let (k1, k2) = (ke(&one), ke(&two));
     assert!(
         (k2 - k1).abs() > 1e-6 * k1,
@@ -181,7 +181,7 @@ fn vtk_scalars(vtk: &str, name: &str) -> Option<Vec<f64>> {
 /// Issue 24 item 8: `final.vtk` of `simulate` writes the stress each form integrates, the one
 /// its report gives, for every form. The uniform bar (v = gX, g = 0.001, C = 2 Pa, σ0 = 0) has
 /// the analytic stress σ = C g t: x = X(1 + g t), ∂v/∂x = g/(1 + g t), and σ̇ = (C + σ) ∂v/∂x
-/// integrates to C + σ = C(1 + g t) — the derivation of `Scene1D::exact_profile`, redone here.
+/// integrates to C + σ = C(1 + g t) — the derivation of `Scene::exact_profile`, redone here.
 /// Checked per form:
 /// - the VTK's `stress` has the report's min and max, and its largest deviation from C g t over
 ///   the free particles (the 3 end layers excluded) is the report's `stress.error_max`;

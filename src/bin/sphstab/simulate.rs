@@ -3,7 +3,7 @@
 use crate::flags::InFile;
 use anyhow::{Context, Result};
 use sphstab::budget::Budget;
-use sphstab::solver::output::{csv, vtk_state_with_stress};
+use sphstab::solver::output::csv;
 use sphstab::solver::scene::{builtin, parse};
 
 /// Flags of `simulate`.
@@ -185,14 +185,12 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         }
         if let Some(z) = &r.final_state {
             let form = sphstab::forms::FormKind::by_name(r.form)?;
-            let stress: Vec<[[f64; 1]; 1]> = r.final_stress.iter().map(|&s| [[s]]).collect();
             std::fs::write(
                 dir.join("final.vtk"),
-                vtk_state_with_stress(
+                z.vtk(
                     &format!("{} {} t={}", r.name, r.form, sphstab::display::num(r.t)),
-                    z,
                     form,
-                    &stress,
+                    r.c_partition.unwrap_or(0.5),
                 ),
             )
             .with_context(|| format!("--out: cannot write in {}", dir.display()))?;
@@ -277,7 +275,7 @@ fn probes_csv(r: &sphstab::solver::scene::SceneReport) -> String {
     let mut header = vec!["t".to_string()];
     let mut cols: Vec<&[f64]> = Vec::new();
     for p in &r.probes {
-        let x = sphstab::display::num(p.reference_position);
+        let x = p.label();
         for (name, v) in [
             ("u", &p.displacement),
             ("v", &p.velocity),

@@ -1,42 +1,9 @@
 //! The Swegle report: the measured and predicted growth rates, the history and the final state.
 
-use crate::forms::{FormKind, State};
 use crate::solver::diagnostics::GrowthFit;
+pub use crate::solver::output::FinalState;
 use crate::solver::run::BoundaryDensity;
 use serde::Serialize;
-
-/// The final particle state of a run, in its dimension.
-#[derive(Clone, Debug)]
-pub enum FinalState {
-    /// A 2D run.
-    Two(State<f64, 2>),
-    /// A 3D run.
-    Three(State<f64, 3>),
-}
-
-impl FinalState {
-    /// Legacy VTK of the particles of a run of `form` with partition coefficient
-    /// `c_partition` ([`crate::solver::output::vtk_state`]; 3D points in both cases).
-    pub fn vtk(&self, title: &str, form: FormKind, c_partition: f64) -> String {
-        use crate::solver::output::vtk_state;
-        match self {
-            FinalState::Two(z) => vtk_state(title, z, form, c_partition),
-            FinalState::Three(z) => vtk_state(title, z, form, c_partition),
-        }
-    }
-}
-
-impl From<State<f64, 2>> for FinalState {
-    fn from(z: State<f64, 2>) -> Self {
-        FinalState::Two(z)
-    }
-}
-
-impl From<State<f64, 3>> for FinalState {
-    fn from(z: State<f64, 3>) -> Self {
-        FinalState::Three(z)
-    }
-}
 
 /// The columns of a Swegle run's history ([`SwegleReport::history_full`], `history.csv`): time,
 /// the centre particle's |v|, max and RMS |v| of the free particles, kinetic energy (the test's

@@ -3,12 +3,13 @@
 
 use super::config::SwegleConfig;
 use super::predict::predict_d;
-use super::report::{Diverged, FinalState, SwegleReport};
+use super::report::{Diverged, SwegleReport};
 use crate::budget::fmt_count;
 use crate::error::{Error, Result, fields};
 use crate::forms::State;
 use crate::progress::Progress;
 use crate::solver::diagnostics::growth_fit;
+use crate::solver::output::FinalState;
 use crate::solver::run::Run;
 use std::f64::consts::PI;
 
