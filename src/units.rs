@@ -189,6 +189,7 @@ const TABLE: &[(&str, Unit)] = &[
     // a scene's probes
     ("probe_t", Run(Dim::Time)),
     ("reference_position", Run(Dim::Length)),
+    ("across", Run(Dim::Length)),
     ("displacement", Run(Dim::Length)),
     ("velocity", Run(Dim::Speed)),
     ("exact_velocity", Run(Dim::Speed)),

@@ -31,7 +31,7 @@
 //!   "swegle": [ { "form": "classical", "kernel": "m4", "h": 1.2, "density_ratio": 0.99 } ] }
 //! ```
 //!
-//! or `scene` series — a 1D scene run by [`crate::solver::scene::Scene::run`] (the code of
+//! or `scene` series — a scene (1D, 2D or 3D: its central row) run by [`crate::solver::scene::Scene::run`] (the code of
 //! `sphstab simulate`), or its analytic solution
 //! ([`crate::solver::scene::Scene::exact_profile`]), as a stress or velocity profile along
 //! the bar at the scene's end time ([`SceneSeries`]); `x_desc` and `y_desc` name the axes:
@@ -166,7 +166,7 @@ pub struct FigureConfig {
     /// Swegle growth histories (log10 |v| against t c/Δx).
     #[serde(default)]
     pub swegle: Vec<SwegleSeries>,
-    /// 1D scene profiles (stress or velocity against the reference position).
+    /// Scene profiles (stress or velocity along the central row against the reference position).
     #[serde(default)]
     pub scene: Vec<SceneSeries>,
     /// Interpolations of a test function (against position).
@@ -204,7 +204,7 @@ pub struct Panel {
     /// Swegle growth histories.
     #[serde(default)]
     pub swegle: Vec<SwegleSeries>,
-    /// 1D scene profiles.
+    /// Scene profiles.
     #[serde(default)]
     pub scene: Vec<SceneSeries>,
     /// Interpolations of a test function.

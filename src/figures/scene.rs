@@ -1,5 +1,5 @@
-//! `scene` series of the figure configs: a 1D scene's profile along the bar, run or
-//! analytic ([`SceneSeries`]).
+//! `scene` series of the figure configs: a scene's profile along the bar (its central row in
+//! 2D and 3D), run or analytic, or a probe's history ([`SceneSeries`]).
 
 use crate::budget::Budget;
 use crate::error::{Error, Result};
@@ -50,8 +50,9 @@ pub enum ProbeAbscissa {
     AppliedStretch,
 }
 
-/// A 1D scene's profile at its end time against the reference position X of every particle
-/// (end layers included), multiplied by `x_scale` and `y_scale` (e.g. 1e3 for mm, 1e−9 for GPa).
+/// A scene's profile at its end time against the reference position X of every particle of
+/// its central row (end layers included; every particle in 1D), or a probe's history,
+/// multiplied by `x_scale` and `y_scale` (e.g. 1e3 for mm, 1e−9 for GPa).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneSeries {
@@ -73,6 +74,10 @@ pub struct SceneSeries {
     /// The probe at the pulled end, for `against: applied-stretch`.
     #[serde(default)]
     pub stretch_probe: Option<usize>,
+    /// The transverse stretch λ2 of the analytic T11(λ1) (plane strain, λ3 = 1; default 1:
+    /// uniaxial strain), for `against: stretch` or `applied-stretch` with `route: analytic`.
+    #[serde(default)]
+    pub transverse_stretch: Option<f64>,
     /// Form (default: the scene's).
     pub form: Option<String>,
     /// Partition coefficient c (default: the scene's).
@@ -295,7 +300,9 @@ impl SceneSeries {
                     let xs: Vec<f64> = (0..=200)
                         .map(|i| lo + (hi - lo) * i as f64 / 200.0)
                         .collect();
-                    let ys = xs.iter().map(|&l| uniaxial_cauchy(&m, l)).collect();
+                    let l2 = self.transverse_stretch.unwrap_or(1.0);
+                    crate::error::check_range("transverse_stretch", l2, 0.01, 100.0, true, true)?;
+                    let ys = xs.iter().map(|&l| uniaxial_cauchy(&m, l, l2)).collect();
                     (xs, ys)
                 } else {
                     (f, pick(self.quantity, false)?)
@@ -316,13 +323,13 @@ impl SceneSeries {
     }
 }
 
-/// The uniaxial-strain (λ2 = λ3 = 1) Cauchy stress T11 of material `m` at stretch `l`: the
-/// neo-Hookean law's ([`crate::forms::neo_hookean_cauchy`]), or the 1D linear law's
-/// P = C(F − 1) without pre-stress (T = P in 1D).
-fn uniaxial_cauchy(m: &crate::forms::Material, l: f64) -> f64 {
+/// The Cauchy stress T11 of material `m` at the stretches (λ1, λ2) = (`l`, `l2`), λ3 = 1: the
+/// neo-Hookean law's ([`crate::forms::neo_hookean_cauchy`]; with λ2 = 1 the uniaxial-strain
+/// curve), or the 1D linear law's P = C(F − 1) without pre-stress (T = P in 1D; λ2 unused).
+fn uniaxial_cauchy(m: &crate::forms::Material, l: f64, l2: f64) -> f64 {
     match *m {
         crate::forms::Material::NeoHookean { lambda, shear } => {
-            crate::forms::neo_hookean_cauchy([l], lambda, shear)[0]
+            crate::forms::neo_hookean_cauchy([l, l2], lambda, shear)[0]
         }
         other => other.modulus() * (l - 1.0),
     }

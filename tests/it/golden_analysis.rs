@@ -33,7 +33,7 @@ const TOL: f64 = 1e-12;
 
 /// Fields schema version 1 adds to some reports (the header in every dimension, the 1D
 /// polarisation and zone fraction, the path of a 1D dispersion, the 2D/3D `timestep` header).
-const ADDED: [&str; 27] = [
+const ADDED: [&str; 29] = [
     // issue 25: every JSON document (the atlas too) names its units; `simulate` reports its step in Δx/c and
     // the physical scales that normalise its values
     "units",
@@ -52,6 +52,9 @@ const ADDED: [&str; 27] = [
     // issue 29: `simulate thesis-wave` reports its time step (s) and the steps taken
     "time_step",
     "steps",
+    // issue 29 (2D and 3D scenes): `simulate` reports its particles and ghosts
+    "particles",
+    "ghosts",
     // issue 24 (item 8): `simulate` reports the stress each form integrates (min, max, error)
     "stress",
     "schema_version",

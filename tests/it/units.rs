@@ -85,6 +85,7 @@ const DIMENSIONLESS: &[&str] = &[
     "reflected_exact",
     "transmitted",
     "transmitted_exact",
+    "ghosts",
 ];
 
 /// Every number in `v` is under a key with a unit in `units` (its own or an enclosing one), or
