@@ -7,6 +7,7 @@ pub mod atlas;
 pub mod box_operator;
 pub mod config;
 pub mod finite_body;
+pub mod galerkin;
 pub mod interpolation;
 pub mod kernel_guide;
 pub mod pairing;

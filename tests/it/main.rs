@@ -44,6 +44,7 @@ mod stable_dt;
 
 // the reference solver against the engine
 mod boundary_loads;
+mod galerkin;
 mod pair_reuse;
 mod rate_workspace;
 mod rod;
