@@ -47,15 +47,19 @@ pub enum GalerkinMethod {
     Cd1,
     /// Linear moving least squares (eqs 44–46).
     Mls,
+    /// Element-free Galerkin: MLS with 5 × 5 Gauss quadrature on the cells the nodes make
+    /// (§6.2, item 7), the finite-element row blended in by eqs 100–104.
+    Efg,
 }
 
 impl GalerkinMethod {
     /// Every method with its name.
-    pub const ALL: [(GalerkinMethod, &'static str); 4] = [
+    pub const ALL: [(GalerkinMethod, &'static str); 5] = [
         (GalerkinMethod::Sph, "sph"),
         (GalerkinMethod::Rl, "rl"),
         (GalerkinMethod::Cd1, "cd1"),
         (GalerkinMethod::Mls, "mls"),
+        (GalerkinMethod::Efg, "efg"),
     ];
 
     /// The method of a name (`what`: the flag or field in the error).
@@ -160,10 +164,13 @@ pub struct GalerkinReport {
     pub spacing: f64,
     /// Nodes.
     pub nodes: usize,
-    /// Nodal l2 displacement error (eqs 114–115): (Σ ΔV |u_I − u(x_I)|²)^½ / (Σ ΔV |u(x_I)|²)^½.
+    /// Displacement error: for the nodal methods the nodal l2 error (eqs 114–115), (Σ ΔV
+    /// |u_I − u(x_I)|²)^½ / (Σ ΔV |u(x_I)|²)^½; for `efg` the L2 error (eqs 116–117) by its
+    /// own 5 × 5 Gauss quadrature.
     pub displacement_error: f64,
-    /// Energy error at the nodes (eqs 118–119, square-rooted): (Σ ΔV (ε_h − ε):C:(ε_h −
-    /// ε))^½ / (Σ ΔV ε:C:ε)^½, ε_h the method's trial strain.
+    /// Energy error (eqs 118–119, square-rooted): (Σ w (ε_h − ε):C:(ε_h − ε))^½ / (Σ w
+    /// ε:C:ε)^½ over the quadrature points (the nodes, weights ΔV; `efg`: the Gauss points),
+    /// ε_h the method's trial strain.
     pub energy_error: f64,
     /// The computed deflection u_y of the node at (L, 0).
     pub tip_deflection: f64,
@@ -208,6 +215,9 @@ pub fn cantilever(
         kernel: crate::kernel::by_name("m4")?,
         h: std::f64::consts::SQRT_2 * dx,
     };
+    if method == GalerkinMethod::Efg {
+        return efg(beam, kp, &pos, nx, ny, dx);
+    }
     let support = kp.support();
     let cells = (support / dx).ceil() as isize;
     // each quadrature node's (trial, test) gradients: (node, gradient)
@@ -260,7 +270,8 @@ pub fn cantilever(
             Ok(nb.iter().zip(&out).map(|(&m, (_, g))| (m, *g)).collect())
         };
         let g = match method {
-            GalerkinMethod::Mls => family(ShapeFamily::Mls)?,
+            // (efg returned above, by its Gauss quadrature)
+            GalerkinMethod::Mls | GalerkinMethod::Efg => family(ShapeFamily::Mls)?,
             GalerkinMethod::Cd1 => family(ShapeFamily::Corrected)?,
             GalerkinMethod::Sph | GalerkinMethod::Rl => {
                 let raw = family(ShapeFamily::Sph)?;
@@ -321,27 +332,9 @@ pub fn cantilever(
     }
     // K = Σ_k ΔV_k B_test(x_k)ᵀ C B_trial(x_k), two DOFs per node
     let c = beam.elasticity();
-    let bmat = |g: [f64; 2]| [[g[0], 0.0], [0.0, g[1]], [g[1], g[0]]];
-    let mut rows: Vec<std::collections::BTreeMap<usize, f64>> = vec![Default::default(); 2 * n];
-    for k in 0..n {
-        for &(a, ga) in &test[k] {
-            let ba = bmat(ga);
-            for &(b, gb) in &trial[k] {
-                let bb = bmat(gb);
-                for p in 0..2 {
-                    for q in 0..2 {
-                        let mut v = 0.0;
-                        for r in 0..3 {
-                            for s in 0..3 {
-                                v += ba[r][p] * c[r][s] * bb[s][q];
-                            }
-                        }
-                        *rows[2 * a + p].entry(2 * b + q).or_insert(0.0) += vol[k] * v;
-                    }
-                }
-            }
-        }
-    }
+    let quad: Vec<QuadPoint> = (0..n)
+        .map(|k| (vol[k], &test[k][..], &trial[k][..]))
+        .collect();
     // the load: σ_xy at x = L, by nodal boundary quadrature (ΔΓ = Δx, halved at the corners)
     let mut f = vec![0.0; 2 * n];
     for j in 0..ny {
@@ -349,38 +342,7 @@ pub fn cantilever(
         let w = if j == 0 || j == ny - 1 { 0.5 * dx } else { dx };
         f[2 * k + 1] += beam.stress(pos[k][0], pos[k][1])[2] * w;
     }
-    // the essential boundary: x = 0 prescribed (eqs 120–121); its rows become identities
-    let mut u = vec![0.0; 2 * n];
-    let fixed: Vec<bool> = (0..n).map(|k| k < ny).collect();
-    for k in 0..ny {
-        let ex = beam.displacement(pos[k][0], pos[k][1]);
-        u[2 * k] = ex[0];
-        u[2 * k + 1] = ex[1];
-    }
-    let mut sparse: Vec<Vec<(usize, f64)>> = Vec::with_capacity(2 * n);
-    for (r, row) in rows.iter().enumerate() {
-        if fixed[r / 2] {
-            sparse.push(vec![(r, 1.0)]);
-            f[r] = u[r];
-            continue;
-        }
-        let mut out = Vec::with_capacity(row.len());
-        for (&col, &v) in row {
-            if fixed[col / 2] {
-                f[r] -= v * u[col];
-            } else {
-                out.push((col, v));
-            }
-        }
-        sparse.push(out);
-    }
-    let lu = BandedLu::new(&sparse, false).ok_or(Error::SingularMoment {
-        what: "Galerkin stiffness matrix",
-        x: 0.0,
-        det: 0.0,
-    })?;
-    let mut work = Vec::new();
-    lu.solve(&f, &mut u, &mut work);
+    let u = solve(beam, &c, &quad, f, &pos, ny)?;
     // errors at the nodes
     let (mut du, mut un, mut de, mut en) = (0.0, 0.0, 0.0, 0.0);
     for k in 0..n {
@@ -413,6 +375,239 @@ pub fn cantilever(
         energy_error: (de / en).sqrt(),
         tip_deflection: u[2 * tip + 1],
         exact_tip_deflection: exact_tip,
+    };
+    if !(out.displacement_error.is_finite() && out.energy_error.is_finite()) {
+        return Err(Error::NonFinite("Galerkin solution"));
+    }
+    Ok(out)
+}
+
+/// A node's gradient: (node, ∇φ).
+type Grad = (usize, [f64; 2]);
+/// A quadrature point: (weight, test gradients, trial gradients).
+type QuadPoint<'a> = (f64, &'a [Grad], &'a [Grad]);
+/// An EFG quadrature point: (weight, position, (node, Φ⁰, ∇Φ⁰)).
+type EfgPoint = (f64, [f64; 2], Vec<(usize, f64, [f64; 2])>);
+
+/// B(∇φ): the strain (ε_xx, ε_yy, γ_xy) of a unit displacement of a node in x and in y.
+fn bmat(g: [f64; 2]) -> [[f64; 2]; 3] {
+    [[g[0], 0.0], [0.0, g[1]], [g[1], g[0]]]
+}
+
+/// Assembles K = Σ_p w_p B_test(x_p)ᵀ C B_trial(x_p) over the quadrature points `quad`
+/// ((weight, test gradients, trial gradients)), prescribes the displacements of eqs 120–121
+/// on the first `ny` nodes (the column x = 0: their rows become identities, their columns
+/// move to the load), and solves K u = `f` by banded LU.
+fn solve(
+    beam: &Cantilever,
+    c: &[[f64; 3]; 3],
+    quad: &[QuadPoint],
+    mut f: Vec<f64>,
+    pos: &[[f64; 2]],
+    ny: usize,
+) -> Result<Vec<f64>> {
+    let n = pos.len();
+    let mut rows: Vec<std::collections::BTreeMap<usize, f64>> = vec![Default::default(); 2 * n];
+    for &(w, test, trial) in quad {
+        for &(a, ga) in test {
+            let ba = bmat(ga);
+            for &(b, gb) in trial {
+                let bb = bmat(gb);
+                for p in 0..2 {
+                    for q in 0..2 {
+                        let mut v = 0.0;
+                        for r in 0..3 {
+                            for s in 0..3 {
+                                v += ba[r][p] * c[r][s] * bb[s][q];
+                            }
+                        }
+                        *rows[2 * a + p].entry(2 * b + q).or_insert(0.0) += w * v;
+                    }
+                }
+            }
+        }
+    }
+    let mut u = vec![0.0; 2 * n];
+    for k in 0..ny {
+        let ex = beam.displacement(pos[k][0], pos[k][1]);
+        u[2 * k] = ex[0];
+        u[2 * k + 1] = ex[1];
+    }
+    let mut sparse: Vec<Vec<(usize, f64)>> = Vec::with_capacity(2 * n);
+    for (r, row) in rows.iter().enumerate() {
+        if r / 2 < ny {
+            sparse.push(vec![(r, 1.0)]);
+            f[r] = u[r];
+            continue;
+        }
+        let mut out = Vec::with_capacity(row.len());
+        for (&col, &v) in row {
+            if col / 2 < ny {
+                f[r] -= v * u[col];
+            } else {
+                out.push((col, v));
+            }
+        }
+        sparse.push(out);
+    }
+    let lu = BandedLu::new(&sparse, false).ok_or(Error::SingularMoment {
+        what: "Galerkin stiffness matrix",
+        x: 0.0,
+        det: 0.0,
+    })?;
+    let mut work = Vec::new();
+    lu.solve(&f, &mut u, &mut work);
+    Ok(u)
+}
+
+/// The five-point Gauss rule on [−1, 1]: (point, weight).
+const GAUSS5: [(f64, f64); 5] = [
+    (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+    (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (0.0, 0.568_888_888_888_888_9),
+    (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+];
+
+/// EFG on the cantilever: MLS at the 5 × 5 Gauss points of every cell of the nodes, the
+/// first column of cells the finite-element row (eqs 100–104: Φ⁰_I = r φ_I + (1 − r) N_I,
+/// r = 3R² − 2R³, R = x/Δx the bilinear functions' sum over the second column), the end load
+/// by 5 Gauss points per edge segment, the errors (eqs 116–119) by the same quadrature.
+fn efg(
+    beam: &Cantilever,
+    kp: KernelParams,
+    pos: &[[f64; 2]],
+    nx: usize,
+    ny: usize,
+    dx: f64,
+) -> Result<GalerkinReport> {
+    let n = pos.len();
+    let support = kp.support();
+    let reach = (support / dx).ceil() as isize;
+    // (φ_I, ∇φ_I) at the point p, over the nodes within the support
+    let mls = |p: [f64; 2]| -> Result<Vec<(usize, f64, [f64; 2])>> {
+        let (ci, cj) = (
+            (p[0] / dx).floor() as isize,
+            ((p[1] + beam.depth / 2.0) / dx).floor() as isize,
+        );
+        let mut nb = Vec::new();
+        for a in (ci - reach).max(0)..=(ci + reach + 1).min(nx as isize - 1) {
+            for b in (cj - reach).max(0)..=(cj + reach + 1).min(ny as isize - 1) {
+                let m = a as usize * ny + b as usize;
+                let d = [pos[m][0] - p[0], pos[m][1] - p[1]];
+                if (d[0] * d[0] + d[1] * d[1]).sqrt() < support {
+                    nb.push(m);
+                }
+            }
+        }
+        let nodes: Vec<([f64; 2], f64)> = nb
+            .iter()
+            .map(|&m| ([pos[m][0] - p[0], pos[m][1] - p[1]], 1.0))
+            .collect();
+        let mut out = Vec::new();
+        eval_d(ShapeFamily::Mls, kp, &nodes, p[0], &mut out)?;
+        Ok(nb.iter().zip(out).map(|(&m, (v, g))| (m, v, g)).collect())
+    };
+    // quadrature points: (weight, position, (node, Φ⁰, ∇Φ⁰))
+    let mut points: Vec<EfgPoint> = Vec::new();
+    for i in 0..nx - 1 {
+        for j in 0..ny - 1 {
+            let (x0, y0) = (i as f64 * dx, -beam.depth / 2.0 + j as f64 * dx);
+            for &(gx, wx) in &GAUSS5 {
+                for &(gy, wy) in &GAUSS5 {
+                    let (xi, eta) = (0.5 * (1.0 + gx), 0.5 * (1.0 + gy));
+                    let p = [x0 + xi * dx, y0 + eta * dx];
+                    let mut phi = mls(p)?;
+                    if i == 0 {
+                        let r = 3.0 * xi * xi - 2.0 * xi.powi(3);
+                        let dr = (6.0 * xi - 6.0 * xi * xi) / dx;
+                        let corners = [
+                            (
+                                j,
+                                (1.0 - xi) * (1.0 - eta),
+                                [-(1.0 - eta) / dx, -(1.0 - xi) / dx],
+                            ),
+                            (ny + j, xi * (1.0 - eta), [(1.0 - eta) / dx, -xi / dx]),
+                            (j + 1, (1.0 - xi) * eta, [-eta / dx, (1.0 - xi) / dx]),
+                            (ny + j + 1, xi * eta, [eta / dx, xi / dx]),
+                        ];
+                        for (m, v, g) in phi.iter_mut() {
+                            let (nv, ng) = corners
+                                .iter()
+                                .find(|c| c.0 == *m)
+                                .map_or((0.0, [0.0; 2]), |c| (c.1, c.2));
+                            let (pv, pg) = (*v, *g);
+                            *v = r * pv + (1.0 - r) * nv;
+                            *g = [
+                                r * pg[0] + dr * (pv - nv) + (1.0 - r) * ng[0],
+                                r * pg[1] + (1.0 - r) * ng[1],
+                            ];
+                        }
+                    }
+                    points.push((wx * wy * 0.25 * dx * dx, p, phi));
+                }
+            }
+        }
+    }
+    let c = beam.elasticity();
+    let grads: Vec<Vec<(usize, [f64; 2])>> = points
+        .iter()
+        .map(|(_, _, phi)| phi.iter().map(|&(m, _, g)| (m, g)).collect())
+        .collect();
+    let quad: Vec<QuadPoint> = points
+        .iter()
+        .zip(&grads)
+        .map(|((w, _, _), g)| (*w, &g[..], &g[..]))
+        .collect();
+    // the end load: t_y = σ_xy(L, y) by 5 Gauss points on each edge segment
+    let mut f = vec![0.0; 2 * n];
+    for j in 0..ny - 1 {
+        let y0 = -beam.depth / 2.0 + j as f64 * dx;
+        for &(g, w) in &GAUSS5 {
+            let p = [beam.length, y0 + 0.5 * (1.0 + g) * dx];
+            let t = beam.stress(p[0], p[1])[2];
+            for (m, v, _) in mls(p)? {
+                f[2 * m + 1] += 0.5 * dx * w * t * v;
+            }
+        }
+    }
+    let u = solve(beam, &c, &quad, f, pos, ny)?;
+    let energy = |e: [f64; 3]| {
+        (0..3)
+            .map(|r| (0..3).map(|s| e[r] * c[r][s] * e[s]).sum::<f64>())
+            .sum::<f64>()
+    };
+    let (mut du, mut un, mut de, mut en) = (0.0, 0.0, 0.0, 0.0);
+    for (w, p, phi) in &points {
+        let (mut uh, mut eh) = ([0.0; 2], [0.0; 3]);
+        for &(m, v, g) in phi {
+            uh[0] += v * u[2 * m];
+            uh[1] += v * u[2 * m + 1];
+            let b = bmat(g);
+            for r in 0..3 {
+                eh[r] += b[r][0] * u[2 * m] + b[r][1] * u[2 * m + 1];
+            }
+        }
+        let ex = beam.displacement(p[0], p[1]);
+        du += w * ((uh[0] - ex[0]).powi(2) + (uh[1] - ex[1]).powi(2));
+        un += w * (ex[0] * ex[0] + ex[1] * ex[1]);
+        let ee = beam.strain(p[0], p[1]);
+        de += w * energy([eh[0] - ee[0], eh[1] - ee[1], eh[2] - ee[2]]);
+        en += w * energy(ee);
+    }
+    let tip_point = [beam.length, 0.0];
+    let tip: f64 = mls(tip_point)?
+        .iter()
+        .map(|&(m, v, _)| v * u[2 * m + 1])
+        .sum();
+    let out = GalerkinReport {
+        method: GalerkinMethod::Efg,
+        spacing: dx,
+        nodes: n,
+        displacement_error: (du / un).sqrt(),
+        energy_error: (de / en).sqrt(),
+        tip_deflection: tip,
+        exact_tip_deflection: beam.displacement(beam.length, 0.0)[1],
     };
     if !(out.displacement_error.is_finite() && out.energy_error.is_finite()) {
         return Err(Error::NonFinite("Galerkin solution"));
