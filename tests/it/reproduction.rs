@@ -947,6 +947,52 @@ fn v21_figs17_18() -> [Row; 3] {
     [fig17, fig18, fig18b]
 }
 
+/// The tensile wave of [V21 §7.5] against its analytic solution: two step waves of σ1 from the
+/// pulled layers' inner ends `xl`, `xr`, at distance c t = `ct` by now, doubling where they
+/// overlap. For the stress `st` at the reference positions `x` (spacing `dx`), over the free
+/// particles `lw..n − rw`: (median σ in the overlap core, median σ in the singly loaded zones,
+/// RMS |σ − σ_exact|/σ1), 5Δx around the fronts left out.
+#[allow(clippy::too_many_arguments)]
+fn tensile_wave_measure(
+    x: &[f64],
+    st: &[f64],
+    (lw, rw): (usize, usize),
+    (xl, xr): (f64, f64),
+    ct: f64,
+    s1: f64,
+    dx: f64,
+) -> (f64, f64, f64) {
+    let n = x.len();
+    let exact =
+        |xi: f64| s1 * (f64::from(u8::from(xi - xl < ct)) + f64::from(u8::from(xr - xi < ct)));
+    let near_front =
+        |xi: f64| (xi - (xl + ct)).abs() < 5.0 * dx || (xi - (xr - ct)).abs() < 5.0 * dx;
+    let free = lw..n - rw;
+    let half = xl + ct - 0.5 * (xl + xr);
+    let core = median(
+        free.clone()
+            .filter(|&i| (x[i] - 0.5 * (xl + xr)).abs() < 0.5 * half)
+            .map(|i| st[i])
+            .collect(),
+    );
+    let single = median(
+        free.clone()
+            .filter(|&i| (exact(x[i]) - s1).abs() < 1.0 && !near_front(x[i]))
+            .filter(|&i| x[i] > xl + 5.0 * dx && x[i] < xr - 5.0 * dx)
+            .map(|i| st[i])
+            .collect(),
+    );
+    let sel: Vec<usize> = free.filter(|&i| !near_front(x[i])).collect();
+    let rms = (sel
+        .iter()
+        .map(|&i| (st[i] - exact(x[i])).powi(2))
+        .sum::<f64>()
+        / sel.len() as f64)
+        .sqrt()
+        / s1;
+    (core, single, rms)
+}
+
 /// [V21 §7.5, Figs 21a and 22]: the tensile wave at 20 μs against linear elasticity.
 fn v21_figs21_22() -> [Row; 2] {
     let t = 20e-6;
@@ -960,10 +1006,6 @@ fn v21_figs21_22() -> [Row; 2] {
     let v = 70.0;
     let s1 = base.rho0 * c * v;
     let ct = c * t;
-    let exact =
-        |xi: f64| s1 * (f64::from(u8::from(xi - xl < ct)) + f64::from(u8::from(xr - xi < ct)));
-    let near_front =
-        |xi: f64| (xi - (xl + ct)).abs() < 5.0 * dx || (xi - (xr - ct)).abs() < 5.0 * dx;
     // (median σ in the overlap core, median σ in the singly loaded zones, RMS deviation / σ1)
     let measure = |form: &str, cp: f64| -> (f64, f64, f64) {
         let s = scene_with("tensile-wave", |s| {
@@ -973,30 +1015,7 @@ fn v21_figs21_22() -> [Row; 2] {
         });
         let (_, z) = run_scene(&s);
         let st = total_stress(&s, &z);
-        let free = lw..n - rw;
-        let half = xl + ct - 0.5 * (xl + xr);
-        let core = median(
-            free.clone()
-                .filter(|&i| (x[i] - 0.5 * (xl + xr)).abs() < 0.5 * half)
-                .map(|i| st[i])
-                .collect(),
-        );
-        let single = median(
-            free.clone()
-                .filter(|&i| (exact(x[i]) - s1).abs() < 1.0 && !near_front(x[i]))
-                .filter(|&i| x[i] > xl + 5.0 * dx && x[i] < xr - 5.0 * dx)
-                .map(|i| st[i])
-                .collect(),
-        );
-        let sel: Vec<usize> = free.filter(|&i| !near_front(x[i])).collect();
-        let rms = (sel
-            .iter()
-            .map(|&i| (st[i] - exact(x[i])).powi(2))
-            .sum::<f64>()
-            / sel.len() as f64)
-            .sqrt()
-            / s1;
-        (core, single, rms)
+        tensile_wave_measure(&x, &st, (lw, rw), (xl, xr), ct, s1, dx)
     };
     let forms = [("classical", 0.5), ("nonlocal", 0.5), ("lnl", 0.5)];
     let m: Vec<(f64, f64, f64)> = forms.iter().map(|&(f, cp)| measure(f, cp)).collect();
@@ -1881,7 +1900,7 @@ fn thesis_figs51_52() -> [Row; 2] {
 /// between symmetry planes on every side is laterally uniform (tests/it/symmetry.rs, and the
 /// Fig 14 row below at 7 × 7), so the long runs use a 1 × 1 section with its ghosts.
 mod multi_d {
-    use super::{Row, erratum, list, median, verdict};
+    use super::{Row, erratum, list, verdict};
     use sphstab::solver::scene::{Scene, SceneReport, Side, parse};
 
     fn scene(file: &str) -> Scene {
@@ -2263,36 +2282,9 @@ mod multi_d {
         let (lw, rw) = (7, 7);
         let (xl, xr) = (x[lw - 1], x[n - rw]);
         let ct = c * t;
-        let exact =
-            |xi: f64| s1 * (f64::from(u8::from(xi - xl < ct)) + f64::from(u8::from(xr - xi < ct)));
-        let near_front =
-            |xi: f64| (xi - (xl + ct)).abs() < 5.0 * dx || (xi - (xr - ct)).abs() < 5.0 * dx;
         let measure = |r: &SceneReport| {
             let st: Vec<f64> = r.centre_row.iter().map(|&i| r.final_stress[i]).collect();
-            let free = lw..n - rw;
-            let half = xl + ct - 0.5 * (xl + xr);
-            let core = median(
-                free.clone()
-                    .filter(|&i| (x[i] - 0.5 * (xl + xr)).abs() < 0.5 * half)
-                    .map(|i| st[i])
-                    .collect(),
-            );
-            let single = median(
-                free.clone()
-                    .filter(|&i| (exact(x[i]) - s1).abs() < 1.0 && !near_front(x[i]))
-                    .filter(|&i| x[i] > xl + 5.0 * dx && x[i] < xr - 5.0 * dx)
-                    .map(|i| st[i])
-                    .collect(),
-            );
-            let sel: Vec<usize> = free.filter(|&i| !near_front(x[i])).collect();
-            let rms = (sel
-                .iter()
-                .map(|&i| (st[i] - exact(x[i])).powi(2))
-                .sum::<f64>()
-                / sel.len() as f64)
-                .sqrt()
-                / s1;
-            (core, single, rms)
+            super::tensile_wave_measure(&x, &st, (lw, rw), (xl, xr), ct, s1, dx)
         };
         let with = |form: &str, section: Vec<usize>, t_end: f64| {
             let mut s = base.clone();
