@@ -230,16 +230,16 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
                     .stress
                     .iter()
                     .fold((0.0f64, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
-                if p.stress.is_empty() {
-                    format!(
-                        "X = {} m: no stress",
-                        sphstab::display::num(p.reference_position)
-                    )
+                // X on the axis, (X, Y(, Z)) off it
+                let at = if p.across.is_empty() {
+                    format!("X = {} m", sphstab::display::num(p.reference_position))
                 } else {
-                    format!(
-                        "X = {} m: [{lo:.4e}, {hi:.4e}]",
-                        sphstab::display::num(p.reference_position)
-                    )
+                    format!("({}) m", p.label().replace(';', ", "))
+                };
+                if p.stress.is_empty() {
+                    format!("{at}: no stress")
+                } else {
+                    format!("{at}: [{lo:.4e}, {hi:.4e}]")
                 }
             })
             .collect();
