@@ -164,7 +164,8 @@ impl Pulse {
     }
 }
 
-/// The field names of the ends' keys (error messages name fields by `&'static str`).
+/// The field names of the pulses' keys, at the ends and across (error messages name fields by
+/// `&'static str`).
 const END_FIELDS: &[&str] = &[
     "left.traction",
     "left.layers",
@@ -190,6 +191,10 @@ const END_FIELDS: &[&str] = &[
     "right.velocity_pulse.duration",
     "right.velocity_pulse.smoothing",
     "right.velocity_pulse.start",
+    "transverse_stretch_rate.amplitude",
+    "transverse_stretch_rate.duration",
+    "transverse_stretch_rate.smoothing",
+    "transverse_stretch_rate.start",
 ];
 
 /// The static name of the end field `name` (one of [`END_FIELDS`]).

@@ -348,6 +348,19 @@ fn bad_2d_and_3d_scene_input_is_refused_by_name() {
             .to_string();
         assert!(err.contains(field), "{to}: {err}");
     }
+    // a pulse's field is named as the scene's key
+    let text = ok.replacen(
+        r#""t_end": 6e-6"#,
+        r#""t_end": 6e-6, "sides": [["symmetry", "symmetry"]], "transverse_stretch_rate": {"amplitude": 1e30, "duration": 1e-6}"#,
+        1,
+    );
+    let text = text.replacen(r#""sides": [["symmetry", "free"]], "#, "", 1);
+    let err = parse("t", &text)
+        .unwrap()
+        .validate()
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("transverse_stretch_rate.amplitude"), "{err}");
     // 1D: no section, no Poisson ratio
     let one = r#"{"name": "t", "form": "nonlocal", "kernel": "m4", "h_over_dx": 1.3, "modulus": 1.0,
         "material": {"kind": "linear", "poisson": 0.3}, "rho0": 1.0, "particles": 10,
