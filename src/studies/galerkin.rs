@@ -155,6 +155,71 @@ impl Cantilever {
     }
 }
 
+/// The plate with a hole of [B98 §6.2.2] (Figs 7–9): an infinite plate with a circular hole
+/// of radius a under the unit traction σ_xx = 1 at infinity, plane stress, modelled on the
+/// quadrant 0 ≤ x, y ≤ b outside the hole (its upper right quarter), with Kirsch's solution on
+/// the outer edges.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct PlateWithHole {
+    /// Young's modulus E.
+    pub modulus: f64,
+    /// Poisson ratio ν.
+    pub poisson: f64,
+    /// Hole radius a.
+    pub radius: f64,
+    /// Half width b of the plate.
+    pub half_width: f64,
+}
+
+impl PlateWithHole {
+    /// [B98] §6.2.2: E = 1000, ν = 0.3, a = 1, b = 5.
+    pub const B98: PlateWithHole = PlateWithHole {
+        modulus: 1000.0,
+        poisson: 0.3,
+        radius: 1.0,
+        half_width: 5.0,
+    };
+
+    /// Kirsch's stress (σ_xx, σ_yy, σ_xy) (eqs 127–129).
+    pub fn stress(&self, x: f64, y: f64) -> [f64; 3] {
+        let a = self.radius;
+        let (r, t) = (x.hypot(y), y.atan2(x));
+        let (a2, a4) = ((a / r).powi(2), (a / r).powi(4));
+        let (c2, c4, s2, s4) = (
+            (2.0 * t).cos(),
+            (4.0 * t).cos(),
+            (2.0 * t).sin(),
+            (4.0 * t).sin(),
+        );
+        [
+            1.0 - a2 * (1.5 * c2 + c4) + 1.5 * a4 * c4,
+            -a2 * (0.5 * c2 - c4) - 1.5 * a4 * c4,
+            -a2 * (0.5 * s2 + s4) + 1.5 * a4 * s4,
+        ]
+    }
+
+    /// The displacement of Kirsch's solution in plane stress (B98 prints only the stresses;
+    /// this is the standard field, μ = E/(2(1 + ν)), κ = (3 − ν)/(1 + ν)), zero on the
+    /// symmetry axes' normal directions:
+    /// u_x = a/(8μ) [(r/a)(κ + 1) cos θ + (2a/r)((1 + κ) cos θ + cos 3θ) − (2a³/r³) cos 3θ],
+    /// u_y = a/(8μ) [(r/a)(κ − 3) sin θ + (2a/r)((1 − κ) sin θ + sin 3θ) − (2a³/r³) sin 3θ].
+    pub fn displacement(&self, x: f64, y: f64) -> [f64; 2] {
+        let (a, nu) = (self.radius, self.poisson);
+        let mu = self.modulus / (2.0 * (1.0 + nu));
+        let kappa = (3.0 - nu) / (1.0 + nu);
+        let (r, t) = (x.hypot(y), y.atan2(x));
+        let f = a / (8.0 * mu);
+        [
+            f * ((r / a) * (kappa + 1.0) * t.cos()
+                + (2.0 * a / r) * ((1.0 + kappa) * t.cos() + (3.0 * t).cos())
+                - 2.0 * (a / r).powi(3) * (3.0 * t).cos()),
+            f * ((r / a) * (kappa - 3.0) * t.sin()
+                + (2.0 * a / r) * ((1.0 - kappa) * t.sin() + (3.0 * t).sin())
+                - 2.0 * (a / r).powi(3) * (3.0 * t).sin()),
+        ]
+    }
+}
+
 /// The solution of one discretisation.
 #[derive(Clone, Debug, Serialize)]
 pub struct GalerkinReport {

@@ -3,7 +3,7 @@
 //! law, plane stress, of its displacements' gradient, by central differences here), then the
 //! methods' convergence is measured against it.
 
-use sphstab::studies::galerkin::{Cantilever, GalerkinMethod, cantilever, rate};
+use sphstab::studies::galerkin::{Cantilever, GalerkinMethod, PlateWithHole, cantilever, rate};
 
 /// Eqs 122–124 are plane-stress Hooke's law of eqs 120–121 (central differences, step 1e-5),
 /// the end x = L carries only the shear σ_xy with resultant P (Simpson on 200 intervals), and
@@ -133,5 +133,57 @@ fn efg_converges_in_energy_at_the_b98_rate() {
             x.tip_deflection,
             x.exact_tip_deflection
         );
+    }
+}
+
+/// The plate with a hole's exact solution ([B98] eqs 127–129 and the plane-stress displacement
+/// B98 does not print): the stresses are plane-stress Hooke's law of the displacements
+/// (central differences), the hole is traction-free (σ·n = 0 at r = a), the far field is the
+/// unit tension (σ_xx → 1 as a/r → 0), and the symmetry axes have no normal displacement
+/// (u_y = 0 on y = 0, u_x = 0 on x = 0).
+#[test]
+fn the_plate_with_a_hole_solution_is_kirsch_in_plane_stress() {
+    let p = PlateWithHole::B98;
+    let (e, nu) = (p.modulus, p.poisson);
+    let f = e / (1.0 - nu * nu);
+    let h = 1e-6;
+    for &(x, y) in &[(1.2, 0.3), (0.5, 2.0), (3.0, 4.0), (4.9, 0.1), (0.7, 0.9)] {
+        let d = |dx: f64, dy: f64| p.displacement(x + dx, y + dy);
+        let ux_x = (d(h, 0.0)[0] - d(-h, 0.0)[0]) / (2.0 * h);
+        let uy_y = (d(0.0, h)[1] - d(0.0, -h)[1]) / (2.0 * h);
+        let shear = (d(0.0, h)[0] - d(0.0, -h)[0] + d(h, 0.0)[1] - d(-h, 0.0)[1]) / (2.0 * h);
+        let s = [
+            f * (ux_x + nu * uy_y),
+            f * (uy_y + nu * ux_x),
+            f * (1.0 - nu) / 2.0 * shear,
+        ];
+        let want = p.stress(x, y);
+        for k in 0..3 {
+            assert!(
+                (s[k] - want[k]).abs() < 1e-6,
+                "({x}, {y}) σ[{k}]: Hooke {} against Kirsch {}",
+                s[k],
+                want[k]
+            );
+        }
+    }
+    for i in 0..=8 {
+        let t = std::f64::consts::FRAC_PI_2 * i as f64 / 8.0;
+        let (c, s) = (t.cos(), t.sin());
+        let [sx, sy, sxy] = p.stress(c, s);
+        let traction = [sx * c + sxy * s, sxy * c + sy * s];
+        assert!(
+            traction[0].abs() < 1e-12 && traction[1].abs() < 1e-12,
+            "hole at θ = {t}: {traction:?}"
+        );
+    }
+    let far = p.stress(1e4, 3e3);
+    assert!(
+        (far[0] - 1.0).abs() < 1e-6 && far[1].abs() < 1e-6 && far[2].abs() < 1e-6,
+        "{far:?}"
+    );
+    for v in [1.0, 2.5, 5.0] {
+        assert!(p.displacement(v, 0.0)[1].abs() < 1e-15);
+        assert!(p.displacement(0.0, v)[0].abs() < 1e-15);
     }
 }
