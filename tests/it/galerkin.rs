@@ -5,25 +5,39 @@
 
 use sphstab::studies::galerkin::{Cantilever, GalerkinMethod, PlateWithHole, cantilever, rate};
 
+/// Plane-stress Hooke's law (E, ν) of the displacement field `u` at (x, y), its gradient by
+/// central differences of step `h`: (σ_xx, σ_yy, σ_xy).
+fn hooke_by_differences(
+    u: impl Fn(f64, f64) -> [f64; 2],
+    (e, nu): (f64, f64),
+    (x, y): (f64, f64),
+    h: f64,
+) -> [f64; 3] {
+    let f = e / (1.0 - nu * nu);
+    let d = |dx: f64, dy: f64| u(x + dx, y + dy);
+    let ux_x = (d(h, 0.0)[0] - d(-h, 0.0)[0]) / (2.0 * h);
+    let uy_y = (d(0.0, h)[1] - d(0.0, -h)[1]) / (2.0 * h);
+    let shear = (d(0.0, h)[0] - d(0.0, -h)[0] + d(h, 0.0)[1] - d(-h, 0.0)[1]) / (2.0 * h);
+    [
+        f * (ux_x + nu * uy_y),
+        f * (uy_y + nu * ux_x),
+        f * (1.0 - nu) / 2.0 * shear,
+    ]
+}
+
 /// Eqs 122–124 are plane-stress Hooke's law of eqs 120–121 (central differences, step 1e-5),
 /// the end x = L carries only the shear σ_xy with resultant P (Simpson on 200 intervals), and
 /// the edges y = ±D/2 are traction-free.
 #[test]
 fn the_beam_solution_is_plane_stress_elasticity_with_the_end_load() {
     let b = Cantilever::B98;
-    let (e, nu) = (b.modulus, b.poisson);
-    let f = e / (1.0 - nu * nu);
-    let h = 1e-5;
     for &(x, y) in &[(0.5, 0.3), (3.0, -0.2), (7.5, 0.45), (4.0, 0.0)] {
-        let d = |dx: f64, dy: f64| b.displacement(x + dx, y + dy);
-        let ux_x = (d(h, 0.0)[0] - d(-h, 0.0)[0]) / (2.0 * h);
-        let uy_y = (d(0.0, h)[1] - d(0.0, -h)[1]) / (2.0 * h);
-        let shear = (d(0.0, h)[0] - d(0.0, -h)[0] + d(h, 0.0)[1] - d(-h, 0.0)[1]) / (2.0 * h);
-        let s = [
-            f * (ux_x + nu * uy_y),
-            f * (uy_y + nu * ux_x),
-            f * (1.0 - nu) / 2.0 * shear,
-        ];
+        let s = hooke_by_differences(
+            |x, y| b.displacement(x, y),
+            (b.modulus, b.poisson),
+            (x, y),
+            1e-5,
+        );
         let want = b.stress(x, y);
         for k in 0..3 {
             assert!(
@@ -144,19 +158,13 @@ fn efg_converges_in_energy_at_the_b98_rate() {
 #[test]
 fn the_plate_with_a_hole_solution_is_kirsch_in_plane_stress() {
     let p = PlateWithHole::B98;
-    let (e, nu) = (p.modulus, p.poisson);
-    let f = e / (1.0 - nu * nu);
-    let h = 1e-6;
     for &(x, y) in &[(1.2, 0.3), (0.5, 2.0), (3.0, 4.0), (4.9, 0.1), (0.7, 0.9)] {
-        let d = |dx: f64, dy: f64| p.displacement(x + dx, y + dy);
-        let ux_x = (d(h, 0.0)[0] - d(-h, 0.0)[0]) / (2.0 * h);
-        let uy_y = (d(0.0, h)[1] - d(0.0, -h)[1]) / (2.0 * h);
-        let shear = (d(0.0, h)[0] - d(0.0, -h)[0] + d(h, 0.0)[1] - d(-h, 0.0)[1]) / (2.0 * h);
-        let s = [
-            f * (ux_x + nu * uy_y),
-            f * (uy_y + nu * ux_x),
-            f * (1.0 - nu) / 2.0 * shear,
-        ];
+        let s = hooke_by_differences(
+            |x, y| p.displacement(x, y),
+            (p.modulus, p.poisson),
+            (x, y),
+            1e-6,
+        );
         let want = p.stress(x, y);
         for k in 0..3 {
             assert!(
