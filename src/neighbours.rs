@@ -92,11 +92,24 @@ impl<const D: usize> CellList<D> {
                 (lo, ext)
             }
         };
-        let size = radius.max(1e-300);
+        let mut size = radius.max(1e-300);
+        // at most 64 cells per point (and 4096): particles scattered far apart (a run that
+        // is diverging) widen the cells instead of allocating the empty space between them;
+        // cells wider than `radius` hold more candidates, never fewer
+        let limit = (64.0 * pts.len() as f64).max(4096.0);
         let mut dims = [1usize; D];
-        for a in 0..D {
-            // periodic: cells must be at least `radius` wide, so use floor; open: one more cell
-            dims[a] = ((ext[a] / size).floor() as usize).max(1) + usize::from(period.is_none());
+        loop {
+            let mut cells = 1.0;
+            for a in 0..D {
+                // periodic: cells must be at least `radius` wide, so use floor; open: one more
+                let n = (ext[a] / size).floor().max(1.0) + f64::from(u8::from(period.is_none()));
+                dims[a] = n as usize;
+                cells *= n;
+            }
+            if cells <= limit {
+                break;
+            }
+            size *= (cells / limit).powf(1.0 / D as f64) * 1.01;
         }
         (origin, size, dims)
     }

@@ -144,6 +144,11 @@ const TABLE: &[(&str, Unit)] = &[
     ("critical_dt_lumped", Fixed(DT)),
     ("d_max", Fixed(LENGTH)),
     ("bounds", Fixed("[name, (c/dx)^2]")),
+    // `galerkin`: lengths in the units of [B98]'s problems (E = 1000, unit load)
+    ("node_spacing", Fixed("length (B98's units)")),
+    ("probe", Fixed("length (B98's units)")),
+    ("probe_displacement", Fixed("length (B98's units)")),
+    ("exact_probe_displacement", Fixed("length (B98's units)")),
     // `interpolate`: the test function's argument, and its derivatives
     ("interval", Fixed(ARG)),
     ("spacing", Fixed(ARG)),
@@ -188,6 +193,9 @@ const TABLE: &[(&str, Unit)] = &[
     ("max_velocity", Run(Dim::Speed)),
     // a scene's probes
     ("probe_t", Run(Dim::Time)),
+    ("extent_t", Run(Dim::Time)),
+    ("extent_length", Run(Dim::Length)),
+    ("extent_radius", Run(Dim::Length)),
     ("reference_position", Run(Dim::Length)),
     ("across", Run(Dim::Length)),
     ("displacement", Run(Dim::Length)),

@@ -61,6 +61,7 @@ use rayon::prelude::*;
 
 mod antiplane;
 mod finite_body;
+mod galerkin;
 mod interpolation;
 mod scene;
 mod swegle;
@@ -68,6 +69,7 @@ mod swegle;
 use antiplane::cutoff_marks;
 pub use antiplane::{AntiPlaneRoute, AntiPlaneSeries, KAPPA_THETA_DESC, OMEGA_DESC};
 pub use finite_body::{FiniteBodyRoute, FiniteBodySeries};
+pub use galerkin::{GalerkinNorm, GalerkinSeries};
 pub use interpolation::{InterpolationQuantity, InterpolationSeries};
 pub use scene::{SceneQuantity, SceneRoute, SceneSeries};
 use serde::Deserialize;
@@ -175,6 +177,9 @@ pub struct FigureConfig {
     /// Finite bodies' largest eigenvalues (against the support D_max).
     #[serde(default)]
     pub finite_body: Vec<FiniteBodySeries>,
+    /// Static Galerkin errors (against log10 Δx, on a log axis).
+    #[serde(default)]
+    pub galerkin: Vec<GalerkinSeries>,
     /// Abscissa description (default: that of the curves' kind; scene figures give theirs).
     pub x_desc: Option<String>,
     /// Ordinate description (default: that of the curves' kind; scene figures give theirs).
@@ -213,6 +218,9 @@ pub struct Panel {
     /// Finite bodies' largest eigenvalues.
     #[serde(default)]
     pub finite_body: Vec<FiniteBodySeries>,
+    /// Static Galerkin errors.
+    #[serde(default)]
+    pub galerkin: Vec<GalerkinSeries>,
 }
 
 fn default_points() -> usize {
@@ -321,6 +329,7 @@ struct PanelSpec<'a> {
     scene: &'a [SceneSeries],
     interpolation: &'a [InterpolationSeries],
     finite_body: &'a [FiniteBodySeries],
+    galerkin: &'a [GalerkinSeries],
 }
 
 impl FigureConfig {
@@ -335,6 +344,7 @@ impl FigureConfig {
                 scene: &self.scene,
                 interpolation: &self.interpolation,
                 finite_body: &self.finite_body,
+                galerkin: &self.galerkin,
             }];
         }
         self.panels
@@ -348,6 +358,7 @@ impl FigureConfig {
                 scene: &p.scene,
                 interpolation: &p.interpolation,
                 finite_body: &p.finite_body,
+                galerkin: &p.galerkin,
             })
             .collect()
     }
@@ -380,6 +391,8 @@ pub fn panel_curves(cfg: &FigureConfig) -> Result<Vec<Vec<Curve>>> {
                     .collect()
             } else if !p.finite_body.is_empty() {
                 p.finite_body.iter().map(|s| s.curve(&cfg.budget)).collect()
+            } else if !p.galerkin.is_empty() {
+                p.galerkin.iter().map(|s| s.curve()).collect()
             } else {
                 p.series.iter().map(|s| s.curve(cfg.points)).collect()
             }
@@ -417,17 +430,17 @@ impl FigureConfig {
                 "`output` = {o:?} must be a plain file name ending in .svg (no directory, no ..)"
             ));
         }
-        let curves = |what: &str, counts: [usize; 6]| {
+        let curves = |what: &str, counts: [usize; 7]| {
             let kinds = counts.iter().filter(|&&n| n > 0).count();
             let n: usize = counts.iter().sum();
             match kinds {
                 0 => Err(format!(
-                    "{what}: give 1 to 64 curves in `series` (1D), `antiplane` (2D), `swegle`, `scene`, `interpolation` or `finite_body`"
+                    "{what}: give 1 to 64 curves in `series` (1D), `antiplane` (2D), `swegle`, `scene`, `interpolation`, `finite_body` or `galerkin`"
                 )),
                 1 if n <= 64 => Ok(()),
                 1 => Err(format!("{what} has {n} curves: give 1 to 64")),
                 _ => Err(format!(
-                    "{what}: give one of `series` (1D), `antiplane` (2D), `swegle`, `scene`, `interpolation`, `finite_body`, not several (their axes differ)"
+                    "{what}: give one of `series` (1D), `antiplane` (2D), `swegle`, `scene`, `interpolation`, `finite_body`, `galerkin`, not several (their axes differ)"
                 )),
             }
         };
@@ -447,6 +460,7 @@ impl FigureConfig {
                     self.scene.len(),
                     self.interpolation.len(),
                     self.finite_body.len(),
+                    self.galerkin.len(),
                 ],
             )?;
         } else {
@@ -456,6 +470,7 @@ impl FigureConfig {
                 || !self.scene.is_empty()
                 || !self.interpolation.is_empty()
                 || !self.finite_body.is_empty()
+                || !self.galerkin.is_empty()
             {
                 return Err(
                     "give the curves either at the top level or in `panels`, not both".into(),
@@ -477,6 +492,7 @@ impl FigureConfig {
                         p.scene.len(),
                         p.interpolation.len(),
                         p.finite_body.len(),
+                        p.galerkin.len(),
                     ],
                 )?;
                 range(&format!("`panels[{i}].y_range`"), p.y_range)?;
@@ -519,6 +535,8 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
                 ("position x", "f, ∂f/∂x or ∂²f/∂x²", Vec::new())
             } else if !p.finite_body.is_empty() {
                 ("support D_max (Δx)", "λ_max (c²/Δx²)", Vec::new())
+            } else if !p.galerkin.is_empty() {
+                ("log10 Δx", "relative error", Vec::new())
             } else {
                 (KAPPA_DESC, OMEGA2_DESC, Vec::new())
             };
@@ -526,8 +544,8 @@ pub fn render(cfg: &FigureConfig) -> Result<String> {
             let y_desc = cfg.y_desc.as_deref().unwrap_or(y_desc);
             LinePlot {
                 y_range: p.y_range,
-                zero_line: p.swegle.is_empty(),
-                y_log: !p.swegle.is_empty(),
+                zero_line: p.swegle.is_empty() && p.galerkin.is_empty(),
+                y_log: !p.swegle.is_empty() || !p.galerkin.is_empty(),
                 names: crate::studies::series_names(),
                 x_marks,
                 width: if paneled {

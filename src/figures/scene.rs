@@ -32,6 +32,11 @@ pub enum SceneQuantity {
     Displacement,
     /// The stretch F (probes of the total-Lagrangian form only).
     Stretch,
+    /// A `round` bar's length against time ([`crate::solver::scene::SceneReport::extent_length`];
+    /// no probe).
+    Length,
+    /// A `round` bar's radius at its left end against time (`extent_radius`; no probe).
+    Radius,
 }
 
 /// The abscissa of a probe series.
@@ -152,6 +157,28 @@ impl SceneSeries {
         if let Some(p) = self.probe {
             return self.probe_curve(&s, p);
         }
+        if matches!(self.quantity, SceneQuantity::Length | SceneQuantity::Radius) {
+            if self.route == SceneRoute::Analytic || !s.round {
+                return Err(Error::Incompatible(
+                    "scene series: `length` and `radius` are the run of a `round` bar".into(),
+                ));
+            }
+            let r = s.run(())?;
+            let (y, what) = if self.quantity == SceneQuantity::Length {
+                (r.extent_length, "length")
+            } else {
+                (r.extent_radius, "radius")
+            };
+            return Ok(Curve {
+                label: self
+                    .label
+                    .clone()
+                    .unwrap_or_else(|| format!("{} {what}", s.form)),
+                x: r.extent_t.iter().map(|t| t * self.x_scale).collect(),
+                y: y.iter().map(|v| v * self.y_scale).collect(),
+                dashed: self.dashed,
+            });
+        }
         let x: Vec<f64> = s
             .reference_positions()
             .iter()
@@ -245,6 +272,8 @@ impl SceneSeries {
                 (SceneQuantity::Stress, true) => h.exact_stress.clone(),
                 (SceneQuantity::Velocity, true) => h.exact_velocity.clone(),
                 (SceneQuantity::Displacement, true) => Vec::new(),
+                // the bar's extent is not a probe's
+                (SceneQuantity::Length | SceneQuantity::Radius, _) => Vec::new(),
             };
             if v.is_empty() {
                 return Err(Error::Incompatible(
@@ -257,6 +286,8 @@ impl SceneSeries {
                             SceneQuantity::Velocity => "velocity",
                             SceneQuantity::Displacement => "displacement",
                             SceneQuantity::Stretch => "stretch",
+                            SceneQuantity::Length => "length (a bar's, not a probe's)",
+                            SceneQuantity::Radius => "radius (a bar's, not a probe's)",
                         }
                     )
                     .into(),

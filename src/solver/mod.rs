@@ -9,4 +9,4 @@ pub mod run;
 pub mod scene;
 pub mod thesis_wave;
 
-pub use run::{BoundaryDensity, Mirror, Run, System, SystemBuffers};
+pub use run::{BoundaryDensity, J2, Mirror, Run, System, SystemBuffers};

@@ -56,6 +56,19 @@ impl<const D: usize> Mirror<D> {
     }
 }
 
+/// Von Mises (J2) plasticity with linear isotropic hardening, on the hypo-elastic material of
+/// an Eulerian form in 3D: after each step the stress is returned radially to the yield
+/// surface (the elastic predictor is the step, the plastic corrector the return: σ' ← σ'(1 −
+/// 3G Δε̄ᵖ/q), Δε̄ᵖ = (q − σ_y)/(3G + H) where the von Mises stress q = √(3/2 σ':σ') exceeds
+/// σ_y = σ_Y + H ε̄ᵖ; the pressure is elastic).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct J2 {
+    /// Initial yield stress σ_Y (Pa).
+    pub yield_stress: f64,
+    /// Plastic (hardening) modulus H = dσ_y/dε̄ᵖ (Pa).
+    pub hardening: f64,
+}
+
 /// A run in D dimensions.
 ///
 /// The time loop allocates nothing once its buffers have grown (first step): positions and
@@ -80,6 +93,11 @@ pub struct Run<const D: usize = 2> {
     /// The ghost particles of symmetry planes ([`Mirror`]; empty: none), set by
     /// [`Run::set_mirror`].
     mirror: Vec<Mirror<D>>,
+    /// J2 plasticity and the material's shear modulus G ([`Run::set_plasticity`]; None:
+    /// elastic).
+    plasticity: Option<(J2, f64)>,
+    /// The equivalent plastic strain ε̄ᵖ of every particle (empty without plasticity).
+    pub plastic_strain: Vec<f64>,
     /// Time.
     pub t: f64,
     /// Steps taken.
@@ -482,6 +500,8 @@ impl<const D: usize> Run<D> {
             boundary,
             load: Vec::new(),
             mirror: Vec::new(),
+            plasticity: None,
+            plastic_strain: Vec::new(),
             t: 0.0,
             steps: 0,
             bufs,
@@ -598,6 +618,68 @@ impl<const D: usize> Run<D> {
         Ok(())
     }
 
+    /// Makes the material elastic–plastic ([`J2`]) from now on, every particle's ε̄ᵖ = 0.
+    /// Errors unless the run is 3D (the plane-strain 2D state has no σ_zz to return) and its
+    /// form is Eulerian with one hypo-elastic stress (classical, nonlocal, local), or if σ_Y or
+    /// H is negative or not finite.
+    pub fn set_plasticity(&mut self, j2: J2) -> Result<()> {
+        let form = self.model.p.form;
+        let shear = match self.model.p.material {
+            crate::forms::Material::Elastic { shear, .. } => shear,
+            _ => {
+                return Err(Error::Incompatible(
+                    "plasticity: the material must be the hypo-elastic `linear` one".into(),
+                ));
+            }
+        };
+        if D != 3
+            || !matches!(
+                form,
+                crate::forms::FormKind::Classical
+                    | crate::forms::FormKind::Nonlocal
+                    | crate::forms::FormKind::Local
+            )
+        {
+            return Err(Error::Incompatible(format!(
+                "plasticity: in 3D with the forms classical, nonlocal and local (one stress), not {} in {D}D",
+                form.name()
+            )
+            .into()));
+        }
+        crate::error::check_range("yield_stress", j2.yield_stress, 0.0, 1e30, true, true)?;
+        crate::error::check_range("hardening", j2.hardening, 0.0, 1e30, true, true)?;
+        self.plasticity = Some((j2, shear));
+        self.plastic_strain = vec![0.0; self.z.x.len()];
+        Ok(())
+    }
+
+    /// The plastic corrector of [`J2`] on every particle's stress.
+    fn return_to_yield(&mut self) {
+        let Some((j2, g)) = self.plasticity else {
+            return;
+        };
+        for (s, ep) in self.z.sigma.iter_mut().zip(&mut self.plastic_strain) {
+            let p = (0..D).map(|a| s[a][a]).sum::<f64>() / 3.0;
+            let mut dev = *s;
+            for (a, row) in dev.iter_mut().enumerate() {
+                row[a] -= p;
+            }
+            let q = (1.5 * dev.iter().flatten().map(|v| v * v).sum::<f64>()).sqrt();
+            let sy = j2.yield_stress + j2.hardening * *ep;
+            if q <= sy {
+                continue;
+            }
+            let dep = (q - sy) / (3.0 * g + j2.hardening);
+            let f = 1.0 - 3.0 * g * dep / q;
+            for a in 0..D {
+                for b in 0..D {
+                    s[a][b] = dev[a][b] * f + if a == b { p } else { 0.0 };
+                }
+            }
+            *ep += dep;
+        }
+    }
+
     /// The ghost particles of symmetry planes. A moving plane sets `offset_rate` before each
     /// step (its value at the step's midpoint); each step advances `offset` by `offset_rate`
     /// Δt.
@@ -675,6 +757,7 @@ impl<const D: usize> Run<D> {
         if z.v.iter().any(|p| p.iter().any(|c| !c.is_finite())) {
             return Err(Error::NonFinite("solver state (the run diverged)"));
         }
+        self.return_to_yield();
         // a moving plane: b advances by ḃ Δt (ḃ held over the step, as a load)
         for m in &mut self.mirror {
             for (b, r) in m.offset.iter_mut().zip(m.offset_rate) {

@@ -74,6 +74,14 @@ pub struct EndLayer {
     /// boundary \[T §4.6.3.1\]: T11 = s̄ at the face).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub traction: Option<Pulse>,
+    /// A symmetry plane half a spacing beyond the end column (as a `symmetry` side): the bar
+    /// meets its mirror image there, which is a frictionless rigid wall for the bar.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub symmetry: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 /// A pulse in time \[T §4.6.3.2\]: the square pulse of `amplitude` on [start, start +
@@ -168,6 +176,7 @@ impl Pulse {
 /// `&'static str`).
 const END_FIELDS: &[&str] = &[
     "left.traction",
+    "left.symmetry",
     "left.layers",
     "left.velocity",
     "left.velocity_pulse",
@@ -180,6 +189,7 @@ const END_FIELDS: &[&str] = &[
     "left.velocity_pulse.smoothing",
     "left.velocity_pulse.start",
     "right.traction",
+    "right.symmetry",
     "right.layers",
     "right.velocity",
     "right.velocity_pulse",
@@ -259,6 +269,14 @@ pub enum SceneMaterial {
         /// Poisson ratio ν in [−0.99, 0.5) (2D and 3D only).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         poisson: Option<f64>,
+        /// Initial yield stress σ_Y (Pa) of von Mises (J2) plasticity with linear isotropic
+        /// hardening ([`crate::solver::J2`]; 3D, forms classical, nonlocal and local; null:
+        /// elastic). The elastic part then takes the Jaumann rate.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        yield_stress: Option<f64>,
+        /// Plastic hardening modulus H = dσ_y/dε̄ᵖ (Pa; null: 0), with `yield_stress`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        hardening: Option<f64>,
     },
     /// Compressible neo-Hookean \[T eq 3.62–3.64\] in uniaxial strain (λ2 = λ3 = 1), with
     /// Young's modulus `modulus` and Poisson ratio `poisson`: P = μ(F − 1/F) + λ ln F / F, the
@@ -271,7 +289,11 @@ pub enum SceneMaterial {
 
 impl Default for SceneMaterial {
     fn default() -> Self {
-        SceneMaterial::Linear { poisson: None }
+        SceneMaterial::Linear {
+            poisson: None,
+            yield_stress: None,
+            hardening: None,
+        }
     }
 }
 
@@ -335,6 +357,12 @@ pub struct Scene {
     /// The side faces, [lower, upper] for y (and z): `free` (default) or `symmetry`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sides: Vec<[Side; 2]>,
+    /// A round bar (3D): only the lattice rows within the radius R of the axis are kept
+    /// (y² + z² ≤ R²), R the distance from the axis to the section's free faces (n Δx/2 for a
+    /// free section of n × n rows, n Δx for a quarter between two symmetry planes on the
+    /// axis). Needs n_y = n_z and the same sides on y and z, not two planes on one axis.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub round: bool,
     /// The rate λ̇ (1/s) of a homogeneous transverse stretch λ(t) = 1 + ∫λ̇ dt about the axis,
     /// as a pulse: every symmetry plane at P moves to λ(t) P, and the end layers' transverse
     /// velocity follows (λ̇ Y, λ̇ Z). Needs a symmetry plane off the axis.
@@ -530,6 +558,23 @@ pub struct SceneReport {
     /// The times of the probe records (s; empty without probes): t = 0 and every step.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub probe_t: Vec<f64>,
+    /// The times of the `round` bar's extent records (every step, and t = 0).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub extent_t: Vec<f64>,
+    /// The bar's length then: the largest minus the smallest x of its particles, plus Δx (a
+    /// particle's cell); with a symmetry plane at the left end (a wall), from the plane.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub extent_length: Vec<f64>,
+    /// The radius of its first column (the particles at the left end): the bar's radius R
+    /// plus the largest radial displacement of one of them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub extent_radius: Vec<f64>,
+    /// The largest equivalent plastic strain ε̄ᵖ at the end (J2 plasticity; null: elastic).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_plastic_strain: Option<f64>,
+    /// Every particle's ε̄ᵖ at the end (empty: elastic; not serialised).
+    #[serde(skip)]
+    pub plastic_strain: Vec<f64>,
     /// The probes' histories, in the order of the scene's `probes`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub probes: Vec<ProbeHistory>,
@@ -665,6 +710,8 @@ struct Geometry {
     per_column: usize,
     /// The transverse coordinates of the lattice rows, per transverse axis.
     across: Vec<Vec<f64>>,
+    /// A round section's kept rows (their transverse coordinates; None: every lattice row).
+    rows: Option<Vec<Vec<f64>>>,
     /// The ghosts, particle `real + g`: (source, S, b0) of [`Mirror`]; a transverse stretch λ
     /// moves every plane P to λ P, so b = λ b0.
     ghosts: Vec<(usize, [f64; 3], [f64; 3])>,
@@ -683,6 +730,17 @@ impl Geometry {
 
     /// The lattice row nearest to the transverse point `p` (missing coordinates: 0).
     fn nearest_row(&self, p: &[f64]) -> usize {
+        if let Some(rows) = &self.rows {
+            let d2 = |r: &Vec<f64>| {
+                r.iter()
+                    .enumerate()
+                    .map(|(a, y)| (y - p.get(a).copied().unwrap_or(0.0)).powi(2))
+                    .sum::<f64>()
+            };
+            return (0..rows.len())
+                .min_by(|&u, &w| d2(&rows[u]).total_cmp(&d2(&rows[w])))
+                .unwrap_or(0);
+        }
         let mut row = 0;
         for (a, coords) in self.across.iter().enumerate() {
             let target = p.get(a).copied().unwrap_or(0.0);
@@ -916,8 +974,12 @@ impl Scene {
             )
         };
         Ok(match self.material {
-            SceneMaterial::Linear { poisson: None } if self.dim == 1 => Material::bar(self.modulus),
-            SceneMaterial::Linear { poisson: Some(_) } if self.dim == 1 => {
+            SceneMaterial::Linear { poisson: None, .. } if self.dim == 1 => {
+                Material::bar(self.modulus)
+            }
+            SceneMaterial::Linear {
+                poisson: Some(_), ..
+            } if self.dim == 1 => {
                 return Err(Error::Incompatible(
                     field("material.poisson")
                         + " applies with "
@@ -925,7 +987,7 @@ impl Scene {
                         + " 2 or 3 (the 1D law has the one modulus C)",
                 ));
             }
-            SceneMaterial::Linear { poisson: None } => {
+            SceneMaterial::Linear { poisson: None, .. } => {
                 return Err(Error::Incompatible(
                     field("dim")
                         + format!(" {} needs ", self.dim)
@@ -935,13 +997,24 @@ impl Scene {
                         + " and Poisson ratio ν)",
                 ));
             }
-            SceneMaterial::Linear { poisson: Some(nu) } => {
+            SceneMaterial::Linear {
+                poisson: Some(nu),
+                yield_stress,
+                ..
+            } => {
                 crate::error::check_range("material.poisson", nu, -0.99, 0.5, true, false)?;
                 let (lambda, shear) = lame(self.modulus, nu);
+                // a plastic solid takes the Jaumann rate (corotational: large plastic flow
+                // rotates the stress, it does not stretch it)
+                let rate = if yield_stress.is_some() {
+                    crate::forms::ObjectiveRate::Jaumann
+                } else {
+                    crate::forms::ObjectiveRate::Truesdell
+                };
                 Material::Elastic {
                     lambda,
                     shear,
-                    rate: crate::forms::ObjectiveRate::Truesdell,
+                    rate,
                 }
             }
             SceneMaterial::NeoHookean { poisson } => {
@@ -957,6 +1030,48 @@ impl Scene {
                 Material::NeoHookean { lambda, shear }
             }
         })
+    }
+
+    /// The J2 plasticity of the `linear` material (`material.yield_stress`,
+    /// `material.hardening`; None: elastic), checked for form `form`.
+    pub fn plasticity(&self, form: FormKind) -> Result<Option<crate::solver::J2>> {
+        let (yield_stress, hardening) = match self.material {
+            SceneMaterial::Linear {
+                yield_stress,
+                hardening,
+                ..
+            } => (yield_stress, hardening),
+            SceneMaterial::NeoHookean { .. } => (None, None),
+        };
+        let Some(sy) = yield_stress else {
+            if hardening.is_some() {
+                return Err(Error::Incompatible(
+                    field("material.hardening") + " applies with " + field("material.yield_stress"),
+                ));
+            }
+            return Ok(None);
+        };
+        if self.dim != 3
+            || !matches!(
+                form,
+                FormKind::Classical | FormKind::Nonlocal | FormKind::Local
+            )
+        {
+            return Err(Error::Incompatible(
+                field("material.yield_stress")
+                    + " (J2 plasticity) applies with "
+                    + field("dim")
+                    + " 3 and the forms classical, nonlocal and local, not "
+                    + format!("dim {} and {}", self.dim, form.name()),
+            ));
+        }
+        crate::error::check_range("material.yield_stress", sy, 0.0, SCALE_RANGE.1, false, true)?;
+        let h = hardening.unwrap_or(0.0);
+        crate::error::check_range("material.hardening", h, 0.0, SCALE_RANGE.1, true, true)?;
+        Ok(Some(crate::solver::J2 {
+            yield_stress: sy,
+            hardening: h,
+        }))
     }
 
     /// Checks `section`, `sides`, `transverse_stretch_rate` and what depends on the dimension
@@ -997,6 +1112,24 @@ impl Scene {
                         form.name()
                     ),
             ));
+        }
+        if self.round {
+            let ok = self.dim == 3
+                && self.section[0] == self.section[1]
+                && self.sides_of(0) == self.sides_of(1)
+                && self.sides_of(0) != [Side::Symmetry, Side::Symmetry];
+            if !ok {
+                return Err(Error::Incompatible(
+                    field("round")
+                        + " (a round bar) needs "
+                        + field("dim")
+                        + " 3, "
+                        + field("section")
+                        + " [n, n] and the same "
+                        + field("sides")
+                        + " on y and z, not a symmetry plane on both sides of an axis",
+                ));
+            }
         }
         if self.dim > 1 && self.initial_stress != 0.0 {
             return Err(Error::Incompatible(
@@ -1063,6 +1196,39 @@ impl Scene {
         ]
     }
 
+    /// The radius of a `round` bar: the distance from the axis to its free faces.
+    fn radius(&self, dx: f64) -> f64 {
+        let m = self.section.first().copied().unwrap_or(1) as f64;
+        if self.sides_of(0).contains(&Side::Symmetry) {
+            m * dx
+        } else {
+            0.5 * m * dx
+        }
+    }
+
+    /// The transverse coordinates of the rows the section keeps, in lattice order (every row
+    /// of the rectangular section; of a `round` one, those within its radius).
+    fn kept_rows(&self, dx: f64) -> Vec<Vec<f64>> {
+        let across: Vec<Vec<f64>> = (0..self.dim - 1)
+            .map(|a| self.row_coordinates(a, dx))
+            .collect();
+        let total: usize = across.iter().map(Vec::len).product();
+        let r2 = self.radius(dx).powi(2) * (1.0 + 1e-12);
+        (0..total)
+            .map(|r| {
+                let mut p = vec![0.0; across.len()];
+                let mut rest = r;
+                for a in (0..across.len()).rev() {
+                    let m = across[a].len();
+                    p[a] = across[a][rest % m];
+                    rest /= m;
+                }
+                p
+            })
+            .filter(|p| !self.round || p.iter().map(|y| y * y).sum::<f64>() <= r2)
+            .collect()
+    }
+
     /// The range of transverse coordinate `a` a probe may name: the section and half a
     /// spacing beyond.
     fn section_bounds(&self, a: usize, dx: f64) -> (f64, f64) {
@@ -1096,7 +1262,12 @@ impl Scene {
     /// support radius of `support_dx` spacings.
     fn particle_estimate(&self, support_dx: f64) -> f64 {
         let rows = self.ghost_depth(support_dx, 1.0).ceil();
-        (0..self.dim.saturating_sub(1)).fold(self.particles as f64, |n, a| {
+        let ends = [&self.left, &self.right]
+            .into_iter()
+            .flatten()
+            .filter(|e| e.symmetry)
+            .count();
+        (0..self.dim.saturating_sub(1)).fold(self.particles as f64 + ends as f64 * rows, |n, a| {
             let sym = self
                 .sides_of(a)
                 .iter()
@@ -1112,18 +1283,14 @@ impl Scene {
         let across: Vec<Vec<f64>> = (0..self.dim - 1)
             .map(|a| self.row_coordinates(a, dx))
             .collect();
-        let per_column: usize = self.section.iter().product();
+        let rows = self.kept_rows(dx);
+        let per_column = rows.len();
         let mut x = Vec::with_capacity(self.particles * per_column);
         for i in 0..self.particles {
             let xi = self.origin + i as f64 * dx;
-            for r in 0..per_column {
+            for row in &rows {
                 let mut p = [xi, 0.0, 0.0];
-                let mut rest = r;
-                for a in (0..across.len()).rev() {
-                    let m = across[a].len();
-                    p[a + 1] = across[a][rest % m];
-                    rest /= m;
-                }
+                p[1..=row.len()].copy_from_slice(row);
                 x.push(p);
             }
         }
@@ -1136,12 +1303,21 @@ impl Scene {
             .map(|(i, &p)| (p, i, [1.0; 3], [0.0; 3], None))
             .collect();
         let depth = self.ghost_depth(support, dx);
+        // the axes with planes: x (the ends' planes), then y and z (the sides'); coordinate
+        // index, planes [lower, upper], the body's extent [lo, hi] along it
+        let ends = [&self.left, &self.right].map(|e| e.as_ref().is_some_and(|e| e.symmetry));
+        let (x0, x1) = (self.origin - 0.5 * dx, self.origin + self.length + 0.5 * dx);
+        let mut axes: Vec<(usize, [Option<f64>; 2], f64, f64)> =
+            vec![(0, [ends[0].then_some(x0), ends[1].then_some(x1)], x0, x1)];
         for a in 0..across.len() {
-            let planes = self.planes(a, dx);
-            let (lo, hi) = (
+            axes.push((
+                a + 1,
+                self.planes(a, dx),
                 across[a][0] - 0.5 * dx,
                 across[a][across[a].len() - 1] + 0.5 * dx,
-            );
+            ));
+        }
+        for (ax, planes, lo, hi) in axes {
             // reflect every image across this axis' planes until the images lie beyond the
             // ghost depth (with two planes the reflections alternate outwards)
             let mut frontier: Vec<usize> = (0..images.len()).collect();
@@ -1155,15 +1331,15 @@ impl Scene {
                         }
                         let (pos, src, sign, b, _) = images[e];
                         let mut q = pos;
-                        q[a + 1] = 2.0 * pl - pos[a + 1];
-                        let outside = (lo - q[a + 1]).max(q[a + 1] - hi);
+                        q[ax] = 2.0 * pl - pos[ax];
+                        let outside = (lo - q[ax]).max(q[ax] - hi);
                         if outside >= depth {
                             continue;
                         }
                         let mut sign2 = sign;
                         let mut b2 = b;
-                        sign2[a + 1] = -sign[a + 1];
-                        b2[a + 1] = 2.0 * pl - b[a + 1];
+                        sign2[ax] = -sign[ax];
+                        b2[ax] = 2.0 * pl - b[ax];
                         images.push((q, src, sign2, b2, Some(side)));
                         next.push(images.len() - 1);
                     }
@@ -1185,6 +1361,7 @@ impl Scene {
             real,
             per_column,
             across,
+            rows: self.round.then_some(rows),
             ghosts,
         }
     }
@@ -1199,6 +1376,40 @@ impl Scene {
     /// Checks an end (`name` = left or right) of material `material` and sound speed `c`.
     fn check_end(&self, name: &str, e: &EndLayer, material: Material, c: f64) -> Result<()> {
         let given = |key: &str| end_field(&format!("{name}.{key}"));
+        if e.symmetry
+            && (e.layers > 0
+                || e.velocity.is_some()
+                || e.velocity_pulse.is_some()
+                || e.traction.is_some())
+        {
+            return Err(Error::Incompatible(
+                field(given("symmetry"))
+                    + " makes the end a mirror plane: give no "
+                    + field(given("layers"))
+                    + ", "
+                    + field(given("velocity"))
+                    + ", "
+                    + field(given("velocity_pulse"))
+                    + " or "
+                    + field(given("traction")),
+            ));
+        }
+        if e.symmetry && self.analytic.is_some() {
+            return Err(Error::Incompatible(
+                field(given("symmetry"))
+                    + " has no analytic solution: give no "
+                    + field("analytic"),
+            ));
+        }
+        if e.symmetry && !FormKind::by_name(&self.form).is_ok_and(|f| f.in_every_dimension()) {
+            return Err(Error::Incompatible(
+                field(given("symmetry"))
+                    + format!(
+                        " is not available for {} (its stress points have no image)",
+                        self.form
+                    ),
+            ));
+        }
         if let Some(t) = &e.traction {
             if e.layers > 0 || e.velocity.is_some() || e.velocity_pulse.is_some() {
                 return Err(Error::Incompatible(
@@ -1483,6 +1694,9 @@ impl Scene {
                 })
                 .collect(),
         )?;
+        if let Some(j2) = self.plasticity(form)? {
+            run.set_plasticity(j2)?;
+        }
         let integ = self.integrator()?;
         run.set_integrator(integ);
         let dt = self.dt * dx / c;
@@ -1519,6 +1733,36 @@ impl Scene {
             probes.record(&run, &mut probe_h);
         }
         let speed = |v: &[f64; D]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let (mut extent_t, mut extent_length, mut extent_radius) =
+            (Vec::new(), Vec::new(), Vec::new());
+        let wall = self.left.as_ref().is_some_and(|e| e.symmetry);
+        let mut extent = |run: &Run<D>| {
+            if !self.round {
+                return;
+            }
+            let z = &run.z;
+            let (lo, hi) = z.x[..real]
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| {
+                    (l.min(q[0]), h.max(q[0]))
+                });
+            let radial = |q: &[f64; D]| q[1..].iter().map(|y| y * y).sum::<f64>().sqrt();
+            let grow = z.x[..geo.per_column]
+                .iter()
+                .zip(&x_ref)
+                .map(|(q, q0)| radial(q) - radial(q0))
+                .fold(f64::NEG_INFINITY, f64::max);
+            extent_t.push(run.t);
+            // from the wall (a left symmetry plane, half a spacing before the first column)
+            // or the lowest particle's cell face, to the highest's
+            extent_length.push(if wall {
+                hi - self.origin + dx
+            } else {
+                hi - lo + dx
+            });
+            extent_radius.push(self.radius(dx) + grow);
+        };
+        extent(&run);
         let start = std::time::Instant::now();
         for s in 0..steps {
             // time-dependent ends and planes, held at the step's midpoint
@@ -1578,6 +1822,7 @@ impl Scene {
                 probe_t.push(run.t);
                 probes.record(&run, &mut probe_h);
             }
+            extent(&run);
             if s % 256 == 0 {
                 progress.advance(run.t / self.t_end);
                 if progress.cancelled() {
@@ -1616,6 +1861,9 @@ impl Scene {
                 }
             }
         }
+        let plastic_strain: Vec<f64> = run.plastic_strain.iter().take(real).copied().collect();
+        let max_plastic_strain = (!plastic_strain.is_empty())
+            .then(|| plastic_strain.iter().fold(0.0f64, |m, &e| m.max(e)));
         let mut tensors = run.model.particle_stress(&run.z);
         tensors.truncate(real);
         let final_stress: Vec<f64> = tensors.iter().map(|t| t[0][0]).collect();
@@ -1651,6 +1899,11 @@ impl Scene {
             c_partition: matches!(form, FormKind::Lnl | FormKind::Cll).then_some(self.c_partition),
             stress,
             probe_t,
+            extent_t,
+            extent_length,
+            extent_radius,
+            max_plastic_strain,
+            plastic_strain,
             probes: probe_h,
             history,
             centre_row: (0..n)

@@ -79,6 +79,76 @@ impl GalerkinMethod {
     }
 }
 
+/// A problem of [B98 §6.2] with its paper's parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum GalerkinProblem {
+    /// The cantilever [`Cantilever::B98`]; levels are nodes per unit depth.
+    Beam,
+    /// The plate with a hole [`PlateWithHole::B98`]; levels are nodes per unit length along
+    /// its symmetry edges.
+    Plate,
+}
+
+impl GalerkinProblem {
+    /// Every problem with its name.
+    pub const ALL: [(GalerkinProblem, &'static str); 2] = [
+        (GalerkinProblem::Beam, "beam"),
+        (GalerkinProblem::Plate, "plate"),
+    ];
+
+    /// The problem of a name (`what`: the flag or field in the error).
+    pub fn by_name(what: &'static str, name: &str) -> Result<Self> {
+        crate::error::lookup(what, &Self::ALL, name)
+    }
+
+    /// The name.
+    pub fn name(self) -> &'static str {
+        crate::error::name_in(&Self::ALL, self)
+    }
+
+    /// A one-line description with the parameters.
+    pub fn describe(self) -> &'static str {
+        match self {
+            GalerkinProblem::Beam => {
+                "cantilever (E = 1000, ν = 0.3, D = 1, L = 8, end shear P = 1; probe u_y(L, 0))"
+            }
+            GalerkinProblem::Plate => {
+                "plate with a hole (E = 1000, ν = 0.3, a = 1, b = 5, unit tension at infinity; probe u_x(a, 0))"
+            }
+        }
+    }
+
+    /// The levels allowed ([`PER_DEPTH_RANGE`], [`PER_UNIT_RANGE`]).
+    pub fn level_range(self) -> (usize, usize) {
+        match self {
+            GalerkinProblem::Beam => PER_DEPTH_RANGE,
+            GalerkinProblem::Plate => PER_UNIT_RANGE,
+        }
+    }
+
+    /// The levels of REPRODUCTION.md's rows: Δx = 1/4, 1/8, 1/16 (beam), 1/2, 1/4, 1/8
+    /// (plate).
+    pub fn default_levels(self) -> [usize; 3] {
+        match self {
+            GalerkinProblem::Beam => [4, 8, 16],
+            GalerkinProblem::Plate => [2, 4, 8],
+        }
+    }
+}
+
+/// Solves `problem` with `method` at refinement `level` ([`cantilever`], [`plate_with_hole`]).
+pub fn solve(
+    problem: GalerkinProblem,
+    method: GalerkinMethod,
+    level: usize,
+) -> Result<GalerkinReport> {
+    match problem {
+        GalerkinProblem::Beam => cantilever(&Cantilever::B98, method, level),
+        GalerkinProblem::Plate => plate_with_hole(&PlateWithHole::B98, method, level),
+    }
+}
+
 /// The cantilever of [B98 §6.2.1]: depth D, length L, end load P, plane stress; x from the
 /// clamped end, −D/2 ≤ y ≤ D/2.
 #[derive(Clone, Copy, Debug, Serialize)]
@@ -263,7 +333,8 @@ impl Exact for PlateWithHole {
 pub struct GalerkinReport {
     /// Method.
     pub method: GalerkinMethod,
-    /// Node spacing Δx (the plate: along its symmetry edges, eq 130).
+    /// Node spacing Δx (the plate: along its symmetry edges, eq 130); `node_spacing` in JSON.
+    #[serde(rename = "node_spacing")]
     pub spacing: f64,
     /// Nodes.
     pub nodes: usize,
@@ -851,7 +922,7 @@ fn run(exact: &impl Exact, body: &Body, method: GalerkinMethod) -> Result<Galerk
                 }
             }
         }
-        let u = solve(&c, &quad, f, &body.fixed)?;
+        let u = solve_system(&c, &quad, f, &body.fixed)?;
         (Vec::new(), u)
     } else {
         // nodal quadrature; the finite-element row's nodes take their elements' strains at
@@ -901,7 +972,7 @@ fn run(exact: &impl Exact, body: &Body, method: GalerkinMethod) -> Result<Galerk
                 f[2 * k + 1] += 0.5 * len * tr[1];
             }
         }
-        let u = solve(&c, &quad, f, &body.fixed)?;
+        let u = solve_system(&c, &quad, f, &body.fixed)?;
         (trial, u)
     };
     let energy = |e: [f64; 3]| {
@@ -1007,7 +1078,7 @@ fn bmat(g: [f64; 2]) -> [[f64; 2]; 3] {
 /// ((weight, test gradients, trial gradients)), prescribes the degrees of freedom `fixed`
 /// (their rows become identities, their columns move to the load), and solves K u = `f` by
 /// banded LU.
-fn solve(
+fn solve_system(
     c: &[[f64; 3]; 3],
     quad: &[QuadPoint],
     mut f: Vec<f64>,

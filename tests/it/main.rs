@@ -46,6 +46,7 @@ mod stable_dt;
 mod boundary_loads;
 mod galerkin;
 mod pair_reuse;
+mod plasticity;
 mod rate_workspace;
 mod rod;
 mod scenes;

@@ -11,6 +11,15 @@ use serde_json::Value;
 /// entries of a scene's `stress`, which has the unit.
 const DIMENSIONLESS: &[&str] = &[
     "schema_version",
+    "nodes",
+    "displacement_error",
+    "energy_error",
+    "integrated_displacement_error",
+    "integrated_energy_error",
+    "displacement_rate",
+    "energy_rate",
+    "integrated_energy_rate",
+    "max_plastic_strain",
     "dim",
     "grid",
     "points",
@@ -129,6 +138,7 @@ fn every_json_output_names_its_units() {
         "timestep --points 64 --vary h=1.2,2 --json",
         "map --n 4 --json",
         "stiffness --theta 30 --points 2 --json",
+        "galerkin --problem plate --methods mls,efg --levels 1,2 --json",
         "swegle --size 11 --t-end 2 --json",
         "simulate uniform-bar --json",
         "throughput --size 8 --steps 2 --repeats 1 --json",

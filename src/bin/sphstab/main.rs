@@ -9,6 +9,7 @@ mod export;
 mod figures;
 mod files;
 mod flags;
+mod galerkin;
 mod interpolate;
 mod kernels;
 mod map;
@@ -80,6 +81,9 @@ pub(crate) enum Cmd {
     /// Interpolation and gradient accuracy of a kernel on a finite 1D/2D particle set, ghosts
     /// or not, against the exact values [T §2.7].
     Interpolate(interpolate::Args),
+    /// Static meshfree Galerkin solutions of [B98 §6.2] (cantilever, plate with a hole) by
+    /// SPH, RL, CD1, MLS and EFG, with their errors and convergence rates.
+    Galerkin(galerkin::Args),
     /// The Swegle perturbed-particle test (2D or 3D), measured against the engine's predictions
     /// (rates in c/Δx, Δt in Δx/c, each also in the test's own units).
     Swegle(swegle::Args),
@@ -173,6 +177,7 @@ fn main() {
         Cmd::Map(a) => map::run(a, b),
         Cmd::Stiffness(a) => stiffness::run(a, b),
         Cmd::Interpolate(a) => interpolate::run(a, b),
+        Cmd::Galerkin(a) => galerkin::run(a, b),
         Cmd::Swegle(a) => swegle::run(a, b),
         Cmd::Simulate(a) => simulate::run(a, b),
         Cmd::Tradeoff(a) => tradeoff::run(a, b),
