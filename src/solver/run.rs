@@ -618,7 +618,9 @@ impl<const D: usize> Run<D> {
         Ok(())
     }
 
-    /// Makes the material elastic–plastic ([`J2`]) from now on, every particle's ε̄ᵖ = 0.
+    /// Makes the material elastic–plastic ([`J2`]) from now on, every particle's ε̄ᵖ = 0. The
+    /// return acts on the state after each step, so the integrator must carry no stress
+    /// between steps ([`Integrator::memory`]: not `pec` or `verlet-euler`; the scenes check it).
     /// Errors unless the run is 3D (the plane-strain 2D state has no σ_zz to return) and its
     /// form is Eulerian with one hypo-elastic stress (classical, nonlocal, local), or if σ_Y or
     /// H is negative or not finite.

@@ -1065,6 +1065,14 @@ impl Scene {
                     + format!("dim {} and {}", self.dim, form.name()),
             ));
         }
+        if self.integrator()?.memory()[2] {
+            return Err(Error::Incompatible(
+                field("material.yield_stress")
+                    + " is returned to the yield surface after each step: it needs an "
+                    + field("integrator")
+                    + " that carries no stress from one step to the next (not pec or verlet-euler)",
+            ));
+        }
         crate::error::check_range("material.yield_stress", sy, 0.0, SCALE_RANGE.1, false, true)?;
         let h = hardening.unwrap_or(0.0);
         crate::error::check_range("material.hardening", h, 0.0, SCALE_RANGE.1, true, true)?;

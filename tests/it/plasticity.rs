@@ -189,6 +189,14 @@ fn plasticity_round_bars_and_end_planes_refuse_bad_input() {
         assert!(err.contains(field), "{field}: {err}");
         assert!(!err.contains('\n'), "one line: {err}");
     }
+    // an integrator that carries the unreturned stress into the next step
+    let pec = base(3, r#""integrator": "pec","#, plastic, "");
+    let err = parse("bad", &pec)
+        .unwrap()
+        .run(|_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("integrator"), "{err}");
     // total-Lagrangian has no hypo-elastic stress to return
     let tl = base(3, "", plastic, "").replace("\"classical\"", "\"total-lagrangian\"");
     let err = parse("bad", &tl)
