@@ -10,6 +10,7 @@
 use crate::common;
 
 use common::*;
+use rayon::prelude::*;
 use sphstab::forms::FormKind;
 use sphstab::lattice::Lattice;
 use sphstab::shape::{KernelParams, ShapeFamily};
@@ -2475,7 +2476,7 @@ fn b98_beam(plate: &PlateResults) -> [Row; 4] {
     ];
     // per method: (l2 errors, energy errors, l2 rate, energy rate)
     let res: Vec<(Vec<f64>, Vec<f64>, f64, f64)> = methods
-        .iter()
+        .par_iter()
         .map(|&m| {
             let r: Vec<_> = levels
                 .iter()
@@ -2636,18 +2637,25 @@ fn b98_plate_results() -> PlateResults {
         methods: Vec::new(),
         probe: (0.0, 0.0),
     };
-    for (m, name) in [
+    let methods = [
         (GalerkinMethod::Sph, "SPH"),
         (GalerkinMethod::Rl, "RL"),
         (GalerkinMethod::Cd1, "CD1"),
         (GalerkinMethod::Mls, "MLS"),
         (GalerkinMethod::Efg, "EFG"),
         (GalerkinMethod::Cd1Gauss, "CD1 (Gauss)"),
-    ] {
-        let r: Vec<_> = levels
-            .iter()
-            .map(|&l| plate_with_hole(&p, m, l).unwrap())
-            .collect();
+    ];
+    // the methods are independent: solved in parallel, collected in order
+    let runs: Vec<Vec<_>> = methods
+        .par_iter()
+        .map(|&(m, _)| {
+            levels
+                .iter()
+                .map(|&l| plate_with_hole(&p, m, l).unwrap())
+                .collect()
+        })
+        .collect();
+    for (&(m, name), r) in methods.iter().zip(&runs) {
         let h: Vec<f64> = r.iter().map(|x| x.spacing).collect();
         let du: Vec<f64> = r.iter().map(|x| x.displacement_error).collect();
         let de: Vec<f64> = r.iter().map(|x| x.energy_error).collect();
@@ -3843,6 +3851,8 @@ fn render(rows: &[Row]) -> String {
 
 #[test]
 fn reproduction_md_matches_the_code() {
+    // the Taylor bar (a 3D run) and the Galerkin studies (single-threaded solves) side by side
+    let (taylor, plate) = rayon::join(multi_d::b00_taylor_rows, b98_plate_results);
     // the two slowest rows (time-domain runs, most of this test's time) run next to the others:
     // every row is computed on its own, so the order of computing them changes nothing
     let (([f17, f18, f18b], fig13), rest) = rayon::join(
@@ -3944,8 +3954,7 @@ fn reproduction_md_matches_the_code() {
         .expect("the tensile-wave row")
         + 1;
     rows.splice(at..at, multi_d::v21_tensile_rows());
-    rows.extend(multi_d::b00_taylor_rows());
-    let plate = b98_plate_results();
+    rows.extend(taylor);
     rows.extend(b98_beam(&plate));
     rows.extend(b98_plate(&plate));
     // a ✘ without an erratum fails here, before the file is compared (or rewritten)
