@@ -4,9 +4,37 @@
 
 use crate::error::{Error, Result};
 use crate::plot::Curve;
-use crate::studies::galerkin::{GalerkinMethod, GalerkinProblem, solve};
+use crate::studies::galerkin::{GalerkinMethod, GalerkinProblem, GalerkinReport, solve};
 use rayon::prelude::*;
 use serde::Deserialize;
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
+
+/// The solutions computed so far in this process: the panels of a figure draw several norms
+/// of one solution (deterministic, so a solution is computed once).
+fn solved(
+    problem: GalerkinProblem,
+    method: GalerkinMethod,
+    level: usize,
+) -> Result<GalerkinReport> {
+    type Key = (&'static str, &'static str, usize);
+    static CACHE: OnceLock<Mutex<HashMap<Key, GalerkinReport>>> = OnceLock::new();
+    let key = (problem.name(), method.name(), level);
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(r) = cache
+        .lock()
+        .map_err(|_| Error::NonFinite("galerkin cache"))?
+        .get(&key)
+    {
+        return Ok(r.clone());
+    }
+    let r = solve(problem, method, level)?;
+    cache
+        .lock()
+        .map_err(|_| Error::NonFinite("galerkin cache"))?
+        .insert(key, r.clone());
+    Ok(r)
+}
 
 /// Which error a Galerkin curve shows.
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
@@ -59,7 +87,7 @@ impl GalerkinSeries {
         }
         let reps = levels
             .par_iter()
-            .map(|&l| solve(problem, method, l))
+            .map(|&l| solved(problem, method, l))
             .collect::<Result<Vec<_>>>()?;
         let y = reps
             .iter()

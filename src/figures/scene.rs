@@ -112,6 +112,34 @@ fn one() -> f64 {
     1.0
 }
 
+/// A round bar's extent histories (t, length, radius), each scene run once per process: a
+/// figure's panels draw the length and the radius of one run (deterministic).
+fn extents(s: &Scene) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+    type Extents = (Vec<f64>, Vec<f64>, Vec<f64>);
+    static CACHE: std::sync::OnceLock<
+        std::sync::Mutex<std::collections::HashMap<String, Extents>>,
+    > = std::sync::OnceLock::new();
+    let key = serde_json::to_string(s).map_err(|e| Error::Config {
+        file: s.name.clone(),
+        msg: e.to_string(),
+    })?;
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(e) = cache
+        .lock()
+        .map_err(|_| Error::NonFinite("scene cache"))?
+        .get(&key)
+    {
+        return Ok(e.clone());
+    }
+    let r = s.run(())?;
+    let e = (r.extent_t, r.extent_length, r.extent_radius);
+    cache
+        .lock()
+        .map_err(|_| Error::NonFinite("scene cache"))?
+        .insert(key, e.clone());
+    Ok(e)
+}
+
 impl SceneSeries {
     /// The scene: the built-in or file with this series' overrides, form, c and end time.
     pub fn scene(&self) -> Result<Scene> {
@@ -163,18 +191,18 @@ impl SceneSeries {
                     "scene series: `length` and `radius` are the run of a `round` bar".into(),
                 ));
             }
-            let r = s.run(())?;
+            let (t, length, radius) = extents(&s)?;
             let (y, what) = if self.quantity == SceneQuantity::Length {
-                (r.extent_length, "length")
+                (length, "length")
             } else {
-                (r.extent_radius, "radius")
+                (radius, "radius")
             };
             return Ok(Curve {
                 label: self
                     .label
                     .clone()
                     .unwrap_or_else(|| format!("{} {what}", s.form)),
-                x: r.extent_t.iter().map(|t| t * self.x_scale).collect(),
+                x: t.iter().map(|t| t * self.x_scale).collect(),
                 y: y.iter().map(|v| v * self.y_scale).collect(),
                 dashed: self.dashed,
             });
