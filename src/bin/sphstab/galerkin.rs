@@ -14,8 +14,8 @@ pub struct Args {
     /// its symmetry edges).
     #[arg(long, default_value = "plate")]
     problem: String,
-    /// Methods, comma-separated: sph, rl, cd1, mls (nodal quadrature), efg, cd1-gauss (5 × 5
-    /// Gauss quadrature on the cells of the nodes). Default: all.
+    /// Methods, comma-separated (at most 6): sph, rl, cd1, mls (nodal quadrature), efg,
+    /// cd1-gauss (5 × 5 Gauss quadrature on the cells of the nodes). Default: all.
     #[arg(long, value_delimiter = ',')]
     methods: Vec<String>,
     /// Refinement levels, comma-separated (at most 8): beam in [2, 32] (default 4,8,16),
@@ -104,6 +104,13 @@ fn text(problem: GalerkinProblem, all: &[Vec<GalerkinReport>], rs: &[Rates]) -> 
 
 pub fn run(a: Args, _budget: &sphstab::budget::Budget) -> Result<()> {
     let problem = GalerkinProblem::by_name("--problem", &a.problem)?;
+    if a.methods.len() > GalerkinMethod::ALL.len() {
+        bail!(
+            "--methods: give at most the {} methods, got {}",
+            GalerkinMethod::ALL.len(),
+            a.methods.len()
+        );
+    }
     let methods: Vec<GalerkinMethod> = if a.methods.is_empty() {
         GalerkinMethod::ALL.iter().map(|m| m.0).collect()
     } else {
