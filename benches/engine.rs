@@ -96,6 +96,7 @@ fn benches(c: &mut Criterion) {
         diffusion: None,
         alpha_s: 0.0,
         ls_length: 1.0,
+        hourglass: None,
     };
     let model = Model::<2>::periodic_patch(
         p,

@@ -26,6 +26,7 @@ fn params(form: FormKind) -> ModelParams {
         c_partition: 0.5,
         alpha_s: 0.1,
         ls_length: 1.0,
+        hourglass: None,
         av: None,
         art_stress: None,
         diffusion: None,

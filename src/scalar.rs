@@ -59,6 +59,11 @@ pub trait Scalar:
             },
         )
     }
+    /// x^p for x > 0.
+    fn powf(self, p: f64) -> Self {
+        let v = self.re();
+        self.lift(v.powf(p), p * v.powf(p - 1.0))
+    }
     /// Natural logarithm.
     fn ln(self) -> Self {
         let v = self.re();

@@ -115,6 +115,7 @@ const TABLE: &[(&str, Unit)] = &[
     ("omega2", Fixed(OMEGA2)),
     ("omega2_continuum", Fixed(OMEGA2)),
     ("omega2_max", Fixed(OMEGA2)),
+    ("unstressed_omega2", Fixed(OMEGA2)),
     // wave numbers (κΔx) and the path coordinate of a dispersion curve
     ("kappa", Fixed(WAVE)),
     ("kappa_dx", Fixed(WAVE)),
@@ -183,6 +184,7 @@ const TABLE: &[(&str, Unit)] = &[
     ("last_stable", Fixed(STRESS)),
     ("sigma_bar", Fixed(STRESS)),
     ("max_stable_tension", Fixed(STRESS)),
+    ("onset_stress", Fixed(STRESS)),
     // speeds
     ("max_speed_end", Fixed("c")),
     ("amplitude", Fixed("c")),

@@ -29,6 +29,8 @@ fn row(b: crate::vonneumann::classify::Instability, r: (usize, usize), n: usize)
         kappa_min: Some(b.kappa_min),
         kappa_max: Some(b.kappa_max),
         pole_at: b.pole_at,
+        unstressed_omega2: None,
+        onset_stress: None,
     }
 }
 

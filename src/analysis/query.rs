@@ -11,13 +11,14 @@ use super::common::{Setup, density_diffusion, linearised_av};
 use crate::budget::Budget;
 use crate::display::num;
 use crate::error::{Error, Result, Text, check_range, field};
-use crate::forms::{DiffusionForm, FormKind, Material, ModelParams, ObjectiveRate};
+use crate::forms::{DiffusionForm, FormKind, Material, ModelParams, ObjectiveRate, PrestressKind};
 use crate::integrator::Integrator;
 use crate::kernel::Kernel;
 use crate::lattice::{Lattice, LatticeKind, grid_index};
 use crate::params::{check_art_stress_dim, check_common, check_count};
 use crate::shape::{KernelParams, ShapeFamily};
 use crate::vonneumann::linearise::{Bloch, Lattice1D, Linearisation};
+use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -75,12 +76,17 @@ pub struct Query<const D: usize> {
     pub shape: ShapeFamily,
     /// h/Δx in the kernel's own convention.
     pub h_over_dx: f64,
-    /// σ̄ = σ/C (isotropic in D ≥ 2, positive in tension).
+    /// σ̄ = σ/C (positive in tension): the pre-stress is σ̄ C Ŝ with Ŝ of [`Query::prestress`].
     pub stress: f64,
+    /// The shape Ŝ of the pre-stress (D ≥ 2; isotropic by default, the only one in 1D).
+    pub prestress: PrestressKind,
     /// Partition coefficient c of `lnl`/`cll`.
     pub c_partition: f64,
     /// Least-squares stabilisation α_s (form `least-squares`, 1D).
     pub alpha_s: f64,
+    /// The hourglass-control coefficient ([`ModelParams::hourglass`]: ζ of `enog`, κ of
+    /// `tl-enog`, Ganzenmüller's α of `total-lagrangian`); None: the form's default.
+    pub hourglass: Option<f64>,
     /// Material ([`MaterialSpec::Bar`] in 1D).
     pub material: MaterialSpec,
     /// Lattice (the chain in 1D; Δx = 1).
@@ -159,8 +165,10 @@ impl<const D: usize> Query<D> {
             shape: form.default_shape_in(D),
             h_over_dx,
             stress,
+            prestress: PrestressKind::Isotropic,
             c_partition: 0.5,
             alpha_s: 0.0,
+            hourglass: None,
             material: if D == 1 {
                 MaterialSpec::Bar
             } else {
@@ -205,7 +213,9 @@ impl<const D: usize> Query<D> {
                 field("form")
                     + format!(" {} is not available with ", self.form.name())
                     + field("dim")
-                    + format!(" {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)"),
+                    + format!(
+                        " {D} (classical, nonlocal, local, lnl, cll, total-lagrangian, enog, tl-enog)"
+                    ),
             ));
         }
         if D == 1 && self.art_stress.is_some() {
@@ -246,6 +256,24 @@ impl<const D: usize> Query<D> {
                 });
             }
             _ => {}
+        }
+        if self.prestress != PrestressKind::Isotropic {
+            if D == 1 {
+                return Err(Error::Incompatible(
+                    field("prestress")
+                        + format!(" {} needs ", self.prestress.name())
+                        + field("dim")
+                        + " 2 or 3 (1D: the pre-stress is σ̄C along the chain)",
+                ));
+            }
+            if !matches!(self.material, MaterialSpec::Elastic { .. }) {
+                return Err(Error::Incompatible(
+                    field("prestress")
+                        + format!(" {} needs ", self.prestress.name())
+                        + field("material")
+                        + " elastic (hydro has no shear stress; neo-hookean's reference state is unstressed)",
+                ));
+            }
         }
         if D > 1 && self.units != Lattice1D::default() {
             return Err(Error::Incompatible(
@@ -333,6 +361,7 @@ impl<const D: usize> Query<D> {
             diffusion: density_diffusion(self.diffusion, c, self.form)?,
             alpha_s: self.alpha_s,
             ls_length: u.dx,
+            hourglass: self.hourglass,
         })
     }
 
@@ -369,7 +398,14 @@ impl<const D: usize> Query<D> {
                     + " 2 or 3 (1D: the chain linearisation)",
             ));
         }
-        Bloch::with_budget(self.params()?, &self.lattice, 1.0, s, &self.budget)
+        Bloch::with_prestress(
+            self.params()?,
+            &self.lattice,
+            1.0,
+            s,
+            self.prestress,
+            &self.budget,
+        )
     }
 
     /// The number of modes the question samples: grid κ points in 1D, grid^D − 1 wave vectors
@@ -421,6 +457,115 @@ impl<const D: usize> Query<D> {
                 self.lattice.fold_with(&b, k)
             })
             .collect()
+    }
+
+    /// The continuum's ω² at wave vector `k` (units of c², k in 1/Δx), ascending in the real
+    /// part: the eigenvalues of the acoustic tensor A_ac = k_b ∂σ'_ab/∂(∂_d u_c) k_d of the
+    /// Eulerian law about the pre-stress σ0 (the linearisation of ρ v̇ = ∇·σ about a uniform
+    /// state: the divergence of the uniform σ0 vanishes, so only the stress rate's σ' acts):
+    /// σ' = λ tr ε I + 2G ε + R, R = Wσ0 − σ0W (Jaumann) or Lσ0 + σ0Lᵀ − tr(L) σ0 (Truesdell),
+    /// L = u ⊗ k. An isotropic σ0 gives [`Query::continuum_moduli`] times |k|²; a deviatoric
+    /// one (uniaxial, shear) turns the transverse branch along the stress by σ0/2 (Jaumann)
+    /// or σ0 (Truesdell, the string's T/ρ).
+    pub fn continuum_omega2(&self, k: [f64; D]) -> Result<Vec<Complex64>> {
+        let k2: f64 = k.iter().map(|c| c * c).sum();
+        if self.prestress == PrestressKind::Isotropic || D == 1 {
+            let (cp, cs) = self.continuum_moduli()?;
+            let mut v = vec![Complex64::new(cs * k2, 0.0); D - 1];
+            v.push(Complex64::new(cp * k2, 0.0));
+            v.sort_by(|a, b| a.re.total_cmp(&b.re));
+            return Ok(v);
+        }
+        let c = self.units.modulus;
+        let Material::Elastic {
+            lambda,
+            shear,
+            rate,
+        } = self.material()?
+        else {
+            return Err(Error::Incompatible(
+                field("prestress")
+                    + format!(" {} needs ", self.prestress.name())
+                    + field("material")
+                    + " elastic",
+            ));
+        };
+        let (lam, g) = (lambda / c, shear / c);
+        let s0 = self
+            .prestress
+            .unit::<D>()?
+            .map(|r| r.map(|u| u * self.stress));
+        let mut a = nalgebra::DMatrix::<f64>::zeros(D, D);
+        for cc in 0..D {
+            // L = e_c ⊗ k
+            let l = |p: usize, q: usize| if p == cc { k[q] } else { 0.0 };
+            let tr = l(cc, cc);
+            for p in 0..D {
+                let mut acc = 0.0;
+                for b in 0..D {
+                    let eps = 0.5 * (l(p, b) + l(b, p));
+                    let mut sig = 2.0 * g * eps + if p == b { lam * tr } else { 0.0 };
+                    for q in 0..D {
+                        sig += match rate {
+                            ObjectiveRate::Jaumann => {
+                                0.5 * (l(p, q) - l(q, p)) * s0[q][b]
+                                    - s0[p][q] * 0.5 * (l(q, b) - l(b, q))
+                            }
+                            ObjectiveRate::Truesdell => l(p, q) * s0[q][b] + s0[p][q] * l(b, q),
+                        };
+                    }
+                    if rate == ObjectiveRate::Truesdell {
+                        sig -= tr * s0[p][b];
+                    }
+                    acc += k[b] * sig;
+                }
+                a[(p, cc)] = acc;
+            }
+        }
+        let mut v: Vec<Complex64> = a.complex_eigenvalues().iter().copied().collect();
+        v.sort_by(|a, b| a.re.total_cmp(&b.re));
+        Ok(v)
+    }
+
+    /// Whether the continuum itself is unstable at the question's pre-stress (the `material`
+    /// kind): a branch with ω² ≤ 0 (or, for a fluid, < 0 on its transverse branches), or a
+    /// complex ω² (flutter), in some direction. Isotropic: from [`Query::continuum_moduli`];
+    /// uniaxial and shear: over 360 directions in the plane of the first two axes (2D) or
+    /// 400 on the sphere (3D, a Fibonacci set); the acoustic tensor is homogeneous of degree
+    /// 2 in k, so directions suffice.
+    pub fn material_unstable(&self) -> Result<bool> {
+        if self.prestress == PrestressKind::Isotropic || D == 1 {
+            let (cp, cs) = self.continuum_moduli()?;
+            return Ok(cp <= 0.0 || cs < 0.0);
+        }
+        let dirs: Vec<[f64; D]> = if D == 2 {
+            (0..360)
+                .map(|i| {
+                    let t = PI * i as f64 / 360.0;
+                    std::array::from_fn(|a| if a == 0 { t.cos() } else { t.sin() })
+                })
+                .collect()
+        } else {
+            let n = 400;
+            let golden = PI * (3.0 - 5f64.sqrt());
+            (0..n)
+                .map(|i| {
+                    let z = 1.0 - (i as f64 + 0.5) / n as f64 * 2.0;
+                    let r = (1.0 - z * z).sqrt();
+                    let t = golden * i as f64;
+                    let v = [r * t.cos(), r * t.sin(), z];
+                    std::array::from_fn(|a| v[a])
+                })
+                .collect()
+        };
+        for d in dirs {
+            for w in self.continuum_omega2(d)? {
+                if w.re <= 0.0 || w.im.abs() > 1e-12 * w.norm().max(1e-300) {
+                    return Ok(true);
+                }
+            }
+        }
+        Ok(false)
     }
 
     /// Continuum branches ω²/|k|² (units of c²) of the material at the question's stress: (P, S).

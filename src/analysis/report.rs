@@ -29,6 +29,9 @@ pub struct Header {
     /// 1D only: least-squares α_s.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub alpha_s: Option<f64>,
+    /// D ≥ 2: the shape of the pre-stress σ̄ C Ŝ (absent in 1D, where it lies along the chain).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prestress: Option<crate::forms::PrestressKind>,
     /// Material (1D: the bar).
     pub material: MaterialSpec,
     /// Lattice (1D: the chain).
@@ -47,6 +50,7 @@ impl Header {
             setup: q.setup(),
             c_partition: q.c_partition,
             alpha_s: (D == 1).then_some(q.alpha_s),
+            prestress: (D > 1).then_some(q.prestress),
             material: q.material,
             lattice: q.lattice.kind,
             nearest_neighbour_over_dx: nearest,
@@ -60,6 +64,12 @@ impl std::fmt::Display for Header {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         self.setup.fmt(f)?;
         if self.dim > 1 {
+            if let Some(k) = self
+                .prestress
+                .filter(|&k| k != crate::forms::PrestressKind::Isotropic)
+            {
+                write!(f, " ({})", k.name())?;
+            }
             write!(
                 f,
                 ", {}, {} (nearest neighbour {:.4}Δx)",
@@ -100,6 +110,17 @@ pub struct Instability {
     /// 1D only: κΔx where ω² passes through ±∞ (a vanishing mass symbol), if it does.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pole_at: Option<f64>,
+    /// D ≥ 2, `hourglass` / `tensile` / `compressive`: ω²Δx²/c² of the growing mode's
+    /// polarisation under the unstressed operator (its stiffness at zero stress, which the
+    /// pre-stress overcomes; ≈ 0 for an hourglass mode).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unstressed_omega2: Option<f64>,
+    /// D ≥ 2, with `unstressed_omega2`: the σ̄ at which that mode starts to grow, by linear
+    /// continuation of its ω² from zero stress to the question's (σ̄ E/(E + γ²), E the
+    /// unstressed ω², γ the growth rate; exact when the operator is linear in σ̄ and the
+    /// polarisation does not turn with it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub onset_stress: Option<f64>,
 }
 
 /// Verdict of `query`.

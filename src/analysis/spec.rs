@@ -8,7 +8,7 @@
 use super::query::{MaterialSpec, Query};
 use crate::budget::Budget;
 use crate::error::{Error, Result, Text, check_range, field, fields};
-use crate::forms::{DELTA_RANGE, DiffusionForm, FormKind, ObjectiveRate};
+use crate::forms::{DELTA_RANGE, DiffusionForm, FormKind, ObjectiveRate, PrestressKind};
 use crate::kernel;
 use crate::shape::ShapeFamily;
 use serde::Deserialize;
@@ -29,10 +29,15 @@ pub struct QuerySpec {
     pub shape: Option<String>,
     /// Pre-stress σ̄ = σ/C, positive in tension (default 0.01).
     pub stress: Option<f64>,
+    /// D ≥ 2: the pre-stress's shape, isotropic (default), uniaxial or shear.
+    pub prestress: Option<String>,
     /// Partition coefficient c of lnl/cll (default 0.5).
     pub c: Option<f64>,
     /// Least-squares stabilisation α_s (default 0).
     pub alpha_s: Option<f64>,
+    /// Hourglass-control coefficient: ζ of enog (default 0.7D + 2.1), κ of tl-enog (default
+    /// 1.07), Ganzenmüller's α of total-lagrangian (default none).
+    pub hourglass: Option<f64>,
     /// Time step Δt in Δx/c for the fully discrete check.
     pub dt: Option<f64>,
     /// Artificial viscosity α.
@@ -261,6 +266,7 @@ impl QuerySpec {
                     ),
             ));
         }
+        q.hourglass = self.hourglass;
         q.c_partition = self.c.unwrap_or(0.5);
         q.alpha_s = self.alpha_s.unwrap_or(0.0);
         q.dt = self.dt;
@@ -283,6 +289,9 @@ impl QuerySpec {
     /// `material`/`poisson`/`rate`.
     fn lattice_and_material<const D: usize>(&self, q: &mut Query<D>) -> Result<()> {
         q.art_stress = art_stress(self.art_eps, self.art_n)?;
+        if let Some(k) = &self.prestress {
+            q.prestress = PrestressKind::by_name(k)?;
+        }
         let lattice = self
             .lattice
             .as_deref()
@@ -350,6 +359,7 @@ impl QuerySpec {
             ("poisson", self.poisson.is_some()),
             ("rate", self.rate.is_some()),
             ("art_n", self.art_n.is_some()),
+            ("prestress", self.prestress.is_some()),
         ];
         match given.iter().find(|(_, g)| *g) {
             Some(&(name, _)) => Err(not_applicable(

@@ -120,6 +120,68 @@ fn zone_modes<const D: usize>(
         .collect())
 }
 
+/// ω²Δx²/c² of polarisation `p` under the unstressed operator at k: the Rayleigh quotient
+/// Re(p* D0(k) p)/|p|² (D0 Hermitian for the conservative forms).
+fn unstressed_omega2<const D: usize>(lin0: &Bloch<D>, k: [f64; D], p: &[Complex64; D]) -> f64 {
+    let d0 = lin0.dynamical(k);
+    let (mut num, mut den) = (Complex64::new(0.0, 0.0), 0.0);
+    for a in 0..D {
+        den += p[a].norm_sqr();
+        for b in 0..D {
+            num += p[a].conj() * d0[a][b] * p[b];
+        }
+    }
+    num.re / den.max(1e-300)
+}
+
+/// Splits the `tensile` / `compressive` growth of an elastic lattice (`kind`) into the
+/// growth of hourglass modes — the growing polarisation is zero-energy under the unstressed
+/// operator `lin0` (ω² ≤ `tol`) — and the rest, which keeps `kind`: one entry each (when
+/// present), each at its own fastest grid wave vector (no refinement: the fastest modes of
+/// the rest lie next to the hourglass wave vectors, and a hill climb from there ends on them),
+/// with the mode's unstressed ω² and its onset stress σ̄ E/(E + γ²).
+#[allow(clippy::too_many_arguments)]
+fn split_hourglass<const D: usize>(
+    q: &Query<D>,
+    lin0: &Bloch<D>,
+    kind: Kind,
+    ks: &[[f64; D]],
+    grow: &[f64],
+    pols: &[[Complex64; D]],
+    growing: &[usize],
+    tol: f64,
+) -> Result<Vec<Instability>> {
+    let e: Vec<f64> = growing
+        .par_iter()
+        .map(|&i| unstressed_omega2(lin0, ks[i], &pols[i]))
+        .collect();
+    let mut out = Vec::new();
+    for hourglass in [true, false] {
+        let set: Vec<(usize, f64)> = growing
+            .iter()
+            .zip(&e)
+            .filter(|&(_, &ei)| (ei <= tol) == hourglass)
+            .map(|(&i, &ei)| (i, ei))
+            .collect();
+        let Some(&(i, ei)) = set.iter().max_by(|a, b| grow[a.0].total_cmp(&grow[b.0])) else {
+            continue;
+        };
+        let g = grow[i];
+        out.push(Instability {
+            kind: if hourglass { Kind::Hourglass } else { kind },
+            growth_rate: g,
+            kappa_at_max: ks[i].to_vec(),
+            zone_fraction: set.len() as f64 / ks.len() as f64,
+            kappa_min: None,
+            kappa_max: None,
+            pole_at: None,
+            unstressed_omega2: Some(ei),
+            onset_stress: Some(q.stress * ei.max(0.0) / (ei.max(0.0) + g * g)),
+        });
+    }
+    Ok(out)
+}
+
 /// Answers a stability question in D ≥ 2 dimensions.
 pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
     let lin = q.linearise_at(q.stress)?;
@@ -131,15 +193,17 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
         super::work::Question::Query,
     )?;
     let ks = q.kgrid();
-    let (cp, cs) = q.continuum_moduli()?;
+    let (_, cs) = q.continuum_moduli()?;
     // the continuum's own zero branches: the D − 1 transverse ones of a fluid
     let continuum_zero = if cs == 0.0 { D - 1 } else { 0 };
     let mut grow = Vec::with_capacity(ks.len());
     let mut w2max: f64 = 0.0;
     let mut zeros = Vec::with_capacity(ks.len());
+    let mut pols = Vec::with_capacity(ks.len());
     // one J(k) per pair {k, −k} of wave vectors, in parallel
     let modes = zone_modes(&lin, q.grid, &ks)?;
-    for (g, _, br) in modes {
+    for (g, p, br) in modes {
+        pols.push(p);
         if !g.is_finite() || br.iter().any(|b| !b.0.re.is_finite()) {
             return Err(Error::NonFinite("dispersion branches (eigenvalues)"));
         }
@@ -171,18 +235,32 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
         gmax = g;
         kmax = Some(k.to_vec());
         pmax = Some(polarisation(p, k));
-        let kind = growth_kind(cp <= 0.0 || cs < 0.0, q.stress, || {
-            Ok(q.linearise_at(0.0)?.growth(k)?.0)
+        let mut lin0 = None;
+        let kind = growth_kind(q.material_unstable()?, q.stress, || {
+            let l = lin0.insert(q.linearise_at(0.0)?);
+            Ok(l.growth(k)?.0)
         })?;
-        inst.push(Instability {
-            kind,
-            growth_rate: gmax,
-            kappa_at_max: k.to_vec(),
-            zone_fraction: growing.len() as f64 / ks.len() as f64,
-            kappa_min: None,
-            kappa_max: None,
-            pole_at: None,
-        });
+        match (kind, lin0) {
+            (Kind::Tensile | Kind::Compressive, Some(lin0))
+                if cs > 0.0 && !lin.is_dissipative() =>
+            {
+                let tol = ZERO_OMEGA2_TOL * w2max.max(1e-300);
+                inst.extend(split_hourglass(
+                    q, &lin0, kind, &ks, &grow, &pols, &growing, tol,
+                )?);
+            }
+            _ => inst.push(Instability {
+                kind,
+                growth_rate: gmax,
+                kappa_at_max: k.to_vec(),
+                zone_fraction: growing.len() as f64 / ks.len() as f64,
+                kappa_min: None,
+                kappa_max: None,
+                pole_at: None,
+                unstressed_omega2: None,
+                onset_stress: None,
+            }),
+        }
     }
     // zero-energy modes: more zero branches than the continuum has, at k ≠ 0
     let tol = ZERO_OMEGA2_TOL * w2max.max(1e-300);
@@ -202,6 +280,8 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
             kappa_min: None,
             kappa_max: None,
             pole_at: None,
+            unstressed_omega2: None,
+            onset_stress: None,
         });
     }
     let semi_stable = growing.is_empty();
@@ -250,6 +330,8 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
                 kappa_min: None,
                 kappa_max: None,
                 pole_at: None,
+                unstressed_omega2: None,
+                onset_stress: None,
             });
         }
     }
@@ -276,7 +358,6 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
 pub(super) fn dispersion<const D: usize>(q: &Query<D>, n: usize) -> Result<DispersionReport> {
     check_count("points", n, 2, max_path_points(D))?;
     let lin = q.linearise_at(q.stress)?;
-    let (cp, cs) = q.continuum_moduli()?;
     let path = q.lattice.symmetry_path(n);
     let mut labels = Vec::new();
     let pts = q.lattice.symmetry_points();
@@ -306,10 +387,6 @@ pub(super) fn dispersion<const D: usize>(q: &Query<D>, n: usize) -> Result<Dispe
     };
     for (k, s) in path {
         let b = lin.branches(k);
-        let mut k2 = k[0] * k[0];
-        for a in 1..D {
-            k2 += k[a] * k[a];
-        }
         out.path.push(s);
         out.kappa.push(k.to_vec());
         let w2: Vec<f64> = b.iter().map(|x| x.0.re).collect();
@@ -320,9 +397,8 @@ pub(super) fn dispersion<const D: usize>(q: &Query<D>, n: usize) -> Result<Dispe
         }
         out.omega2.push(w2);
         out.growth_rate.push(lin.growth(k)?.0);
-        let mut cont = vec![cs * k2; D - 1];
-        cont.push(cp * k2);
-        out.omega2_continuum.push(cont);
+        out.omega2_continuum
+            .push(q.continuum_omega2(k)?.iter().map(|w| w.re).collect());
     }
     Ok(out)
 }

@@ -4,7 +4,7 @@
 use crate::error::{Error, Result, field};
 use crate::shape::ShapeFamily;
 
-/// The nine SPH forms.
+/// The SPH forms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FormKind {
@@ -30,11 +30,20 @@ pub enum FormKind {
     /// the system whose linearisation is \[B00 eq 74\]. Not one of SPEC's nine names; added
     /// because the sum-form `classical` differs from eq 74 (analysis/ERRATA.md).
     EulerianNodal,
+    /// SPH-ENOG, the "essentially non-hourglass" updated-Lagrangian elastic SPH of Zhang,
+    /// Lourenço, Wu, Zhang & Hu (J. Comput. Phys. 510, 2024): the pressure of the equation
+    /// of state in the symmetric form −(1/ρ_I) Σ_J (p_I + p_J) ∇_I W_IJ V_J, and the shear as
+    /// an accumulated, non-nested Laplacian-type acceleration a^s (a state); D ≥ 2, elastic.
+    Enog,
+    /// The total-Lagrangian form with SPHinXsys's pairwise shear term (Wu, Zhang, Tang & Hu,
+    /// Comput. Methods Appl. Mech. Engrg. 407, 2023): the part G J^{−2/d} F of the first
+    /// Piola–Kirchhoff stress taken by a pairwise Laplacian, scaled by κ; D ≥ 2.
+    TlEnog,
 }
 
 impl FormKind {
     /// All forms with their CLI names.
-    pub const ALL: [(FormKind, &'static str); 10] = [
+    pub const ALL: [(FormKind, &'static str); 12] = [
         (FormKind::Classical, "classical"),
         (FormKind::Nonlocal, "nonlocal"),
         (FormKind::Local, "local"),
@@ -45,6 +54,8 @@ impl FormKind {
         (FormKind::LagrangianStressPoints, "lagrangian-stress-points"),
         (FormKind::LeastSquares, "least-squares"),
         (FormKind::EulerianNodal, "eulerian-nodal"),
+        (FormKind::Enog, "enog"),
+        (FormKind::TlEnog, "tl-enog"),
     ];
 
     /// CLI name.
@@ -61,7 +72,10 @@ impl FormKind {
     pub fn is_lagrangian(self) -> bool {
         matches!(
             self,
-            FormKind::TotalLagrangian | FormKind::LagrangianStressPoints | FormKind::LeastSquares
+            FormKind::TotalLagrangian
+                | FormKind::TlEnog
+                | FormKind::LagrangianStressPoints
+                | FormKind::LeastSquares
         )
     }
 
@@ -69,10 +83,13 @@ impl FormKind {
     /// and `mls` (EFG, the choice of \[B00\]) for the B00 forms.
     pub fn default_shape(self) -> ShapeFamily {
         match self {
-            FormKind::Classical | FormKind::Nonlocal | FormKind::Lnl | FormKind::Cll => {
-                ShapeFamily::Sph
-            }
-            FormKind::Local => ShapeFamily::Corrected,
+            FormKind::Classical
+            | FormKind::Nonlocal
+            | FormKind::Lnl
+            | FormKind::Cll
+            | FormKind::Enog => ShapeFamily::Sph,
+            // SPHinXsys's total-Lagrangian SPH: the kernel gradient corrected by B = A⁻¹
+            FormKind::Local | FormKind::TlEnog => ShapeFamily::Corrected,
             FormKind::TotalLagrangian
             | FormKind::EulerianStressPoints
             | FormKind::LagrangianStressPoints
@@ -93,6 +110,18 @@ impl FormKind {
             ));
         }
         Ok(())
+    }
+
+    /// Whether the form is total-Lagrangian (reference stencils, nodal integration:
+    /// `total-lagrangian`, `tl-enog`).
+    pub fn is_total_lagrangian(self) -> bool {
+        matches!(self, FormKind::TotalLagrangian | FormKind::TlEnog)
+    }
+
+    /// Whether the form is one of the forms of D ≥ 2 only (`enog`, `tl-enog`: shear terms of
+    /// a solid, which a 1D bar does not have).
+    pub fn needs_2d(self) -> bool {
+        matches!(self, FormKind::Enog | FormKind::TlEnog)
     }
 
     /// Whether the form has stress points.

@@ -61,7 +61,7 @@ pub use least_squares::BandedLu;
 pub use model::Model;
 pub use params::{
     ArtificialStress, ArtificialViscosity, DELTA_RANGE, DIFFUSION_FORM_NAMES, DensityDiffusion,
-    DiffusionForm, Material, ModelParams, ObjectiveRate, ViscosityPairs,
+    DiffusionForm, Material, ModelParams, ObjectiveRate, PrestressKind, ViscosityPairs,
 };
 pub use rates::neo_hookean_cauchy;
 pub use state::{AuxRates, Comp, FieldKind, RateOut, State, StateView, Tensor, n_sym, voigt};

@@ -42,8 +42,11 @@ pub struct Model<const D: usize> {
     pub x_ref: Vec<[f64; D]>,
     /// Reference volumes.
     pub vol_ref: Vec<f64>,
-    /// Isotropic pre-stress σ0 of the total-Lagrangian law.
+    /// Isotropic pre-stress σ0 of the total-Lagrangian law (the 1D forms' σ0).
     pub sigma0: f64,
+    /// The pre-stress tensor: σ0 I unless [`Model::set_prestress`] gave another; the stress of
+    /// [`Model::rest_state`] and of the total-Lagrangian law at F = I.
+    pub prestress: [[f64; D]; D],
     /// The particles whose momentum equation takes the classical (plus) form of the stress
     /// divergence instead of the difference form: the boundary layer of the difference forms
     /// (nonlocal, local, lnl), which alone do not see a free surface \[V21 §7.4, Fig 18(b)\].
@@ -51,9 +54,93 @@ pub struct Model<const D: usize> {
     pub(crate) classical_layer: Vec<bool>,
     /// Reference stencils (total-Lagrangian): (master, φ, ∇φ) at each master.
     pub(crate) ref_master: Vec<Vec<(usize, f64, [f64; D])>>,
+    /// The reference pairs of a total-Lagrangian form with a pairwise term (`tl-enog`,
+    /// Ganzenmüller's control): per particle its neighbours L ≠ K within the support.
+    pub(crate) ref_pairs: Vec<Vec<RefPair<D>>>,
     /// The data of the 1D-only forms of \[B00\] (stress points, Lagrangian reference
     /// stencils, least-squares matrices); `None` for the forms of every dimension.
     pub(crate) chain: Option<ChainData>,
+}
+
+/// One reference pair (K, L) of a total-Lagrangian form with a pairwise term.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RefPair<const D: usize> {
+    /// The neighbour L.
+    pub l: usize,
+    /// X_L − X_K (minimum image).
+    pub d0: [f64; D],
+    /// |X_L − X_K|.
+    pub r0: f64,
+    /// W(r0).
+    pub w0: f64,
+    /// W′(r0).
+    pub dw: f64,
+    /// V_K V_L.
+    pub vv: f64,
+}
+
+/// The checks of the solid stabilisations of issue 30 and of `hourglass`: `enog` and
+/// `tl-enog` need D ≥ 2 (their terms are a solid's shear) and a material with shear (elastic;
+/// tl-enog also neo-Hookean); `hourglass` is their coefficient (ζ, κ) or Ganzenmüller's α of
+/// `total-lagrangian`, in [0, 1000], and refused for every other form.
+fn check_solid_form(p: &ModelParams, dim: usize) -> Result<()> {
+    let form = p.form;
+    if form.needs_2d() {
+        if dim < 2 {
+            return Err(Error::Incompatible(
+                field("form")
+                    + format!(" {} needs ", form.name())
+                    + field("dim")
+                    + " 2 or 3 (its shear terms are those of a solid)",
+            ));
+        }
+        let shear = match p.material {
+            Material::Elastic { .. } => true,
+            Material::NeoHookean { .. } => form == FormKind::TlEnog,
+            Material::Hydro { .. } => false,
+        };
+        if !shear {
+            return Err(Error::Incompatible(
+                field("form")
+                    + format!(" {} needs ", form.name())
+                    + field("material")
+                    + if form == FormKind::Enog {
+                        " elastic"
+                    } else {
+                        " elastic or neo-hookean"
+                    },
+            ));
+        }
+    }
+    if let Some(c) = p.hourglass {
+        if !matches!(
+            form,
+            FormKind::Enog | FormKind::TlEnog | FormKind::TotalLagrangian
+        ) {
+            return Err(Error::Incompatible(
+                field("hourglass")
+                    + " (the hourglass-control coefficient) applies to enog, tl-enog and total-lagrangian, not "
+                    + field("form")
+                    + format!(" {}", form.name()),
+            ));
+        }
+        crate::error::check_range("hourglass", c, 0.0, 1000.0, true, true)?;
+        if matches!(p.material, Material::Hydro { .. }) {
+            return Err(Error::Incompatible(
+                field("hourglass")
+                    + " needs a material with shear stiffness (elastic or neo-hookean), not hydro",
+            ));
+        }
+        if form == FormKind::TotalLagrangian && dim < 2 {
+            return Err(Error::Incompatible(
+                field("hourglass")
+                    + " (Ganzenmüller's control of total-lagrangian) needs "
+                    + field("dim")
+                    + " 2 or 3",
+            ));
+        }
+    }
+    Ok(())
 }
 
 impl<const D: usize> Model<D> {
@@ -85,14 +172,20 @@ impl<const D: usize> Model<D> {
                 field("form")
                     + format!(" {} is not available with ", p.form.name())
                     + field("dim")
-                    + format!(" {D} (classical, nonlocal, local, lnl, cll, total-lagrangian)"),
+                    + format!(
+                        " {D} (classical, nonlocal, local, lnl, cll, total-lagrangian, enog, tl-enog)"
+                    ),
             ));
         }
         p.form.check_shape(p.shape)?;
+        check_solid_form(&p, D)?;
         if let Material::NeoHookean { .. } = p.material {
-            if p.form != FormKind::TotalLagrangian {
+            if !p.form.is_total_lagrangian() {
                 return Err(Error::Incompatible(
-                    field("material") + " neo-hookean needs " + field("form") + " total-lagrangian",
+                    field("material")
+                        + " neo-hookean needs "
+                        + field("form")
+                        + " total-lagrangian or tl-enog",
                 ));
             }
             if sigma0 != 0.0 {
@@ -175,8 +268,12 @@ impl<const D: usize> Model<D> {
             x_ref,
             vol_ref,
             sigma0,
+            prestress: std::array::from_fn(|a| {
+                std::array::from_fn(|b| if a == b { sigma0 } else { 0.0 })
+            }),
             classical_layer: Vec::new(),
             ref_master: Vec::new(),
+            ref_pairs: Vec::new(),
             chain: None,
         };
         if chain_form {
@@ -191,7 +288,7 @@ impl<const D: usize> Model<D> {
             )?);
             return Ok(m);
         }
-        if p.form == FormKind::TotalLagrangian {
+        if p.form.is_total_lagrangian() {
             let mut out = Vec::new();
             let mut st = Vec::with_capacity(m.x_ref.len());
             let kp = crate::shape::KernelParams {
@@ -209,8 +306,40 @@ impl<const D: usize> Model<D> {
                 );
             }
             m.ref_master = st;
+            if p.form == FormKind::TlEnog || p.hourglass.is_some() {
+                m.ref_pairs = m.reference_pairs();
+            }
         }
         Ok(m)
+    }
+
+    /// [`Model::ref_pairs`] from the reference stencils.
+    fn reference_pairs(&self) -> Vec<Vec<RefPair<D>>> {
+        let (kern, h) = (self.p.kp.kernel, self.p.kp.h);
+        self.ref_master
+            .iter()
+            .enumerate()
+            .map(|(k, st)| {
+                st.iter()
+                    .filter(|e| e.0 != k)
+                    .map(|&(l, _, _)| {
+                        let d0 = self.rel(self.x_ref[k], self.x_ref[l]);
+                        let r0 = d0.iter().map(|c| c * c).sum::<f64>().sqrt();
+                        let (w0, gr) = crate::kernel::w_and_grad(kern, h, d0);
+                        // ∇_K W(X_K − X_L) = −W′(r0) d0/r0 with d0 = X_L − X_K
+                        let dw = -gr.iter().zip(&d0).map(|(a, b)| a * b).sum::<f64>() / r0;
+                        RefPair {
+                            l,
+                            d0,
+                            r0,
+                            w0,
+                            dw,
+                            vv: self.vol_ref[k] * self.vol_ref[l],
+                        }
+                    })
+                    .collect()
+            })
+            .collect()
     }
 
     /// A periodic patch of n_1 × … × n_D primitive cells of `lat` (spacing `dx`), at rest.
@@ -312,8 +441,36 @@ impl<const D: usize> Model<D> {
         (nodes, idx)
     }
 
-    /// The state at rest at the reference positions with density `rho` and isotropic stress
-    /// `sigma0` in every stress field the form carries.
+    /// Replaces the isotropic pre-stress σ0 I by the symmetric tensor `t` (D ≥ 2; a
+    /// deviatoric part needs an elastic material: a hydrodynamic one has no shear stress).
+    pub fn set_prestress(&mut self, t: [[f64; D]; D]) -> Result<()> {
+        let mean = (0..D).map(|a| t[a][a]).sum::<f64>() / D as f64;
+        let deviatoric = (0..D).any(|a| (0..D).any(|b| t[a][b] != if a == b { mean } else { 0.0 }));
+        if (0..D).any(|a| (0..D).any(|b| t[a][b] != t[b][a] || !t[a][b].is_finite())) {
+            return Err(Error::Incompatible(
+                field("prestress") + ": the pre-stress must be a finite symmetric tensor",
+            ));
+        }
+        if deviatoric && !matches!(self.p.material, Material::Elastic { .. }) {
+            return Err(Error::Incompatible(
+                field("prestress")
+                    + " with a deviatoric part needs "
+                    + field("material")
+                    + " elastic (hydro has no shear stress; neo-hookean's reference state is unstressed)",
+            ));
+        }
+        if deviatoric && self.chain.is_some() {
+            return Err(Error::Incompatible(
+                field("prestress") + ": the 1D-only forms take an isotropic pre-stress",
+            ));
+        }
+        self.prestress = t;
+        self.sigma0 = mean;
+        Ok(())
+    }
+
+    /// The state at rest at the reference positions with density `rho` and the pre-stress
+    /// ([`Model::prestress`]) in every stress field the form carries.
     pub fn rest_state(&self, rho: f64) -> State<f64, D> {
         let n = self.x_ref.len();
         let comps = self.p.form.comps(D, &self.p.material);
@@ -325,15 +482,15 @@ impl<const D: usize> Model<D> {
         if comps.contains(&Comp::Rho) {
             z.rho = vec![rho; n];
         }
-        let mut iso = [[0.0; D]; D];
-        for (a, row) in iso.iter_mut().enumerate() {
-            row[a] = self.sigma0;
-        }
+        let iso = self.prestress;
         if comps.contains(&Comp::Sigma(0)) {
             z.sigma = vec![iso; n];
         }
         if comps.contains(&Comp::Tau(0)) {
             z.tau = vec![iso; n];
+        }
+        if comps.contains(&Comp::ShearAcc(0)) {
+            z.shear_acc = vec![[0.0; D]; n];
         }
         if let Some(c) = &self.chain
             && comps.contains(&Comp::SpX(0))
@@ -433,6 +590,7 @@ mod tests {
             diffusion: None,
             alpha_s: 0.1,
             ls_length: 1.0,
+            hourglass: None,
         }
     }
 

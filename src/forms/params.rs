@@ -76,6 +76,58 @@ impl Material {
     }
 }
 
+/// The shape Ŝ of a uniform pre-stress σ0 = σ̄ C Ŝ (σ̄ > 0 in tension): what a stability
+/// question holds the lattice under.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PrestressKind {
+    /// Ŝ = I: equal principal stresses (a stretched sheet, the Swegle test's pressure).
+    #[default]
+    Isotropic,
+    /// Ŝ = e_x ⊗ e_x: one principal stress along the first lattice vector (a pulled bar).
+    Uniaxial,
+    /// Ŝ = e_x ⊗ e_y + e_y ⊗ e_x: pure shear, principal stresses ±σ̄C at 45° (D ≥ 2).
+    Shear,
+}
+
+impl PrestressKind {
+    /// The names, as the CLI and files spell them.
+    pub const ALL: [(PrestressKind, &'static str); 3] = [
+        (PrestressKind::Isotropic, "isotropic"),
+        (PrestressKind::Uniaxial, "uniaxial"),
+        (PrestressKind::Shear, "shear"),
+    ];
+
+    /// The variant of a name.
+    pub fn by_name(name: &str) -> Result<Self> {
+        crate::error::lookup("prestress", &Self::ALL, name)
+    }
+
+    /// The name.
+    pub fn name(self) -> &'static str {
+        crate::error::name_in(&Self::ALL, self)
+    }
+
+    /// Ŝ in D dimensions (the shear needs D ≥ 2: an error names `prestress` otherwise).
+    pub fn unit<const D: usize>(self) -> Result<[[f64; D]; D]> {
+        let mut t = [[0.0; D]; D];
+        match self {
+            PrestressKind::Isotropic => (0..D).for_each(|a| t[a][a] = 1.0),
+            PrestressKind::Uniaxial => t[0][0] = 1.0,
+            PrestressKind::Shear if D >= 2 => {
+                t[0][1] = 1.0;
+                t[1][0] = 1.0;
+            }
+            PrestressKind::Shear => {
+                return Err(Error::Incompatible(
+                    field("prestress") + " shear needs " + field("dim") + " 2 or 3",
+                ));
+            }
+        }
+        Ok(t)
+    }
+}
+
 /// Monaghan (2000) / Gray, Monaghan & Swift (2001) artificial stress for the classical form:
 /// R_I = −ε Σ_{λ>0} λ P_λ / ρ_I² from the tensile principal stresses of σ_I, adding
 /// Σ_J m_J (R_I + R_J) f_IJⁿ ∇_I W_IJ with f_IJ = W(r_IJ)/W(Δp).
@@ -155,12 +207,12 @@ impl DensityDiffusion {
     /// Checks δ (the field `name`, e.g. `delta`) and the form's compatibility.
     pub fn check(&self, name: &'static str, form: FormKind) -> Result<()> {
         crate::error::check_range(name, self.delta, DELTA_RANGE.0, DELTA_RANGE.1, true, true)?;
-        if form == FormKind::TotalLagrangian {
+        if form.is_total_lagrangian() {
             return Err(Error::Incompatible(
                 field(name)
                     + " (density diffusion) does not apply to "
                     + field("form")
-                    + " total-lagrangian: it has no density state",
+                    + format!(" {}: it has no density state", form.name()),
             ));
         }
         Ok(())
@@ -242,4 +294,12 @@ pub struct ModelParams {
     /// The length l_c of the least-squares stabilisation, physical units (the particle
     /// spacing Δx, as in \[B00 §4.3\]).
     pub ls_length: f64,
+    /// The coefficient of the form's hourglass (zero-energy) control, dimensionless; `None`
+    /// takes the form's default:
+    /// - `enog`: ζ of the shear acceleration (default 0.7D + 2.1, SPHinXsys's);
+    /// - `tl-enog`: κ of the pairwise shear term (default 1.07, SPHinXsys's);
+    /// - `total-lagrangian`: Ganzenmüller's α (default: none, no hourglass control);
+    ///
+    /// refused for the other forms.
+    pub hourglass: Option<f64>,
 }

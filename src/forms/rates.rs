@@ -94,6 +94,75 @@ fn diff_term<S: Scalar, const D: usize>(si: &Tensor<S, D>, sj: &Tensor<S, D>, g:
     dot(&t, g)
 }
 
+/// (σ_I + σ_J) · V_J ∇_I W_IJ, one term of SPH-ENOG's pressure force (before the 1/ρ_I), with
+/// `g` = V_J ∇_I W_IJ.
+#[inline]
+fn plus_term<S: Scalar, const D: usize>(si: &Tensor<S, D>, sj: &Tensor<S, D>, g: [S; D]) -> [S; D] {
+    let mut t = [[S::zero(); D]; D];
+    for p in 0..D {
+        for q in p..D {
+            t[p][q] = si[p][q] + sj[p][q];
+            t[q][p] = t[p][q];
+        }
+    }
+    dot(&t, g)
+}
+
+/// The bulk modulus of a stress that is a pressure of the density, σ = −K(ρ/ρ0 − 1) I: the
+/// hydrodynamic material's K, and SPH-ENOG's K = λ + 2G/3 (its equation of state
+/// p = c0²(ρ − ρ0) with c0² = K/ρ0, the three-dimensional bulk modulus in 2D too, as the
+/// paper's); None for a form that integrates its stress.
+fn pressure_bulk<const D: usize>(m: &Model<D>) -> Option<f64> {
+    match (m.p.material, m.p.form) {
+        (Material::Hydro { bulk }, _) => Some(bulk),
+        (Material::Elastic { lambda, shear, .. }, FormKind::Enog) => {
+            Some(lambda + 2.0 * shear / 3.0)
+        }
+        _ => None,
+    }
+}
+
+/// SPH-ENOG's shear-acceleration rate of particle i \[Zhang et al. 2024\]:
+/// ȧ^s_I = 2ζ (G/ρ_I) Σ_J (v_IJ · e_IJ)/r_IJ ∇_I W_IJ V_J, e_IJ = x_IJ/r_IJ, x_IJ = x_I − x_J;
+/// with frozen neighbours its integral is the displacement Laplacian
+/// ≈ (ζ/(D + 2)) (G/ρ) [∇²u + 2∇(∇·u)] (module tests).
+fn enog_shear_rate<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    ws: &RateWorkspace<S, D>,
+    i: usize,
+) -> [S; D] {
+    let Material::Elastic { shear, .. } = m.p.material else {
+        return [S::zero(); D];
+    };
+    let zeta = m.p.hourglass.unwrap_or(enog_default_zeta(D));
+    let vol = &ws.vol;
+    let mut sum = [S::zero(); D];
+    ws.st.for_each::<false>(m, z.x, vol, i, |nb| {
+        if nb.j == i {
+            return;
+        }
+        // d = x_J − x_I = −x_IJ, so (v_IJ·e_IJ)/r_IJ = −(v_IJ·d)/r²
+        let (mut vd, mut r2) = (S::zero(), S::zero());
+        for c in 0..D {
+            vd += (z.v[i][c] - z.v[nb.j][c]) * nb.d[c];
+            r2 += nb.d[c] * nb.d[c];
+        }
+        let f = -vd / r2 * vol[nb.j];
+        for c in 0..D {
+            sum[c] += f * nb.gw[c];
+        }
+    });
+    let scale = S::cst(2.0 * zeta * shear) / z.rho[i];
+    sum.map(|c| c * scale)
+}
+
+/// SPH-ENOG's default ζ = 0.7D + 2.1 (SPHinXsys's `ShearAccelerationRelaxation`: 3.5 in 2D,
+/// 4.2 in 3D).
+pub fn enog_default_zeta(dim: usize) -> f64 {
+    0.7 * dim as f64 + 2.1
+}
+
 #[inline]
 fn add<S: Scalar, const D: usize>(a: &mut [S; D], f: [S; D]) {
     for c in 0..D {
@@ -323,7 +392,7 @@ fn accelerations<S: Scalar, const D: usize>(
     let form = m.p.form;
     let c = m.p.c_partition;
     ws.hydro.clear();
-    if let Material::Hydro { bulk } = m.p.material {
+    if let Some(bulk) = pressure_bulk(m) {
         // per-particle buffers in parallel too: a serial loop here is a serial part of every
         // evaluation (Amdahl), on two threads a tenth of the step
         ws.hydro.par_extend(z.rho.par_iter().map(|&r| {
@@ -335,9 +404,10 @@ fn accelerations<S: Scalar, const D: usize>(
             t
         }));
     }
-    let (sig, tau): (&[Tensor<S, D>], &[Tensor<S, D>]) = match m.p.material {
-        Material::Hydro { .. } => (&ws.hydro, &ws.hydro),
-        _ => (z.sigma, if mixed { z.tau } else { z.sigma }),
+    let (sig, tau): (&[Tensor<S, D>], &[Tensor<S, D>]) = if pressure_bulk(m).is_some() {
+        (&ws.hydro, &ws.hydro)
+    } else {
+        (z.sigma, if mixed { z.tau } else { z.sigma })
     };
     ws.art.clear();
     if let (Some(a), FormKind::Classical | FormKind::Cll) = (m.p.art_stress, form) {
@@ -350,6 +420,7 @@ fn accelerations<S: Scalar, const D: usize>(
     let (st, art, vol) = (&ws.st, &ws.art, &ws.vol);
     let sum_form = matches!(form, FormKind::Classical | FormKind::Cll);
     let diff_form = matches!(form, FormKind::Nonlocal | FormKind::Local | FormKind::Lnl);
+    let enog = form == FormKind::Enog;
     let av = m.p.av;
     // per-particle accelerations in parallel (rayon)
     acc.par_iter_mut().enumerate().for_each(|(i, out_a)| {
@@ -373,6 +444,8 @@ fn accelerations<S: Scalar, const D: usize>(
                 add(&mut fa, sum_term(&si_r, &sig[j], z.rho[j], g));
             } else if diff_form {
                 add(&mut fa, diff_term(si, &sig[j], nb.g));
+            } else if enog {
+                add(&mut fa, plus_term(si, &sig[j], nb.gw.map(|g| g * vol[j])));
             }
             if j == i {
                 return;
@@ -408,6 +481,11 @@ fn accelerations<S: Scalar, const D: usize>(
             FormKind::Classical => fa,
             FormKind::Nonlocal | FormKind::Local if layer => fa,
             FormKind::Nonlocal | FormKind::Local => fa.map(|x| x / rho_i),
+            FormKind::Enog => {
+                let mut a = fa.map(|x| x / rho_i);
+                add(&mut a, z.shear_acc[i]);
+                a
+            }
             FormKind::Lnl | FormKind::Cll => {
                 let p = if form == FormKind::Lnl && !layer {
                     fa.map(|x| x / rho_i)
@@ -503,7 +581,11 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
         accelerations(m, z, acc, ws, mixed);
     }
     if let Some(AuxRates {
-        rho, sigma, tau, ..
+        rho,
+        sigma,
+        tau,
+        shear_acc,
+        ..
     }) = out.aux
     {
         let n = z.x.len();
@@ -524,16 +606,19 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
         let diffusion = m.p.diffusion;
         let zero = [[S::zero(); D]; D];
         let (has_rho, has_sigma, has_tau) = (!rho.is_empty(), !sigma.is_empty(), !tau.is_empty());
+        let has_shear = !shear_acc.is_empty() && form == FormKind::Enog;
         assert!(
             (!has_rho || rho.len() == n)
                 && (!has_sigma || sigma.len() == n)
-                && (!has_tau || tau.len() == n),
+                && (!has_tau || tau.len() == n)
+                && (!has_shear || shear_acc.len() == n),
             "auxiliary rate outputs: one entry per particle or none"
         );
-        let (rho_o, sigma_o, tau_o) = (
+        let (rho_o, sigma_o, tau_o, shear_o) = (
             Shared(rho.as_mut_ptr()),
             Shared(sigma.as_mut_ptr()),
             Shared(tau.as_mut_ptr()),
+            Shared(shear_acc.as_mut_ptr()),
         );
         // per-particle auxiliary rates in parallel (rayon), written in place
         (0..n).into_par_iter().for_each(|i| {
@@ -581,6 +666,9 @@ pub(crate) fn rate<S: Scalar, const D: usize>(
                 }
                 if has_tau {
                     tau_o.write(i, tau_rate);
+                }
+                if has_shear {
+                    shear_o.write(i, enog_shear_rate(m, z, ws, i));
                 }
             }
         });
@@ -728,10 +816,7 @@ pub(crate) fn tl_piola<S: Scalar, const D: usize>(
             shear,
             rate,
         } => {
-            let (lam, g) = match rate {
-                ObjectiveRate::Truesdell => (lambda, shear),
-                ObjectiveRate::Jaumann => (lambda + s0, shear - s0),
-            };
+            let p0 = &m.prestress;
             let mut e = [[S::zero(); D]; D];
             for a in 0..D {
                 for b in 0..D {
@@ -746,10 +831,23 @@ pub(crate) fn tl_piola<S: Scalar, const D: usize>(
             for a in 1..D {
                 tr += e[a][a];
             }
+            // S = σ0 + λ tr E I + 2G E, and for the Jaumann rate − (E σ0 + σ0 E) + tr E σ0:
+            // the linearisation of Ṡ = J F⁻¹ σ^∇T F⁻ᵀ with the Truesdell rate of the Jaumann law,
+            // σ^∇T = C:d − dσ − σd + tr(d)σ (isotropic σ0: λ + σ0 and G − σ0)
             let mut sm = [[S::zero(); D]; D];
             for a in 0..D {
                 for b in 0..D {
-                    sm[a][b] = e[a][b] * (2.0 * g) + if a == b { tr * lam + s0 } else { S::zero() };
+                    let mut v = e[a][b] * (2.0 * shear) + p0[a][b];
+                    if a == b {
+                        v += tr * lambda;
+                    }
+                    if rate == ObjectiveRate::Jaumann {
+                        v += tr * p0[a][b];
+                        for c in 0..D {
+                            v -= e[a][c] * p0[c][b] + e[c][b] * p0[a][c];
+                        }
+                    }
+                    sm[a][b] = v;
                 }
             }
             let mut p = [[S::zero(); D]; D];
@@ -804,8 +902,17 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
         u
     }));
     let u = &ws.disp;
+    let pairwise = m.p.form == FormKind::TlEnog || m.p.hourglass.is_some();
+    ws.defgrad.clear();
     for (j, st) in m.ref_master.iter().enumerate() {
-        let p = tl_piola(m, j, &tl_deformation_gradient(st, u));
+        let f = tl_deformation_gradient(st, u);
+        let mut p = tl_piola(m, j, &f);
+        if m.p.form == FormKind::TlEnog {
+            tl_enog_nodal(m, &f, &mut p);
+        }
+        if pairwise {
+            ws.defgrad.push(f);
+        }
         let w = m.vol_ref[j];
         for &(k, _, gr) in st {
             for a in 0..D {
@@ -816,6 +923,11 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
                 acc[k][a] -= pg * w;
             }
         }
+    }
+    match (m.p.form, m.p.hourglass) {
+        (FormKind::TlEnog, _) => tl_enog_pairs(m, z, acc, &ws.defgrad),
+        (_, Some(alpha)) => ganzenmuller(m, z, acc, &ws.defgrad, alpha),
+        _ => {}
     }
     for (a, &ms) in acc.iter_mut().zip(&m.mass) {
         *a = a.map(|x| x / ms);
@@ -845,6 +957,130 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
     Ok(())
 }
 
+/// The shear modulus and Young's modulus of a total-Lagrangian law (0 for a fluid).
+fn tl_moduli<const D: usize>(m: &Model<D>) -> (f64, f64) {
+    match m.p.material {
+        Material::Elastic { lambda, shear, .. } | Material::NeoHookean { lambda, shear } => (
+            shear,
+            shear * (3.0 * lambda + 2.0 * shear) / (lambda + shear),
+        ),
+        Material::Hydro { .. } => (0.0, 0.0),
+    }
+}
+
+/// tl-enog's nodal stress \[Wu, Zhang, Tang & Hu 2023\]: the law's P, less the part κG J^{−2/d} F
+/// that [`tl_enog_pairs`] takes pairwise, plus (κ − 1) times the isochoric neo-Hookean
+/// deviator G J^{−2/d}(F − (tr b/d) F⁻ᵀ) (κ scales the shear as the paper's), plus κG I (so
+/// the rest state keeps the law's P(I)):
+/// P̃ = P + (κ − 1) G J^{−2/d}(F − (tr b/d) F⁻ᵀ) − κ G J^{−2/d} F + κ G I.
+/// For the paper's law (the isochoric neo-Hookean) the nodal part is its
+/// (τ_vol − κ G J^{−2/d} tr b/d) F⁻ᵀ exactly.
+fn tl_enog_nodal<S: Scalar, const D: usize>(m: &Model<D>, f: &Tensor<S, D>, p: &mut Tensor<S, D>) {
+    let kappa = m.p.hourglass.unwrap_or(TL_ENOG_DEFAULT_KAPPA);
+    let (g, _) = tl_moduli(m);
+    let jac = det_s(f);
+    let jm = jac.powf(-2.0 / D as f64);
+    let cof = cof_s(f);
+    let mut trb = S::zero();
+    for a in 0..D {
+        for b in 0..D {
+            trb += f[a][b] * f[a][b];
+        }
+    }
+    for a in 0..D {
+        for b in 0..D {
+            let fit = cof[a][b] / jac;
+            let iso = (f[a][b] - trb / D as f64 * fit) * jm * g;
+            p[a][b] += iso * (kappa - 1.0) - f[a][b] * jm * (kappa * g);
+            if a == b {
+                p[a][b] += S::cst(kappa * g);
+            }
+        }
+    }
+}
+
+/// tl-enog's default κ = 1.07 (SPHinXsys's `DecomposedIntegration1stHalf`).
+pub const TL_ENOG_DEFAULT_KAPPA: f64 = 1.07;
+
+/// tl-enog's pairwise shear force, added to the forces `acc` (before the division by the
+/// mass) \[Wu, Zhang, Tang & Hu 2023\]:
+/// f_K = κ G Σ_L V_K V_L (J_K^{−2/d} + J_L^{−2/d}) (x_K − x_L)/r⁰ W′(r⁰), less its value in
+/// the reference configuration (which the nodal κ G I of [`tl_enog_nodal`] balances), over
+/// the reference neighbours L of K, r⁰ = |X_K − X_L|; J from the nodal F of each particle.
+fn tl_enog_pairs<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    acc: &mut [[S; D]],
+    defgrad: &[Tensor<S, D>],
+) {
+    let kappa = m.p.hourglass.unwrap_or(TL_ENOG_DEFAULT_KAPPA);
+    let (g, _) = tl_moduli(m);
+    let jm = |k: usize| det_s(&defgrad[k]).powf(-2.0 / D as f64);
+    acc.par_iter_mut()
+        .zip(&m.ref_pairs)
+        .enumerate()
+        .for_each(|(k, (ak, pairs))| {
+            let jk = jm(k);
+            for p in pairs {
+                // x_L − x_K (minimum image)
+                let d = m.rel(z.x[k], z.x[p.l]);
+                let w = kappa * g * p.vv * p.dw / p.r0;
+                let jsum = jk + jm(p.l);
+                for c in 0..D {
+                    // (x_K − x_L)(J_K^{−2/d} + J_L^{−2/d}) − 2 (X_K − X_L)
+                    ak[c] += (-(d[c] * jsum) + 2.0 * p.d0[c]) * w;
+                }
+            }
+        });
+}
+
+/// Ganzenmüller's hourglass control for total-Lagrangian SPH (Comput. Methods Appl. Mech.
+/// Engrg. 286, 2015, eqs 17–24, as transcribed from the paper's form; LAMMPS's `smd/tlsph`
+/// implements a variant), added to the forces `acc`: for each reference neighbour L of K,
+/// with X = X_L − X_K, x = x_L − x_K (minimum image),
+/// ε_K = F_K X − x (the predicted minus the actual separation), δ_K = ε_K · F_K X / |x|,
+/// δ_L likewise with F_L, and
+/// f_K = −½ α E V_K V_L W(|X|) (δ_K + δ_L)/|X|² · x/|x|,
+/// a central pair force that vanishes for every linear motion (x = F X).
+fn ganzenmuller<S: Scalar, const D: usize>(
+    m: &Model<D>,
+    z: StateView<'_, S, D>,
+    acc: &mut [[S; D]],
+    defgrad: &[Tensor<S, D>],
+    alpha: f64,
+) {
+    let (_, young) = tl_moduli(m);
+    acc.par_iter_mut()
+        .zip(&m.ref_pairs)
+        .enumerate()
+        .for_each(|(k, (ak, pairs))| {
+            for p in pairs {
+                let d = m.rel(z.x[k], z.x[p.l]);
+                let mut r2 = S::zero();
+                for c in 0..D {
+                    r2 += d[c] * d[c];
+                }
+                let r = r2.sqrt();
+                let delta = |f: &Tensor<S, D>| {
+                    let mut s = S::zero();
+                    for a in 0..D {
+                        let mut pred = S::zero();
+                        for b in 0..D {
+                            pred += f[a][b] * p.d0[b];
+                        }
+                        s += (pred - d[a]) * pred;
+                    }
+                    s / r
+                };
+                let sum = delta(&defgrad[k]) + delta(&defgrad[p.l]);
+                let coef = -0.5 * alpha * young * p.vv * p.w0 / (p.r0 * p.r0);
+                for c in 0..D {
+                    ak[c] += sum * d[c] / r * coef;
+                }
+            }
+        });
+}
+
 impl<const D: usize> Model<D> {
     /// The stress each particle of state `z` carries, the one its momentum equation uses:
     /// for the total-Lagrangian form the Cauchy stress T = P Fᵀ/J of its law at the particle's
@@ -853,7 +1089,7 @@ impl<const D: usize> Model<D> {
     /// with neither (a hydrodynamic material in an Eulerian form, the stress-point forms,
     /// whose stress lives on the stress points).
     pub fn particle_stress(&self, z: &State<f64, D>) -> Vec<Tensor<f64, D>> {
-        if self.p.form != FormKind::TotalLagrangian {
+        if !self.p.form.is_total_lagrangian() {
             return z.total_stress(self.p.c_partition);
         }
         (0..z.x.len())
@@ -864,7 +1100,7 @@ impl<const D: usize> Model<D> {
     /// [`Model::particle_stress`] of particle `i` alone (None for a form without a particle
     /// stress, or `i` out of range).
     pub fn particle_stress_of(&self, z: &State<f64, D>, i: usize) -> Option<Tensor<f64, D>> {
-        if self.p.form != FormKind::TotalLagrangian {
+        if !self.p.form.is_total_lagrangian() {
             let s = z.sigma.get(i)?;
             let Some(t) = z.tau.get(i) else {
                 return Some(*s);
@@ -892,7 +1128,7 @@ impl<const D: usize> Model<D> {
     /// The deformation gradient F of particle `i` of a total-Lagrangian state `z` (the F of
     /// its rate, [`rate_tl`]); None for the other forms or `i` out of range.
     pub fn deformation_gradient_of(&self, z: &State<f64, D>, i: usize) -> Option<Tensor<f64, D>> {
-        if self.p.form != FormKind::TotalLagrangian {
+        if !self.p.form.is_total_lagrangian() {
             return None;
         }
         let st = self.ref_master.get(i)?;
@@ -933,7 +1169,7 @@ impl<const D: usize> Model<D> {
             ));
         }
         let n = self.x_ref.len();
-        if self.p.form == FormKind::TotalLagrangian {
+        if self.p.form.is_total_lagrangian() {
             let mut b = vec![[0.0; D]; n];
             for (j, st) in self.ref_master.iter().enumerate() {
                 for &(k, _, gr) in st {
@@ -1005,7 +1241,7 @@ impl<const D: usize> Model<D> {
             return super::chain_rates::rate(self, data, z, out, ws);
         }
         match self.p.form {
-            FormKind::TotalLagrangian => rate_tl(self, z, out, ws),
+            FormKind::TotalLagrangian | FormKind::TlEnog => rate_tl(self, z, out, ws),
             _ => rate(self, z, out, ws),
         }
     }

@@ -36,6 +36,9 @@ pub struct State<S, const D: usize> {
     pub sp_sigma: Vec<Tensor<S, D>>,
     /// Stress-point volumes.
     pub sp_vol: Vec<S>,
+    /// The accumulated shear acceleration a^s of `enog` (SPH-ENOG: the time integral of its
+    /// Laplacian-type shear term).
+    pub shear_acc: Vec<[S; D]>,
 }
 
 impl<S, const D: usize> Default for State<S, D> {
@@ -49,6 +52,7 @@ impl<S, const D: usize> Default for State<S, D> {
             sp_x: Vec::new(),
             sp_sigma: Vec::new(),
             sp_vol: Vec::new(),
+            shear_acc: Vec::new(),
         }
     }
 }
@@ -73,6 +77,8 @@ pub struct StateView<'a, S, const D: usize> {
     pub sp_sigma: &'a [Tensor<S, D>],
     /// Stress-point volumes.
     pub sp_vol: &'a [S],
+    /// Accumulated shear acceleration (`enog`; empty otherwise).
+    pub shear_acc: &'a [[S; D]],
 }
 
 impl<S, const D: usize> Clone for StateView<'_, S, D> {
@@ -120,6 +126,8 @@ pub struct AuxRates<'a, S, const D: usize> {
     pub sp_sigma: &'a mut [Tensor<S, D>],
     /// Stress-point V̇^S.
     pub sp_vol: &'a mut [S],
+    /// ȧ^s (`enog`).
+    pub shear_acc: &'a mut [[S; D]],
 }
 
 /// The (row, column) of the k-th independent component of a symmetric tensor, in the nested
@@ -161,6 +169,8 @@ pub enum Comp {
     SpSigma(usize),
     /// Stress-point volume.
     SpVol,
+    /// Component of the accumulated shear acceleration a^s (`enog`).
+    ShearAcc(usize),
 }
 
 /// What a state component is, mechanically.
@@ -206,6 +216,7 @@ impl<S: Scalar, const D: usize> State<S, D> {
                 self.sp_sigma[i][a][b]
             }
             Comp::SpVol => self.sp_vol[i],
+            Comp::ShearAcc(a) => self.shear_acc[i][a],
         }
     }
     /// Sets component `c` of particle `i` (both entries of an off-diagonal tensor component).
@@ -231,6 +242,7 @@ impl<S: Scalar, const D: usize> State<S, D> {
                 self.sp_sigma[i][b][a] = val;
             }
             Comp::SpVol => self.sp_vol[i] = val,
+            Comp::ShearAcc(a) => self.shear_acc[i][a] = val,
         }
     }
     /// The state as a [`StateView`].
@@ -244,6 +256,7 @@ impl<S: Scalar, const D: usize> State<S, D> {
             sp_x: &self.sp_x,
             sp_sigma: &self.sp_sigma,
             sp_vol: &self.sp_vol,
+            shear_acc: &self.shear_acc,
         }
     }
     /// Every field of the state as an output ([`RateOut`] with all parts).
@@ -258,6 +271,7 @@ impl<S: Scalar, const D: usize> State<S, D> {
                 sp_x: &mut self.sp_x,
                 sp_sigma: &mut self.sp_sigma,
                 sp_vol: &mut self.sp_vol,
+                shear_acc: &mut self.shear_acc,
             }),
         }
     }
@@ -272,6 +286,7 @@ impl<S: Scalar, const D: usize> State<S, D> {
         self.sp_x.resize(o.sp_x.len(), [S::zero(); D]);
         self.sp_sigma.resize(o.sp_sigma.len(), [[S::zero(); D]; D]);
         self.sp_vol.resize(o.sp_vol.len(), S::zero());
+        self.shear_acc.resize(o.shear_acc.len(), [S::zero(); D]);
     }
     /// Zeroed state shaped like `o`.
     pub fn zeros_like<T>(o: &State<T, D>) -> Self {
@@ -292,6 +307,7 @@ impl<S: Scalar, const D: usize> State<S, D> {
             sp_x: self.sp_x.iter().map(vec).collect(),
             sp_sigma: self.sp_sigma.iter().map(ten).collect(),
             sp_vol: self.sp_vol.iter().map(|&p| f(p)).collect(),
+            shear_acc: self.shear_acc.iter().map(vec).collect(),
         }
     }
 }
@@ -336,6 +352,8 @@ impl FormKind {
                 | FormKind::Lnl
                 | FormKind::Cll
                 | FormKind::TotalLagrangian
+                | FormKind::Enog
+                | FormKind::TlEnog
         )
     }
 
@@ -376,6 +394,10 @@ impl FormKind {
             return c;
         }
         c.push(Comp::Rho);
+        if self == FormKind::Enog {
+            c.extend((0..dim).map(Comp::ShearAcc));
+            return c;
+        }
         if matches!(
             material,
             Material::Elastic { .. } | Material::NeoHookean { .. }

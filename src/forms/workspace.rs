@@ -238,6 +238,8 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     pub(crate) art: Vec<Tensor<S, D>>,
     /// Displacements (total-Lagrangian forms).
     pub(crate) disp: Vec<[S; D]>,
+    /// Deformation gradients at the particles (total-Lagrangian forms with a pairwise term).
+    pub(crate) defgrad: Vec<Tensor<S, D>>,
     /// Antuono's renormalised density gradients ⟨∇ρ⟩_I (δ-SPH).
     pub(crate) rho_grad: Vec<[S; D]>,
     /// What the current stencils were built for (`None`: nothing valid).
@@ -286,6 +288,7 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             hydro: Vec::new(),
             art: Vec::new(),
             disp: Vec::new(),
+            defgrad: Vec::new(),
             rho_grad: Vec::new(),
             key: None,
             key_x: Vec::new(),

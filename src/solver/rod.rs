@@ -98,6 +98,7 @@ pub fn run_rod(cfg: &RodConfig) -> Result<RodReport> {
         diffusion: None,
         alpha_s: 0.0,
         ls_length: dx,
+        hourglass: None,
     };
     let model = Model::new(p, x, vec![dx; n], cfg.rho, cfg.sigma0, None)?;
     let mut z = model.rest_state(cfg.rho);

@@ -114,6 +114,8 @@ struct AuxLayout {
     tau: bool,
     /// Number of stress points (0: none).
     sp: usize,
+    /// The accumulated shear acceleration (`enog`).
+    shear_acc: bool,
 }
 
 /// Buffers reused by every step.
@@ -156,6 +158,7 @@ impl<const D: usize> SystemBuffers<D> {
             } else {
                 0
             },
+            shear_acc: comps.contains(&Comp::ShearAcc(0)),
         };
         let mass = match model.mass_operator() {
             MassOperator::Lumped => None,
@@ -183,8 +186,8 @@ impl<const D: usize> SystemBuffers<D> {
 }
 
 impl AuxLayout {
-    /// Lengths of the flat parts: ρ, σ, τ, x^S, σ^S, V^S.
-    fn lens(&self, n: usize, d: usize) -> [usize; 6] {
+    /// Lengths of the flat parts: ρ, σ, τ, x^S, σ^S, V^S, a^s.
+    fn lens(&self, n: usize, d: usize) -> [usize; 7] {
         [
             if self.rho { n } else { 0 },
             if self.sigma { d * d * n } else { 0 },
@@ -192,6 +195,7 @@ impl AuxLayout {
             d * self.sp,
             d * d * self.sp,
             self.sp,
+            if self.shear_acc { d * n } else { 0 },
         ]
     }
 }
@@ -204,15 +208,17 @@ struct Aux<'a, const D: usize> {
     sp_x: &'a [[f64; D]],
     sp_sigma: &'a [Tensor<f64, D>],
     sp_vol: &'a [f64],
+    shear_acc: &'a [[f64; D]],
 }
 
 /// Splits a flat auxiliary buffer into its fields.
-fn split_aux<const D: usize>(q: &[f64], lens: [usize; 6]) -> Aux<'_, D> {
+fn split_aux<const D: usize>(q: &[f64], lens: [usize; 7]) -> Aux<'_, D> {
     let (rho, rest) = q.split_at(lens[0]);
     let (sigma, rest) = rest.split_at(lens[1]);
     let (tau, rest) = rest.split_at(lens[2]);
     let (sp_x, rest) = rest.split_at(lens[3]);
-    let (sp_sigma, sp_vol) = rest.split_at(lens[4]);
+    let (sp_sigma, rest) = rest.split_at(lens[4]);
+    let (sp_vol, shear_acc) = rest.split_at(lens[5]);
     Aux {
         rho,
         sigma: sigma.as_chunks::<D>().0.as_chunks::<D>().0,
@@ -220,16 +226,18 @@ fn split_aux<const D: usize>(q: &[f64], lens: [usize; 6]) -> Aux<'_, D> {
         sp_x: sp_x.as_chunks::<D>().0,
         sp_sigma: sp_sigma.as_chunks::<D>().0.as_chunks::<D>().0,
         sp_vol,
+        shear_acc: shear_acc.as_chunks::<D>().0,
     }
 }
 
 /// The same, mutable.
-fn split_aux_mut<const D: usize>(q: &mut [f64], lens: [usize; 6]) -> AuxRates<'_, f64, D> {
+fn split_aux_mut<const D: usize>(q: &mut [f64], lens: [usize; 7]) -> AuxRates<'_, f64, D> {
     let (rho, rest) = q.split_at_mut(lens[0]);
     let (sigma, rest) = rest.split_at_mut(lens[1]);
     let (tau, rest) = rest.split_at_mut(lens[2]);
     let (sp_x, rest) = rest.split_at_mut(lens[3]);
-    let (sp_sigma, sp_vol) = rest.split_at_mut(lens[4]);
+    let (sp_sigma, rest) = rest.split_at_mut(lens[4]);
+    let (sp_vol, shear_acc) = rest.split_at_mut(lens[5]);
     AuxRates {
         rho,
         sigma: sigma.as_chunks_mut::<D>().0.as_chunks_mut::<D>().0,
@@ -237,6 +245,7 @@ fn split_aux_mut<const D: usize>(q: &mut [f64], lens: [usize; 6]) -> AuxRates<'_
         sp_x: sp_x.as_chunks_mut::<D>().0,
         sp_sigma: sp_sigma.as_chunks_mut::<D>().0.as_chunks_mut::<D>().0,
         sp_vol,
+        shear_acc: shear_acc.as_chunks_mut::<D>().0,
     }
 }
 
@@ -251,7 +260,7 @@ pub struct System<'a, const D: usize> {
     load: &'a [[f64; D]],
     mirror: &'a [Mirror<D>],
     frozen_aux: bool,
-    lens: [usize; 6],
+    lens: [usize; 7],
     bufs: &'a SystemBuffers<D>,
 }
 
@@ -309,6 +318,9 @@ impl<'a, const D: usize> System<'a, D> {
             q.extend_from_slice(z.sp_sigma.as_flattened().as_flattened());
             q.extend_from_slice(&z.sp_vol);
         }
+        if l.shear_acc {
+            q.extend_from_slice(z.shear_acc.as_flattened());
+        }
     }
 
     /// Writes the flat auxiliary state `q` back into the fields of `z`.
@@ -329,6 +341,9 @@ impl<'a, const D: usize> System<'a, D> {
             z.sp_sigma.copy_from_slice(a.sp_sigma);
             z.sp_vol.copy_from_slice(a.sp_vol);
         }
+        if l.shear_acc {
+            z.shear_acc.copy_from_slice(a.shear_acc);
+        }
     }
 
     fn view<'b>(&self, x: &'b [f64], v: &'b [f64], q: &'b [f64]) -> StateView<'b, f64, D> {
@@ -342,6 +357,7 @@ impl<'a, const D: usize> System<'a, D> {
             sp_x: a.sp_x,
             sp_sigma: a.sp_sigma,
             sp_vol: a.sp_vol,
+            shear_acc: a.shear_acc,
         }
     }
 }
@@ -398,6 +414,10 @@ impl<const D: usize> System<'_, D> {
                 if !out.tau.is_empty() {
                     out.tau[m.ghost] = m.tensor(&out.tau[m.source]);
                 }
+                if !out.shear_acc.is_empty() {
+                    let s = out.shear_acc[m.source];
+                    out.shear_acc[m.ghost] = std::array::from_fn(|k| m.sign[k] * s[k]);
+                }
             }
         }
         if self.frozen_aux {
@@ -411,6 +431,9 @@ impl<const D: usize> System<'_, D> {
                 }
                 if let Some(p) = out.tau.get_mut(i) {
                     *p = [[0.0; D]; D];
+                }
+                if let Some(p) = out.shear_acc.get_mut(i) {
+                    *p = [0.0; D];
                 }
             }
         }
@@ -542,6 +565,7 @@ impl<const D: usize> Run<D> {
             || self.fixed.len() != n
             || (l.rho && z.rho.len() != n)
             || (l.sigma && z.sigma.len() != n)
+            || (l.shear_acc && z.shear_acc.len() != n)
             || (l.tau && z.tau.len() != n)
             || z.sp_x.len() != l.sp
             || z.sp_sigma.len() != l.sp
@@ -704,6 +728,9 @@ impl<const D: usize> Run<D> {
             }
             if !z.tau.is_empty() {
                 z.tau[g] = m.tensor(&z.tau[s]);
+            }
+            if !z.shear_acc.is_empty() {
+                z.shear_acc[g] = std::array::from_fn(|k| m.sign[k] * z.shear_acc[s][k]);
             }
         }
     }

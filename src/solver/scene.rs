@@ -1257,7 +1257,7 @@ impl Scene {
                 Some(s) => ShapeFamily::by_name(s).ok(),
                 None => Some(f.default_shape()),
             };
-            f != FormKind::TotalLagrangian && shape == Some(ShapeFamily::Sph)
+            !f.is_total_lagrangian() && shape == Some(ShapeFamily::Sph)
         });
         if one_pass {
             support + 0.5 * dx
@@ -1614,6 +1614,7 @@ impl Scene {
             diffusion: None,
             alpha_s: 0.0,
             ls_length: dx,
+            hourglass: None,
         };
         let geo = self.geometry(dx, k.zeta() * h);
         let (real, total) = (geo.real, geo.x.len());
@@ -1883,7 +1884,7 @@ impl Scene {
         z.rho.truncate(real);
         z.sigma.truncate(real);
         z.tau.truncate(real);
-        if form == FormKind::TotalLagrangian {
+        if form.is_total_lagrangian() {
             // the law's stress at each particle's F, for the snapshot (the form has no σ state)
             z.sigma = tensors;
         }

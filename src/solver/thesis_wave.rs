@@ -115,6 +115,7 @@ pub fn run_thesis_wave(cfg: &ThesisWave) -> Result<ThesisWaveReport> {
         diffusion: None,
         alpha_s: 0.0,
         ls_length: dx,
+        hourglass: None,
     };
     let x_ref: Vec<[f64; 1]> = x.iter().map(|&xi| [xi]).collect();
     let mut model = Model::new(p, x_ref, vec![dx; n], rho_a, 0.0, None)?;

@@ -4,6 +4,7 @@
 //! |---|---|
 //! | `material` | C̄ = C + σ ≤ 0: the continuum itself is unstable (\[B00\] eq 33) |
 //! | `tensile` / `compressive` | growth (ω² < 0) with C̄ > 0 that disappears when the pre-stress is set to zero |
+//! | `hourglass` | (D ≥ 2, elastic) the `tensile` / `compressive` growth on modes that are zero-energy at zero stress: the growing mode's polarisation has ω² ≈ 0 under the unstressed operator |
 //! | `rank-deficiency` | ω = 0 at κ ≠ 0 (zero-energy / hourglass mode, secular growth, growth rate 0); never a growing branch |
 //! | `indefinite` | growth that persists at zero stress: the discrete operator itself (stiffness, or the stabilised mass of least squares) is indefinite; where ω² changes sign through ±∞ between two grid points the mass symbol vanished there, reported as `pole_at` |
 //! | `time-step` | semi-discrete stable but the leapfrog amplification |λ| > 1 |
@@ -26,6 +27,10 @@ pub const ZERO_OMEGA2_TOL: f64 = 1e-10;
 pub enum Kind {
     /// Zero-energy (hourglass) mode: ω = 0 at κ ≠ 0 (no exponential growth).
     RankDeficiency,
+    /// Growth, under a pre-stress, of modes whose stiffness vanishes at zero stress: a
+    /// zero-energy (hourglass) mode that the stress drives (it grows at any stress of that
+    /// sign, however small).
+    Hourglass,
     /// Growth without stress: the discrete operator itself is indefinite.
     Indefinite,
     /// Stress–kernel interaction in tension.

@@ -217,6 +217,7 @@ fn a_uniform_stress_is_an_equilibrium_of_the_traction_load() {
             diffusion: None,
             alpha_s: 0.0,
             ls_length: dx,
+            hourglass: None,
         };
         let model = Model::new(p, x_ref.clone(), vec![dx; n], 1000.0, 0.0, None).unwrap();
         let b = model.unit_stress_force(0).unwrap();

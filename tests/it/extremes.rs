@@ -156,6 +156,7 @@ fn two_d_results_are_scale_free() {
             diffusion: None,
             alpha_s: 0.0,
             ls_length: 1.0,
+            hourglass: None,
         };
         Bloch::<2>::new(p, &lat, dx, 0.02).unwrap()
     };

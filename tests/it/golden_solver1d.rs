@@ -212,6 +212,7 @@ fn run_case(c: &Case) -> Value {
         c_partition: 0.5,
         alpha_s: c.alpha_s,
         ls_length: 1.0,
+        hourglass: None,
         art_stress: None,
         av: c.av.then_some(ArtificialViscosity {
             alpha: 1.0,

@@ -31,6 +31,7 @@ mod extremes;
 mod fast_paths;
 mod papers;
 mod properties;
+mod solid_stabilisation;
 mod timestep_bounds;
 mod vonneumann;
 mod vonneumann2d;

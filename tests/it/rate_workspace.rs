@@ -38,6 +38,7 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material, kern: &str) ->
         diffusion: None,
         alpha_s: 0.0,
         ls_length: 1.0,
+        hourglass: None,
     }
 }
 

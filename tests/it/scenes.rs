@@ -199,7 +199,8 @@ fn vtk_scalars(vtk: &str, name: &str) -> Option<Vec<f64>> {
 fn vtk_stress_is_the_reported_stress_for_every_form() {
     use sphstab::forms::FormKind;
     let (g, modulus, layers) = (0.001, 2.0, 3);
-    for (form, name) in FormKind::ALL {
+    // the bar is 1D: every form but the solid-shear ones of D ≥ 2
+    for (form, name) in FormKind::ALL.into_iter().filter(|f| !f.0.needs_2d()) {
         let dir = std::env::temp_dir().join(format!("sphstab-vtk-{}-{name}", std::process::id()));
         let r = crate::common::json(&[
             "simulate",

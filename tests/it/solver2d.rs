@@ -108,6 +108,7 @@ fn params(form: FormKind, shape: ShapeFamily, material: Material) -> ModelParams
         diffusion: None,
         alpha_s: 0.0,
         ls_length: 1.0,
+        hourglass: None,
     }
 }
 

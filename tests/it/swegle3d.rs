@@ -146,6 +146,7 @@ fn periodic_box_at_rest_stays_at_rest() {
                         diffusion: None,
                         alpha_s: 0.0,
                         ls_length: 1.0,
+                        hourglass: None,
                     };
                     let (rho, s0) = base_state(&material, 1.0, sigma_bar).unwrap();
                     let vol = vec![lattice.area(); x.len()];

@@ -51,6 +51,7 @@ fn params(
         diffusion: None,
         alpha_s: 0.0,
         ls_length: 1.0,
+        hourglass: None,
     }
 }
 

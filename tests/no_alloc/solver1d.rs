@@ -41,6 +41,7 @@ fn chain(form: FormKind, n: usize, periodic: bool, av: bool, integ: Integrator) 
         c_partition: 0.5,
         alpha_s: 0.1,
         ls_length: 1.0,
+        hourglass: None,
         art_stress: None,
         av: av.then_some(ArtificialViscosity {
             alpha: 1.0,

@@ -59,6 +59,7 @@ fn block(n: usize, form: FormKind, material: Material, av: bool, art: bool) -> R
         }),
         alpha_s: 0.0,
         ls_length: 1.0,
+        hourglass: None,
     };
     let mut x = Vec::new();
     for i in 0..n {

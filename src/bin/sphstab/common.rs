@@ -8,7 +8,8 @@ use sphstab::budget::Budget;
 #[derive(clap::Args, Debug, Clone)]
 pub struct Config {
     /// SPH form: classical, nonlocal, local, lnl, cll, total-lagrangian, eulerian-stress-points,
-    /// lagrangian-stress-points, least-squares, eulerian-nodal.
+    /// lagrangian-stress-points, least-squares, eulerian-nodal; 2D/3D solids also enog
+    /// (SPH-ENOG) and tl-enog (total-Lagrangian with a pairwise shear term).
     #[arg(long, default_value = "classical")]
     pub form: String,
     /// Kernel: m4 m5 m6 wendland-c2 wendland-c4 wendland-c6 gaussian lucy efg-cubic efg-quartic mollifier.
@@ -29,6 +30,11 @@ pub struct Config {
     /// Pre-stress σ̄ = σ/C, positive in tension, in [-10, 10].
     #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
     pub stress: f64,
+    /// 2D/3D: the pre-stress's shape, σ = σ̄ C Ŝ: isotropic (default, Ŝ = I), uniaxial
+    /// (Ŝ = e_x ⊗ e_x) or shear (Ŝ = e_x ⊗ e_y + e_y ⊗ e_x); uniaxial and shear need the
+    /// elastic material.
+    #[arg(long)]
+    pub prestress: Option<String>,
     /// Partition coefficient c ∈ [0, 1] of lnl/cll (c = 1: fully local; default 0.5).
     #[arg(long, allow_hyphen_values = true)]
     pub c: Option<f64>,
@@ -36,6 +42,11 @@ pub struct Config {
     /// in [0, 100] (default 0).
     #[arg(long = "alpha-s", allow_hyphen_values = true)]
     pub alpha_s: Option<f64>,
+    /// Hourglass-control coefficient, in [0, 1000]: ζ of the enog shear acceleration (default
+    /// 0.7D + 2.1), κ of the tl-enog pairwise shear (default 1.07), or Ganzenmüller's α with
+    /// total-lagrangian (default: none, no hourglass control; 2D/3D).
+    #[arg(long, allow_hyphen_values = true)]
+    pub hourglass: Option<f64>,
     /// Time step Δt in Δx/c, in (0, 1e6], for the fully discrete check with --integrator
     /// (default kdk); the CFL number is c Δt/h = dt/(h/Δx).
     #[arg(long, allow_hyphen_values = true)]
@@ -97,8 +108,10 @@ impl Config {
             support: self.support,
             shape: self.shape.clone(),
             stress: Some(self.stress),
+            prestress: self.prestress.clone(),
             c: self.c,
             alpha_s: self.alpha_s,
+            hourglass: self.hourglass,
             dt: self.dt,
             av_alpha: self.av_alpha,
             av_beta: self.av_beta,

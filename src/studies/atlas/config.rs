@@ -31,7 +31,12 @@ pub struct AtlasConfig {
 impl Default for AtlasConfig {
     fn default() -> Self {
         Self {
-            forms: FormKind::ALL.iter().map(|f| f.1.to_string()).collect(),
+            // the 1D atlas: every form a bar has (not the solid-shear forms of D ≥ 2)
+            forms: FormKind::ALL
+                .iter()
+                .filter(|f| !f.0.needs_2d())
+                .map(|f| f.1.to_string())
+                .collect(),
             kernels: kernel::all().iter().map(|k| k.name().to_string()).collect(),
             h_points: 64,
             stress_points: 64,

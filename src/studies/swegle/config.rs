@@ -251,6 +251,7 @@ impl SwegleConfig {
                 }),
             alpha_s: 0.0,
             ls_length: self.dx,
+            hourglass: None,
         }
     }
 

@@ -141,7 +141,7 @@ impl ThroughputConfig {
             return Err(Error::Incompatible(
                 field("form")
                     + format!(
-                        " {} is not available in {}D (classical, nonlocal, local, lnl, cll, total-lagrangian)",
+                        " {} is not available in {}D (classical, nonlocal, local, lnl, cll, total-lagrangian, enog, tl-enog)",
                         self.form.name(),
                         self.dim
                     ),
@@ -221,6 +221,7 @@ impl ThroughputConfig {
             diffusion: None,
             alpha_s: 0.0,
             ls_length: 1.0,
+            hourglass: None,
         })
     }
 }

@@ -104,7 +104,8 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
         FormKind::ALL
             .iter()
             .map(|f| f.0)
-            .filter(|f| cfg.dim == 1 || f.in_every_dimension())
+            // the forms of the papers (the solid stabilisations of issue 30 are opt-in)
+            .filter(|f| !f.needs_2d() && (cfg.dim == 1 || f.in_every_dimension()))
             .collect()
     } else {
         let mut v = Vec::new();
@@ -115,7 +116,7 @@ pub fn grid(cfg: &TradeoffConfig) -> Result<Vec<(FormKind, &'static dyn Kernel, 
                     field("forms")
                         + format!(": {name} is not available with ")
                         + field("dim")
-                        + " 2 (classical, nonlocal, local, lnl, cll, total-lagrangian)",
+                        + " 2 (classical, nonlocal, local, lnl, cll, total-lagrangian, enog, tl-enog)",
                 ));
             }
             v.push(f);

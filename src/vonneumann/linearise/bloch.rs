@@ -17,7 +17,9 @@
 use super::columns::{Columns, LANES, Linearisable, SparseJacobian, eigen};
 use crate::budget::Budget;
 use crate::error::{Error, Result, fields};
-use crate::forms::{Comp, FieldKind, FormKind, Material, Model, ModelParams, RateWorkspace, State};
+use crate::forms::{
+    Comp, FieldKind, FormKind, Material, Model, ModelParams, PrestressKind, RateWorkspace, State,
+};
 use crate::integrator::Integrator;
 use crate::lattice::{Lattice, grid_index};
 use crate::scalar::{Dual, DualN, Lanes};
@@ -76,7 +78,7 @@ fn patch<const D: usize>(
     let cells = if D == 2 {
         2 * ((2.0 * r / (dx * lat.plane_spacing())).ceil() as usize + 2) + 1
     } else {
-        let reach = if p.form == FormKind::TotalLagrangian {
+        let reach = if p.form.is_total_lagrangian() {
             2.0 * r
         } else {
             r
@@ -206,6 +208,20 @@ impl<const D: usize> Bloch<D> {
         sigma_bar: f64,
         budget: &Budget,
     ) -> Result<Self> {
+        Self::with_prestress(p, lat, dx, sigma_bar, PrestressKind::Isotropic, budget)
+    }
+
+    /// [`Bloch::with_budget`] about the pre-stress σ̄ C Ŝ of shape `kind` ([`PrestressKind`]):
+    /// isotropic as there; uniaxial and shear (elastic materials) hold every particle's stress
+    /// field, and the total-Lagrangian law, at that tensor.
+    pub fn with_prestress(
+        p: ModelParams,
+        lat: &Lattice<D>,
+        dx: f64,
+        sigma_bar: f64,
+        kind: PrestressKind,
+        budget: &Budget,
+    ) -> Result<Self> {
         if D == 3
             && !matches!(
                 lat.kind,
@@ -216,8 +232,28 @@ impl<const D: usize> Bloch<D> {
         {
             return Err(Error::Incompatible("3D lattices: sc, bcc, fcc".into()));
         }
-        let (rho, s0) = base_state(&p.material, p.rho0, sigma_bar)?;
-        let (model, offs) = patch(p, lat, dx, rho, s0, budget)?;
+        let (mut rho, s0) = base_state(&p.material, p.rho0, sigma_bar)?;
+        if p.form == FormKind::Enog
+            && let Material::Elastic { lambda, shear, .. } = p.material
+        {
+            // SPH-ENOG's stress is its pressure: the mean of the pre-stress, from the density
+            // (its deviatoric part has no field to live in)
+            let unit = kind.unit::<D>()?;
+            let mean = s0 * (0..D).map(|a| unit[a][a]).sum::<f64>() / D as f64;
+            rho = p.rho0 * (1.0 - mean / (lambda + 2.0 * shear / 3.0));
+            if rho <= 0.0 {
+                return Err(Error::OutOfRange {
+                    field: "stress",
+                    value: sigma_bar,
+                    range: "enog: the mean pre-stress must stay below the bulk modulus K (ρ = ρ0(1 − σ_mean/K) > 0)".into(),
+                });
+            }
+        }
+        let (mut model, offs) = patch(p, lat, dx, rho, s0, budget)?;
+        if kind != PrestressKind::Isotropic {
+            let unit = kind.unit::<D>()?;
+            model.set_prestress(unit.map(|row| row.map(|u| u * s0)))?;
+        }
         let comps = p.form.comps(D, &p.material);
         let count = offs.len();
         // LANES tangents per rate evaluation when that fits the memory budget (the stencils

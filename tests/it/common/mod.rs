@@ -30,6 +30,7 @@ pub fn params(form: FormKind, kern: &str, shape: ShapeFamily, h: f64) -> ModelPa
         diffusion: None,
         alpha_s: 0.0,
         ls_length: 1.0,
+        hourglass: None,
     }
 }
 
