@@ -38,7 +38,8 @@ __all__ = [
 # (keyword, what it is: unit, range, default), shared by the questions of the analysis
 _QUESTION = (
     ("form", "SPH form: classical (default), nonlocal, local, lnl, cll, total-lagrangian, "
-     "eulerian-stress-points, lagrangian-stress-points, least-squares, eulerian-nodal."),
+     "eulerian-stress-points, lagrangian-stress-points, least-squares, eulerian-nodal; "
+     "2D/3D solids also enog (SPH-ENOG) and tl-enog."),
     ("kernel", "kernel: m4 (default), m5, m6, wendland-c2, wendland-c4, wendland-c6, gaussian, "
      "lucy, efg-cubic, efg-quartic, mollifier (see kernels())."),
     ("h", "smoothing length h/Δx in the kernel's own convention, in [0.05, 50] with support "
@@ -47,6 +48,11 @@ _QUESTION = (
     ("shape", "shape family: sph, shepard, mls, corrected (default: the form's)."),
     ("stress", "pre-stress σ̄ = σ/C, dimensionless, positive in tension, in [-10, 10] "
      "(default 0.01)."),
+    ("prestress", "2D/3D shape of the pre-stress: isotropic (default), uniaxial or shear "
+     "(the last two need the elastic material)."),
+    ("hourglass", "hourglass-control coefficient, in [0, 1000]: ζ of enog (default "
+     "0.7D + 2.1), κ of tl-enog (default 1.07), Ganzenmüller's α of total-lagrangian "
+     "(default none)."),
     ("c", "partition coefficient c of lnl/cll, in [0, 1] (default 0.5)."),
     ("alpha_s", "least-squares stabilisation α_s (β = α_s Δx²), in [0, 100] (default 0)."),
     ("dt", "time step Δt in Δx/c, in (0, 1e6]: the fully discrete check with the integrator "

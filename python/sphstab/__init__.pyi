@@ -10,6 +10,7 @@ import numpy.typing as npt
 Form = Literal[
     "classical", "nonlocal", "local", "lnl", "cll", "total-lagrangian",
     "eulerian-stress-points", "lagrangian-stress-points", "least-squares", "eulerian-nodal",
+    "enog", "tl-enog",
 ]
 Kernel = Literal[
     "m4", "m5", "m6", "wendland-c2", "wendland-c4", "wendland-c6", "gaussian", "lucy",
@@ -33,6 +34,8 @@ def query(
     support: Optional[float] = None,  # R/Δx > 1, instead of h
     shape: Optional[Shape] = None,
     stress: Optional[float] = None,  # σ̄ = σ/C in [-10, 10], + tension, default 0.01
+    prestress: Optional[Literal["isotropic", "uniaxial", "shear"]] = None,  # 2D/3D
+    hourglass: Optional[float] = None,  # enog ζ, tl-enog κ, total-lagrangian α; [0, 1000]
     c: Optional[float] = None,  # lnl/cll, [0, 1], default 0.5
     alpha_s: Optional[float] = None,  # least-squares, [0, 100]
     dt: Optional[float] = None,  # Δt in Δx/c, (0, 1e6]
@@ -65,6 +68,8 @@ def dispersion(
     support: Optional[float] = None,
     shape: Optional[Shape] = None,
     stress: Optional[float] = None,
+    prestress: Optional[Literal["isotropic", "uniaxial", "shear"]] = None,
+    hourglass: Optional[float] = None,
     c: Optional[float] = None,
     alpha_s: Optional[float] = None,
     dt: Optional[float] = None,  # refused: ω² is semi-discrete
@@ -94,6 +99,8 @@ def timestep(
     support: Optional[float] = None,
     shape: Optional[Shape] = None,
     stress: Optional[float] = None,
+    prestress: Optional[Literal["isotropic", "uniaxial", "shear"]] = None,
+    hourglass: Optional[float] = None,
     c: Optional[float] = None,
     alpha_s: Optional[float] = None,
     dt: Optional[float] = None,
@@ -128,6 +135,8 @@ def stability_map(
     support: Optional[float] = None,
     shape: Optional[Shape] = None,
     stress: Optional[float] = None,
+    prestress: Optional[Literal["isotropic", "uniaxial", "shear"]] = None,
+    hourglass: Optional[float] = None,
     c: Optional[float] = None,
     alpha_s: Optional[float] = None,
     av_alpha: Optional[float] = None,

@@ -53,6 +53,26 @@ def without_runtime(doc):
     return doc
 
 
+# ---------- query: the solid forms and the pre-stress shapes
+
+def test_query_solid_forms_equal_the_cli_json():
+    for kw, flags in [
+        (dict(dim=2, form="classical", prestress="uniaxial", stress=0.05, grid=16),
+         ["--dim", "2", "--form", "classical", "--prestress", "uniaxial", "--stress", "0.05",
+          "--grid", "16"]),
+        (dict(dim=2, form="enog", prestress="shear", stress=0.1, hourglass=3.0, grid=16),
+         ["--dim", "2", "--form", "enog", "--prestress", "shear", "--stress", "0.1",
+          "--hourglass", "3", "--grid", "16"]),
+        (dict(dim=3, form="tl-enog", stress=0.0, grid=4),
+         ["--dim", "3", "--form", "tl-enog", "--stress", "0", "--grid", "4"]),
+    ]:
+        r = sphstab.query(**kw)
+        assert without_runtime(r) == without_runtime(cli("query", "--json", *flags))
+    kinds = [i["kind"] for i in sphstab.query(dim=2, prestress="uniaxial", stress=0.05,
+                                              grid=16)["instabilities"]]
+    assert kinds == ["hourglass", "tensile"]
+
+
 # ---------- timestep
 
 def test_timestep_equals_the_cli_json():

@@ -530,9 +530,9 @@ impl<const D: usize> Query<D> {
     /// Whether the continuum itself is unstable at the question's pre-stress (the `material`
     /// kind): a branch with ω² ≤ 0 (or, for a fluid, < 0 on its transverse branches), or a
     /// complex ω² (flutter), in some direction. Isotropic: from [`Query::continuum_moduli`];
-    /// uniaxial and shear: over 360 directions in the plane of the first two axes (2D) or
-    /// 400 on the sphere (3D, a Fibonacci set); the acoustic tensor is homogeneous of degree
-    /// 2 in k, so directions suffice.
+    /// uniaxial and shear: over 360 directions in the plane of the first two axes (2D) or, in
+    /// 3D, the axes, the face and body diagonals and 400 more on the sphere (a Fibonacci set);
+    /// the acoustic tensor is homogeneous of degree 2 in k, so directions suffice.
     pub fn material_unstable(&self) -> Result<bool> {
         if self.prestress == PrestressKind::Isotropic || D == 1 {
             let (cp, cs) = self.continuum_moduli()?;
@@ -548,15 +548,28 @@ impl<const D: usize> Query<D> {
         } else {
             let n = 400;
             let golden = PI * (3.0 - 5f64.sqrt());
-            (0..n)
-                .map(|i| {
-                    let z = 1.0 - (i as f64 + 0.5) / n as f64 * 2.0;
-                    let r = (1.0 - z * z).sqrt();
-                    let t = golden * i as f64;
-                    let v = [r * t.cos(), r * t.sin(), z];
-                    std::array::from_fn(|a| v[a])
-                })
-                .collect()
+            // the axes, face and body diagonals (where the states' extremes lie), then a
+            // Fibonacci set
+            let mut dirs: Vec<[f64; D]> = Vec::new();
+            for a in -1i32..=1 {
+                for b in -1i32..=1 {
+                    for c in 0i32..=1 {
+                        let v = [a as f64, b as f64, c as f64];
+                        let len = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                        if len > 0.0 {
+                            dirs.push(std::array::from_fn(|i| v[i] / len));
+                        }
+                    }
+                }
+            }
+            dirs.extend((0..n).map(|i| {
+                let z = 1.0 - (i as f64 + 0.5) / n as f64 * 2.0;
+                let r = (1.0 - z * z).sqrt();
+                let t = golden * i as f64;
+                let v = [r * t.cos(), r * t.sin(), z];
+                std::array::from_fn(|a| v[a])
+            }));
+            dirs
         };
         for d in dirs {
             for w in self.continuum_omega2(d)? {

@@ -11,10 +11,10 @@ use crate::error::{Error, Result, Text, check_range, field, fields};
 use crate::forms::{DELTA_RANGE, DiffusionForm, FormKind, ObjectiveRate, PrestressKind};
 use crate::kernel;
 use crate::shape::ShapeFamily;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The parameters of a question, by name; `None` takes the default.
-#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct QuerySpec {
     /// SPH form (default `classical`).

@@ -8,6 +8,7 @@ pub mod box_operator;
 pub mod config;
 pub mod finite_body;
 pub mod galerkin;
+pub mod hourglass;
 pub mod interpolation;
 pub mod kernel_guide;
 pub mod pairing;

@@ -7,6 +7,7 @@
 
 use crate::error::{Error, Result};
 use crate::studies::art_stress::ArtStressReport;
+use crate::studies::hourglass::HourglassReport;
 use crate::studies::pairing::PairingReport;
 use crate::studies::tradeoff::TradeoffReport;
 use serde::Deserialize;
@@ -20,10 +21,12 @@ pub enum Stored {
     Pairing(Box<PairingReport>),
     /// `sphstab art-stress`.
     ArtStress(Box<ArtStressReport>),
+    /// `sphstab hourglass`.
+    Hourglass(Box<HourglassReport>),
 }
 
 /// The studies whose data can be stored, by command name.
-pub const STUDIES: [&str; 3] = ["tradeoff", "pairing", "art-stress"];
+pub const STUDIES: [&str; 4] = ["tradeoff", "pairing", "art-stress", "hourglass"];
 
 impl Stored {
     /// Reads the JSON `text` of the file `file` as the report of the one study it is; an error
@@ -41,6 +44,9 @@ impl Stored {
             ArtStressReport::deserialize(&value)
                 .ok()
                 .map(|r| Stored::ArtStress(Box::new(r))),
+            HourglassReport::deserialize(&value)
+                .ok()
+                .map(|r| Stored::Hourglass(Box::new(r))),
         ]
         .into_iter()
         .flatten()
@@ -69,6 +75,7 @@ impl Stored {
             Stored::Tradeoff(_) => STUDIES[0],
             Stored::Pairing(_) => STUDIES[1],
             Stored::ArtStress(_) => STUDIES[2],
+            Stored::Hourglass(_) => STUDIES[3],
         }
     }
 }

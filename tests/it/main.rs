@@ -46,6 +46,7 @@ mod stable_dt;
 // the reference solver against the engine
 mod boundary_loads;
 mod galerkin;
+mod hourglass;
 mod pair_reuse;
 mod plasticity;
 mod rate_workspace;

@@ -112,6 +112,7 @@ impl Figure {
             Source::Study(Stored::Tradeoff(r)) => crate::tradeoff::draw(r),
             Source::Study(Stored::Pairing(r)) => sphstab::studies::pairing::figure_svg(r),
             Source::Study(Stored::ArtStress(r)) => sphstab::studies::art_stress::figure_svg(r),
+            Source::Study(Stored::Hourglass(r)) => sphstab::studies::hourglass::figure_svg(r),
         };
         svg.with_context(|| self.file.display().to_string())
     }

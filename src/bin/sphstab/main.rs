@@ -10,6 +10,7 @@ mod figures;
 mod files;
 mod flags;
 mod galerkin;
+mod hourglass;
 mod interpolate;
 mod kernels;
 mod map;
@@ -104,6 +105,10 @@ pub(crate) enum Cmd {
     /// Artificial stress against the Swegle growth: engine (infinite lattice, box) and Swegle
     /// runs over ε, for several h/Δx and tensions.
     ArtStress(art_stress::Args),
+    /// Tensile or hourglass? Every solid remedy (artificial stress, Bonet–Lok, SPH-ENOG,
+    /// Ganzenmüller, tl-enog) over pre-stress states, stresses and G/K: onsets, hourglass and
+    /// tensile growth, stability maps, wave-speed costs.
+    Hourglass(hourglass::Args),
 }
 
 /// A reader that closes the pipe early (`sphstab … | head`) makes `println!` panic with a broken
@@ -186,6 +191,7 @@ fn main() {
         Cmd::Throughput(a) => throughput::run(a, b),
         Cmd::Pairing(a) => pairing::run(a, b),
         Cmd::ArtStress(a) => art_stress::run(a, b),
+        Cmd::Hourglass(a) => hourglass::run(a, b),
     };
     if let Err(e) = res {
         eprintln!("error: {}", flags::message(&e));

@@ -168,6 +168,17 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
                     p / std::f64::consts::PI
                 ))
                 .unwrap_or_default()
+                + &match (i.unstressed_omega2, i.onset_stress) {
+                    _ if i.kind == sphstab::vonneumann::classify::Kind::Hourglass => {
+                        "; zero-energy at rest: grows at any σ̄ of this sign".to_string()
+                    }
+                    (Some(w), Some(o)) => format!(
+                        "; at rest ω²Δx²/c² = {:.3e}, grows from σ̄ = {:.3e}",
+                        w.max(0.0),
+                        o
+                    ),
+                    _ => String::new(),
+                }
         );
     }
     match (r.critical_dt, r.critical_cfl) {

@@ -1,0 +1,121 @@
+//! The tensile-or-hourglass study (`sphstab hourglass`): its note
+//! (analysis/tensile_or_hourglass.md) is regenerated from the published config and must match
+//! the committed file (`SPHSTAB_WRITE_NOTE=1` rewrites it); the report's claims are checked
+//! against properties that hold independently of the study's code:
+//! - at a zero-energy wave vector the classical form's Bloch matrix is the pre-stress term
+//!   alone, linear in σ̄, so its hourglass growth is exactly ∝ √σ̄;
+//! - an onset found by bisection separates a stable and a growing question within 1e-6 of it;
+//! - a remedy reported without zero-energy modes has none in its own `query` at rest.
+
+use sphstab::budget::Budget;
+use sphstab::studies::hourglass::{HourglassReport, StressState, note_markdown, parse_config, run};
+use std::sync::OnceLock;
+
+const CONFIG: &str = "analysis/tensile_or_hourglass.json";
+const NOTE: &str = "analysis/tensile_or_hourglass.md";
+
+fn root() -> std::path::PathBuf {
+    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The published study, computed once.
+fn report() -> &'static HourglassReport {
+    static R: OnceLock<HourglassReport> = OnceLock::new();
+    R.get_or_init(|| {
+        let text = std::fs::read_to_string(root().join(CONFIG)).unwrap();
+        let cfg = parse_config(CONFIG, &text).unwrap();
+        run(&cfg, ()).unwrap()
+    })
+}
+
+#[test]
+fn note_is_the_studys_report() {
+    let note = note_markdown(report());
+    let path = root().join(NOTE);
+    if std::env::var_os("SPHSTAB_WRITE_NOTE").is_some() {
+        std::fs::write(&path, &note).unwrap();
+    }
+    let committed = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        committed == note,
+        "{NOTE} differs from the study's report: rerun with SPHSTAB_WRITE_NOTE=1 and review the diff"
+    );
+}
+
+#[test]
+fn classical_hourglass_growth_is_the_square_root_of_the_stress() {
+    let r = report();
+    let classical = &r.remedies[0];
+    assert_eq!(classical.form, "classical");
+    for st in &classical.states {
+        if !matches!(
+            st.state,
+            StressState::IsotropicTension | StressState::UniaxialTension
+        ) {
+            continue;
+        }
+        assert!(classical.zero_energy_modes && st.onset_stress == Some(0.0));
+        let a: Vec<f64> = st
+            .curve
+            .iter()
+            .map(|p| p.hourglass * p.hourglass / p.stress)
+            .collect();
+        for (p, ai) in st.curve.iter().zip(&a) {
+            assert!(
+                (ai / a[0] - 1.0).abs() < 1e-9,
+                "{}: γ²/σ̄ {ai} at {} vs {} at the first stress",
+                st.state.name(),
+                p.stress,
+                a[0]
+            );
+        }
+    }
+}
+
+#[test]
+fn onsets_separate_stable_from_growing_and_zero_energy_flags_hold() {
+    let r = report();
+    let cfg = &r.config;
+    let mut checked = 0;
+    for (rem, remedy) in r.remedies.iter().zip(&cfg.remedies) {
+        let spec = cfg.spec(
+            remedy,
+            0.0,
+            sphstab::forms::PrestressKind::Isotropic,
+            cfg.reference_poisson,
+        );
+        let q = spec.query::<2>(&Budget::default()).unwrap();
+        let at_rest = sphstab::analysis::query(&q).unwrap();
+        assert_eq!(
+            at_rest.has_zero_energy_modes, rem.zero_energy_modes,
+            "{}",
+            rem.label
+        );
+        for st in &rem.states {
+            let Some(o) = st.onset_stress.filter(|&o| o > 0.0) else {
+                continue;
+            };
+            let (kind, sign) = st.state.prestress();
+            let grows = |s: f64| {
+                let spec = cfg.spec(remedy, sign * s, kind, cfg.reference_poisson);
+                let rep = sphstab::analysis::query(&spec.query::<2>(&Budget::default()).unwrap())
+                    .unwrap();
+                rep.max_growth_rate > sphstab::vonneumann::classify::GROWTH_TOL
+            };
+            assert!(
+                !grows(o * (1.0 - 1e-6)),
+                "{} {}: below {o}",
+                rem.label,
+                st.state.name()
+            );
+            assert!(
+                grows(o * (1.0 + 1e-6)),
+                "{} {}: above {o}",
+                rem.label,
+                st.state.name()
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 0, "no finite onset at the reference ν to check");
+}
