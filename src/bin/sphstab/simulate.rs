@@ -70,6 +70,9 @@ pub fn run(a: Args, budget: &Budget) -> Result<()> {
         )?;
         return crate::swegle::run(parsed, budget);
     }
+    if let Some(e) = experiment(&a)? {
+        return run_experiment(e, &a, budget);
+    }
     if !a.density_ratio.is_empty() && a.scene != "thesis-wave" {
         return Err(crate::query::not_in(
             "--density-ratio",
@@ -316,4 +319,59 @@ fn read_scene(path: &str) -> Result<String> {
         anyhow::bail!("scene {path}: larger than 1 MiB, not a scene file");
     }
     String::from_utf8(buf).map_err(|_| anyhow::anyhow!("scene {path}: not UTF-8 text"))
+}
+
+/// The scene file as an experiment of the tensile-or-hourglass study (a JSON object with an
+/// `experiment` field), or None for any other scene.
+fn experiment(a: &Args) -> Result<Option<sphstab::studies::hourglass::Experiment>> {
+    let path = std::path::Path::new(&a.scene);
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read the scene {}", a.scene))?;
+    let is_experiment = serde_json::from_str::<serde_json::Value>(&text)
+        .ok()
+        .is_some_and(|v| v.get("experiment").is_some());
+    if !is_experiment {
+        return Ok(None);
+    }
+    Ok(Some(sphstab::studies::hourglass::parse_experiment(
+        &a.scene, &text,
+    )?))
+}
+
+/// Runs an experiment of the tensile-or-hourglass study (`--form`, `--t-end` in Δx/c and
+/// `--json` apply).
+fn run_experiment(
+    mut e: sphstab::studies::hourglass::Experiment,
+    a: &Args,
+    budget: &Budget,
+) -> Result<()> {
+    if a.integrator.is_some() || a.euler_every.is_some() || a.out.is_some() {
+        return Err(crate::query::not_in(
+            "--integrator/--euler-every/--out",
+            "an experiment (kdk; it reports its growth, no fields)",
+        ));
+    }
+    if let Some(f) = &a.form {
+        e.remedy.query.form = Some(f.clone());
+        e.remedy.label = f.clone();
+    }
+    if let Some(t) = a.t_end {
+        e.t_end = t;
+    }
+    e.budget = *budget;
+    let pb = crate::progress::Bar::new(crate::progress::wanted(a.json));
+    let r = e.run(pb.clone())?;
+    pb.finish();
+    if a.json {
+        println!(
+            "{}",
+            sphstab::units::json(&r, sphstab::units::System::Normalised, true)?
+        );
+    } else {
+        print!("{}", sphstab::studies::hourglass::experiment_text(&r));
+    }
+    Ok(())
 }

@@ -16,11 +16,15 @@
 //! All from the one linearisation of each form's rate function ([`crate::analysis::query`]).
 
 mod config;
+mod experiment;
 mod figure;
 mod report;
 mod run;
 
 pub use config::{HourglassConfig, Remedy, StressState, default_remedies, parse_config};
+pub use experiment::{
+    Experiment, ExperimentKind, ExperimentReport, experiment_text, parse_experiment,
+};
 pub use figure::figure_svg;
 pub use report::{
     Cost, CurvePoint, HourglassReport, RemedyReport, StateReport, note_markdown, onset_text, table,

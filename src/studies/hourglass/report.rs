@@ -1,6 +1,7 @@
 //! The tensile-or-hourglass study's report, its table and the findings it states.
 
 use super::config::{HourglassConfig, StressState};
+use super::experiment::ExperimentReport;
 use crate::display::num;
 use serde::{Deserialize, Serialize};
 
@@ -156,7 +157,7 @@ fn onset_cell(o: Option<f64>, max: f64) -> String {
 /// The study's findings as Markdown (analysis/tensile_or_hourglass.md): every number is the
 /// report's; the sentences are chosen by the numbers (which remedy has zero-energy modes, grows
 /// from zero stress, grows only beyond an onset).
-pub fn note_markdown(r: &HourglassReport) -> String {
+pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) -> String {
     let cfg = &r.config;
     let max = cfg.stress.last().copied().unwrap_or(0.0);
     let g_over_c = |nu: f64| (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu));
@@ -302,7 +303,58 @@ pub fn note_markdown(r: &HourglassReport) -> String {
         }
         s += "\n";
     }
-    // 5. the answer
+    // 5. the time domain
+    if !discs.is_empty() {
+        s += "\n## The disc in the time domain\n\n";
+        s += "The experiment the SPHinXsys group proposes, as `sphstab simulate` runs it: a 2D disc of radius 8Δx \
+              (lattice points), held at a uniform isotropic tension by the boundary load that makes the stressed rest \
+              state an equilibrium of each form, seeded with random velocities; the growth of max |v| fitted over \
+              a window, against the fastest mode of the exact operator of the same particle set (every eigenvalue) \
+              and of the infinite lattice (c/Δx).\n\n";
+        s += "| scene | remedy | σ̄ | measured | predicted, body | measured / body | predicted, infinite lattice | max \\|v\\| at the end (c) |\n|---|---|---|---|---|---|---|---|\n";
+        for (file, e) in discs {
+            s += &format!(
+                "| `{}` | {} | {} | {} | {:.6} | {} | {:.6} | {:.3e} |\n",
+                file,
+                e.remedy,
+                num(e.stress),
+                e.measured_growth_rate
+                    .map_or("none in the window".into(), |m| format!("{m:.6}")),
+                e.predicted_growth_rate_body,
+                e.ratio_body.map_or("—".into(), |x| format!("{x:.4}")),
+                e.predicted_growth_rate_infinite,
+                e.max_velocity_end
+            );
+        }
+        let grow: Vec<f64> = discs.iter().filter_map(|d| d.1.ratio_body).collect();
+        if !grow.is_empty() {
+            let worst = grow.iter().map(|x| (x - 1.0).abs()).fold(0.0, f64::max);
+            let differ: Vec<&str> = discs
+                .iter()
+                .filter(|d| {
+                    let (b, i) = (
+                        d.1.predicted_growth_rate_body,
+                        d.1.predicted_growth_rate_infinite,
+                    );
+                    b > 2.0 * i || i > 2.0 * b
+                })
+                .map(|d| d.1.remedy.as_str())
+                .collect();
+            s += &format!(
+                "\nWhere the body's operator grows, the measured growth is within {:.1}% of it ({} scenes). \
+                 The body's and the infinite lattice's growth differ by more than a factor 2 for {}: \
+                 the disc's free surface changes which modes grow.\n",
+                100.0 * worst,
+                grow.len(),
+                if differ.is_empty() {
+                    "none".to_string()
+                } else {
+                    differ.join(", ")
+                }
+            );
+        }
+    }
+    // 6. the answer
     s += "\n## The answer, from these numbers\n\n";
     for rem in &r.remedies {
         let tension: Vec<&StateReport> = rem
