@@ -34,6 +34,19 @@ pub fn check_output(file: &str, output: Option<&str>) -> Result<()> {
     }
 }
 
+/// Checks that the list held by `field` has `lo` to `hi` values (its length `n`).
+pub fn check_len(field: &'static str, n: usize, lo: usize, hi: usize) -> Result<()> {
+    if (lo..=hi).contains(&n) {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange {
+            field,
+            value: n as f64,
+            range: format!("{lo} to {hi} values").into(),
+        })
+    }
+}
+
 /// Refuses a name given twice in the list held by `field_name` (e.g. `kernels`).
 pub fn no_duplicates(field_name: &'static str, names: &[&str]) -> Result<()> {
     for (i, n) in names.iter().enumerate() {

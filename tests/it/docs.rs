@@ -141,6 +141,9 @@ fn shown_in(shown: &[String], printed: &str) -> Result<(), String> {
         if run.is_empty() {
             continue;
         }
+        if printed.len() < at + run.len() {
+            return Err(run.join("\n"));
+        }
         match (at..=printed.len().saturating_sub(run.len()))
             .find(|&i| (0..run.len()).all(|k| line_matches(run[k], printed[i + k])))
         {

@@ -15,7 +15,6 @@ use sphstab::budget::Budget;
 use sphstab::forms::{FormKind, Material, ModelParams, ObjectiveRate};
 use sphstab::kernel;
 use sphstab::lattice::Lattice;
-use sphstab::shape::KernelParams;
 use sphstab::vonneumann::classify::Kind;
 use sphstab::vonneumann::linearise::Bloch;
 
@@ -24,23 +23,12 @@ fn lame(nu: f64) -> (f64, f64) {
     (nu / (1.0 - nu), (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu)))
 }
 
+/// The 1D bar's parameters of the shared helper, as a 2D elastic solid (ν = 0.3, Jaumann).
 fn params(form: FormKind, kern: &str, h: f64, hourglass: Option<f64>) -> ModelParams {
     ModelParams {
-        form,
-        shape: form.default_shape_in(2),
-        kp: KernelParams {
-            kernel: kernel::by_name(kern).unwrap(),
-            h,
-        },
         material: Material::elastic(1.0, 0.3, ObjectiveRate::Jaumann).unwrap(),
-        rho0: 1.0,
-        c_partition: 0.5,
-        av: None,
-        art_stress: None,
-        diffusion: None,
-        alpha_s: 0.0,
-        ls_length: 1.0,
         hourglass,
+        ..crate::common::params(form, kern, form.default_shape_in(2), h)
     }
 }
 

@@ -100,17 +100,7 @@ impl ArtStressConfig {
             ));
         }
         crate::kernel::by_name(&self.kernel)?;
-        let count = |field: &'static str, n: usize, lo: usize, hi: usize| {
-            if n < lo || n > hi {
-                Err(Error::OutOfRange {
-                    field,
-                    value: n as f64,
-                    range: format!("{lo} to {hi} values").into(),
-                })
-            } else {
-                Ok(())
-            }
-        };
+        let count = crate::studies::config::check_len;
         count("h", self.h.len(), 1, 4)?;
         count("density_ratio", self.density_ratio.len(), 1, 4)?;
         count("eps", self.eps.len(), 1, 200)?;

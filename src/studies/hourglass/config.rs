@@ -192,17 +192,7 @@ impl HourglassConfig {
 
     /// Checks every field; errors name the field.
     pub fn validate(&self) -> Result<()> {
-        let count = |field: &'static str, n: usize, lo: usize, hi: usize| {
-            if n < lo || n > hi {
-                Err(Error::OutOfRange {
-                    field,
-                    value: n as f64,
-                    range: format!("{lo} to {hi} values").into(),
-                })
-            } else {
-                Ok(())
-            }
-        };
+        let count = crate::studies::config::check_len;
         count("remedies", self.remedies.len(), 1, 12)?;
         count("states", self.states.len(), 1, 5)?;
         count("stress", self.stress.len(), 2, 64)?;
