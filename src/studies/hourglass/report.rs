@@ -339,7 +339,12 @@ pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) 
                     b > 2.0 * i || i > 2.0 * b
                 })
                 .map(|d| d.1.remedy.as_str())
-                .collect();
+                .fold(Vec::new(), |mut v, r| {
+                    if !v.contains(&r) {
+                        v.push(r);
+                    }
+                    v
+                });
             s += &format!(
                 "\nWhere the body's operator grows, the measured growth is within {:.1}% of it ({} scenes). \
                  The body's and the infinite lattice's growth differ by more than a factor 2 for {}: \
@@ -352,6 +357,24 @@ pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) 
                     differ.join(", ")
                 }
             );
+            let at_rest: Vec<String> = discs
+                .iter()
+                .filter(|d| d.1.stress == 0.0 && d.1.predicted_growth_rate_body > 0.0)
+                .map(|d| {
+                    format!(
+                        "{} ({:.6} c/Δx)",
+                        d.1.remedy, d.1.predicted_growth_rate_body
+                    )
+                })
+                .collect();
+            if !at_rest.is_empty() {
+                s += &format!(
+                    "\nUnstressed, the disc still grows for {}: no stress drives that growth, the finite \
+                     body's operator is indefinite at its free surface (the lattice of the same form is stable); \
+                     it is neither a tensile nor an hourglass instability.\n",
+                    at_rest.join(", ")
+                );
+            }
         }
     }
     // 6. the answer
@@ -415,6 +438,19 @@ pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) 
             }
         };
         s += &line;
+        let rest: Vec<String> = discs
+            .iter()
+            .filter(|d| {
+                d.1.remedy == rem.label && d.1.stress == 0.0 && d.1.predicted_growth_rate_body > 0.0
+            })
+            .map(|d| format!("{:.6} c/Δx", d.1.predicted_growth_rate_body))
+            .collect();
+        if !rest.is_empty() {
+            s += &format!(
+                " Its unstressed disc grows ({}): an indefinite operator at the free surface.",
+                rest.join(", ")
+            );
+        }
         s += "\n";
     }
     s
