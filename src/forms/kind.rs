@@ -100,6 +100,14 @@ impl FormKind {
 
     /// Checks that `shape` is meaningful for this form.
     pub fn check_shape(self, shape: ShapeFamily) -> Result<()> {
+        if self == FormKind::Enog && shape != ShapeFamily::Sph {
+            return Err(Error::Incompatible(
+                field("shape")
+                    + format!(" {} is not allowed with ", shape.name())
+                    + field("form")
+                    + " enog: its pressure and shear terms are pair sums of the kernel gradient (allowed: sph)",
+            ));
+        }
         if self == FormKind::Local && !shape.linear_consistent_gradient() {
             return Err(Error::Incompatible(
                 field("shape")
