@@ -31,8 +31,7 @@ pub struct StateReport {
     /// mode grows at the smallest grid stress (it grows at any stress of that sign), else
     /// refined by bisection in the grid interval where growth appears (the smallest grid stress
     /// itself when a mode with stiffness grows there already: the onset is at most that); null:
-    /// stable up to the
-    /// largest grid stress (or the material limit).
+    /// stable up to the largest grid stress (or the material limit).
     pub onset_stress: Option<f64>,
     /// The smallest |σ̄| at which the continuum is unstable (null: not on the grid).
     pub material_limit: Option<f64>,
