@@ -100,6 +100,7 @@ const TABLE: &[(&str, Unit)] = &[
     ("damping_rate", Fixed(RATE)),
     ("measured_growth_rate", Fixed(RATE)),
     ("predicted_growth_rate_box", Fixed(RATE)),
+    ("predicted_growth_rate_body", Fixed(RATE)),
     ("predicted_growth_rate_infinite", Fixed(RATE)),
     ("pairing_growth_rate", Fixed(RATE)),
     ("transverse_growth_rate", Fixed(RATE)),
@@ -205,6 +206,14 @@ const TABLE: &[(&str, Unit)] = &[
     ("exact_velocity", Run(Dim::Speed)),
     ("exact_stress", Run(Dim::Stress)),
     ("max_velocity_end", Run(Dim::Speed)),
+    // the oscillation of an experiment of `hourglass`
+    ("mode_velocity", Run(Dim::Speed)),
+    ("period", Run(Dim::Time)),
+    ("period_theory", Run(Dim::Time)),
+    ("period_body", Run(Dim::Time)),
+    ("departed_at", Run(Dim::Time)),
+    ("stopped_at", Run(Dim::Time)),
+    ("first_peak_displacement", Run(Dim::Length)),
     // the physical scales of a run with physical units
     ("dt_physical", Physical(Dim::Time)),
     ("t_end_physical", Physical(Dim::Time)),

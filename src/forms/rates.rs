@@ -872,6 +872,7 @@ pub(crate) fn tl_piola<S: Scalar, const D: usize>(
 ///   so that the tangent C_T + σ0 δ (\[B00\] eq 15) is that of the Eulerian law;
 /// - neo-Hookean: P = μ(F − F⁻ᵀ) + λ ln J F⁻ᵀ;
 ///
+/// (tl-enog: its momentum is the pair sum of [`tl_enog_pairs`] instead of the nodal integration),
 /// plus Monaghan's viscosity, as in the Eulerian forms, on the pairs of the reference stencils at
 /// their current separation (reference densities in ρ̄).
 pub(crate) fn rate_tl<S: Scalar, const D: usize>(
@@ -904,14 +905,18 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
     let u = &ws.disp;
     let pairwise = m.p.form == FormKind::TlEnog || m.p.hourglass.is_some();
     ws.defgrad.clear();
+    ws.piola.clear();
     for (j, st) in m.ref_master.iter().enumerate() {
         let f = tl_deformation_gradient(st, u);
         let mut p = tl_piola(m, j, &f);
-        if m.p.form == FormKind::TlEnog {
-            tl_enog_nodal(m, &f, &mut p);
-        }
         if pairwise {
             ws.defgrad.push(f);
+        }
+        if m.p.form == FormKind::TlEnog {
+            // the momentum is a pair sum (below), not the nodal integration's
+            tl_enog_nodal(m, &f, &mut p);
+            ws.piola.push(p);
+            continue;
         }
         let w = m.vol_ref[j];
         for &(k, _, gr) in st {
@@ -925,7 +930,7 @@ pub(crate) fn rate_tl<S: Scalar, const D: usize>(
         }
     }
     match (m.p.form, m.p.hourglass) {
-        (FormKind::TlEnog, _) => tl_enog_pairs(m, z, acc, &ws.defgrad),
+        (FormKind::TlEnog, _) => tl_enog_pairs(m, z, acc, &ws.defgrad, &ws.piola),
         (_, Some(alpha)) => ganzenmuller(m, z, acc, &ws.defgrad, alpha),
         _ => {}
     }
@@ -1002,16 +1007,21 @@ fn tl_enog_nodal<S: Scalar, const D: usize>(m: &Model<D>, f: &Tensor<S, D>, p: &
 /// tl-enog's default κ = 1.07 (SPHinXsys's `DecomposedIntegration1stHalf`).
 pub const TL_ENOG_DEFAULT_KAPPA: f64 = 1.07;
 
-/// tl-enog's pairwise shear force, added to the forces `acc` (before the division by the
-/// mass) \[Wu, Zhang, Tang & Hu 2023\]:
-/// f_K = κ G Σ_L V_K V_L (J_K^{−2/d} + J_L^{−2/d}) (x_K − x_L)/r⁰ W′(r⁰), less its value in
-/// the reference configuration (which the nodal κ G I of [`tl_enog_nodal`] balances), over
-/// the reference neighbours L of K, r⁰ = |X_K − X_L|; J from the nodal F of each particle.
+/// tl-enog's forces, added to `acc` (before the division by the mass), a pair sum over the
+/// reference neighbours L of K \[Wu, Zhang, Tang & Hu 2023; SPHinXsys's
+/// `DecomposedIntegration1stHalf`\]: the nodal stresses P̃ of [`tl_enog_nodal`] with the
+/// kernel's own (uncorrected) reference gradient, and the pairwise shear,
+/// f_K = Σ_L V_K V_L [(P̃_K + P̃_L) e⁰ + κ G (J_K^{−2/d} + J_L^{−2/d}) (x_K − x_L)/r⁰ − 2κG e⁰] W′(r⁰),
+/// e⁰ = (X_K − X_L)/r⁰; J from the nodal F of each particle (the B-corrected gradient of the
+/// default shape enters F only). The pair term's reference value −2κG e⁰ is taken out, as the
+/// nodal κ G I of P̃ is in: the paper's split, whose two constants cancel pair by pair, with
+/// P̃(I) the law's P(I) (the pre-stress).
 fn tl_enog_pairs<S: Scalar, const D: usize>(
     m: &Model<D>,
     z: StateView<'_, S, D>,
     acc: &mut [[S; D]],
     defgrad: &[Tensor<S, D>],
+    piola: &[Tensor<S, D>],
 ) {
     let kappa = m.p.hourglass.unwrap_or(TL_ENOG_DEFAULT_KAPPA);
     let (g, _) = tl_moduli(m);
@@ -1026,9 +1036,16 @@ fn tl_enog_pairs<S: Scalar, const D: usize>(
                 let d = m.rel(z.x[k], z.x[p.l]);
                 let w = kappa * g * p.vv * p.dw / p.r0;
                 let jsum = jk + jm(p.l);
+                let e0 = p.d0.map(|c| -c / p.r0);
+                let (pk, pl) = (&piola[k], &piola[p.l]);
                 for c in 0..D {
                     // (x_K − x_L)(J_K^{−2/d} + J_L^{−2/d}) − 2 (X_K − X_L)
                     ak[c] += (-(d[c] * jsum) + 2.0 * p.d0[c]) * w;
+                    let mut pe = S::zero();
+                    for b in 0..D {
+                        pe += (pk[c][b] + pl[c][b]) * e0[b];
+                    }
+                    ak[c] += pe * (p.vv * p.dw);
                 }
             }
         });

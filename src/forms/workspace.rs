@@ -240,6 +240,8 @@ pub struct RateWorkspace<S, const D: usize = 2> {
     pub(crate) disp: Vec<[S; D]>,
     /// Deformation gradients at the particles (total-Lagrangian forms with a pairwise term).
     pub(crate) defgrad: Vec<Tensor<S, D>>,
+    /// Nodal first Piola–Kirchhoff stresses (tl-enog's pair form of the momentum).
+    pub(crate) piola: Vec<Tensor<S, D>>,
     /// Antuono's renormalised density gradients ⟨∇ρ⟩_I (δ-SPH).
     pub(crate) rho_grad: Vec<[S; D]>,
     /// What the current stencils were built for (`None`: nothing valid).
@@ -289,6 +291,7 @@ impl<S, const D: usize> Default for RateWorkspace<S, D> {
             art: Vec::new(),
             disp: Vec::new(),
             defgrad: Vec::new(),
+            piola: Vec::new(),
             rho_grad: Vec::new(),
             key: None,
             key_x: Vec::new(),

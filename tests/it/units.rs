@@ -10,6 +10,11 @@ use serde_json::Value;
 /// parameters (ε, δ, ν, γ, α, β, n), tolerances per step. `min`, `max` and `error_max` are the
 /// entries of a scene's `stress`, which has the unit.
 const DIMENSIONLESS: &[&str] = &[
+    "period_error",
+    "period_error_body",
+    "energy_loss_per_period",
+    "periods",
+    "max_speed_ratio",
     "schema_version",
     "nodes",
     "displacement_error",
@@ -54,6 +59,7 @@ const DIMENSIONLESS: &[&str] = &[
     "max_amplification",
     "ratio",
     "ratio_box",
+    "ratio_body",
     "ratio_infinite",
     "r2",
     "velocity_error_l2",
@@ -187,6 +193,10 @@ fn one_unit_per_quantity() {
     assert_eq!(sim["units"]["dt"], "dx/c");
     let dt = f(&sim, "dt_physical") * f(&sim, "sound_speed_physical") / f(&sim, "dx_physical");
     assert!((f(&sim, "dt") - dt).abs() < 1e-15, "{sim}");
+    // an experiment of `hourglass` (normalised units; its oscillation stops early)
+    let plate = doc(&["simulate", "analysis/scenes/plate-tlsph.json", "--json"]);
+    assert_eq!(plate["units"]["period_theory"], "dx/c");
+    assert_eq!(plate["units"]["first_peak_displacement"], "dx");
 }
 
 /// A flag or scene field that sets Δt in Δx/c is `dt`; `swegle --cfl` and a scene's `cfl`, the

@@ -39,6 +39,25 @@ enum Seed {
 /// Growth rate (1/time, physical) of the fastest mode of the finite set, and the number of
 /// free mechanical degrees of freedom.
 pub fn box_growth<const D: usize>(run: &Run<D>) -> Result<(f64, usize)> {
+    let ev = box_spectrum(run)?;
+    Ok((growth_of(&ev), ev.len()))
+}
+
+/// The fastest growth max Re √(−ω²) of a spectrum, ignoring the eigenvalues within
+/// ZERO_OMEGA2_TOL of zero (relative to the largest): zero-energy modes or round-off of the
+/// non-symmetric Schur decomposition, no exponential growth.
+pub fn growth_of(ev: &[Complex64]) -> f64 {
+    let scale = ev.iter().map(|w| w.norm()).fold(0.0, f64::max);
+    let tol = crate::vonneumann::classify::ZERO_OMEGA2_TOL * scale;
+    ev.iter()
+        .filter(|w| w.norm() > tol)
+        .map(|&w2: &Complex64| (-w2).sqrt().re.abs())
+        .fold(0.0, f64::max)
+}
+
+/// Every eigenvalue ω² (1/time², physical) of the operator D of the finite set, one per free
+/// mechanical degree of freedom.
+pub fn box_spectrum<const D: usize>(run: &Run<D>) -> Result<Vec<Complex64>> {
     let n = run.z.x.len();
     let free: Vec<usize> = (0..n).filter(|&i| !run.fixed[i]).collect();
     let nx = D * free.len();
@@ -177,14 +196,5 @@ pub fn box_growth<const D: usize>(run: &Run<D>) -> Result<(f64, usize)> {
                     .collect()
             }
         };
-    // eigenvalues within ZERO_OMEGA2_TOL of zero (relative to the largest) are zero-energy
-    // modes or round-off of the non-symmetric Schur decomposition: no exponential growth
-    let scale = ev.iter().map(|w| w.norm()).fold(0.0, f64::max);
-    let tol = crate::vonneumann::classify::ZERO_OMEGA2_TOL * scale;
-    let g = ev
-        .iter()
-        .filter(|w| w.norm() > tol)
-        .map(|&w2: &Complex64| (-w2).sqrt().re.abs())
-        .fold(0.0, f64::max);
-    Ok((g, nx))
+    Ok(ev)
 }

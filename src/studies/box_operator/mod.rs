@@ -10,7 +10,7 @@ mod iterative;
 mod product;
 
 pub use arnoldi::{ArnoldiParams, FastestMode, fastest_mode};
-pub use dense::{MAX_DENSE_DOFS, box_growth};
+pub use dense::{MAX_DENSE_DOFS, box_growth, box_spectrum, growth_of};
 pub use iterative::{
     ATOL, BASIS, IterativeGrowth, KEEP, MAX_PRODUCTS, RTOL, STABLE_PROBE, Start,
     box_growth_iterative,

@@ -23,7 +23,7 @@ mod run;
 
 pub use config::{HourglassConfig, Remedy, StressState, default_remedies, parse_config};
 pub use experiment::{
-    Experiment, ExperimentKind, ExperimentReport, experiment_text, parse_experiment,
+    Experiment, ExperimentKind, ExperimentReport, Oscillation, experiment_text, parse_experiment,
 };
 pub use figure::figure_svg;
 pub use report::{

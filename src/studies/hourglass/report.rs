@@ -158,7 +158,7 @@ fn onset_cell(o: Option<f64>, max: f64) -> String {
 /// The study's findings as Markdown (analysis/tensile_or_hourglass.md): every number is the
 /// report's; the sentences are chosen by the numbers (which remedy has zero-energy modes, grows
 /// from zero stress, grows only beyond an onset).
-pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) -> String {
+pub fn note_markdown(r: &HourglassReport, experiments: &[(String, ExperimentReport)]) -> String {
     let cfg = &r.config;
     let max = cfg.stress.last().copied().unwrap_or(0.0);
     let g_over_c = |nu: f64| (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu));
@@ -305,15 +305,17 @@ pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) 
         s += "\n";
     }
     // 5. the time domain
-    if !discs.is_empty() {
-        s += "\n## The disc in the time domain\n\n";
-        s += "The experiment the SPHinXsys group proposes, as `sphstab simulate` runs it: a 2D disc of radius 8Δx \
-              (lattice points), held at a uniform isotropic tension by the boundary load that makes the stressed rest \
-              state an equilibrium of each form, seeded with random velocities; the growth of max |v| fitted over \
-              a window, against the fastest mode of the exact operator of the same particle set (every eigenvalue) \
-              and of the infinite lattice (c/Δx).\n\n";
+    if !experiments.is_empty() {
+        s += "\n## The disc and the plate in the time domain\n\n";
+        s += "As `sphstab simulate` runs them (analysis/scenes). The disc is the experiment the SPHinXsys group \
+              proposes: a 2D disc of radius 8Δx (lattice points), held at a uniform isotropic tension by the boundary \
+              load that makes the stressed rest state an equilibrium of each form. The plate is Gray, Monaghan & \
+              Swift's cantilever (6 rows, L/H = 10, ν = 0.3975, clamped by the columns behind it), at rest. Each is \
+              seeded with random velocities; the growth of max |v| is fitted over a window (for the plates after \
+              `cycles` renormalisations, so that the fastest mode dominates the seed), against the fastest mode of \
+              the exact operator of the same particle set (every eigenvalue) and of the infinite lattice (c/Δx).\n\n";
         s += "| scene | remedy | σ̄ | measured | predicted, body | measured / body | predicted, infinite lattice | max \\|v\\| at the end (c) |\n|---|---|---|---|---|---|---|---|\n";
-        for (file, e) in discs {
+        for (file, e) in experiments.iter().filter(|e| e.1.steps > 0) {
             s += &format!(
                 "| `{}` | {} | {} | {} | {:.6} | {} | {:.6} | {:.3e} |\n",
                 file,
@@ -322,22 +324,26 @@ pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) 
                 e.measured_growth_rate
                     .map_or("none in the window".into(), |m| format!("{m:.6}")),
                 e.predicted_growth_rate_body,
-                e.ratio_body.map_or("—".into(), |x| format!("{x:.4}")),
+                if e.kink {
+                    "— (kink)".into()
+                } else {
+                    e.ratio_body.map_or("—".into(), |x| format!("{x:.4}"))
+                },
                 e.predicted_growth_rate_infinite,
                 e.max_velocity_end
             );
         }
-        let grow: Vec<f64> = discs.iter().filter_map(|d| d.1.ratio_body).collect();
+        let grow: Vec<f64> = experiments.iter().filter_map(|d| d.1.ratio_body).collect();
         if !grow.is_empty() {
             let worst = grow.iter().map(|x| (x - 1.0).abs()).fold(0.0, f64::max);
-            let differ: Vec<&str> = discs
+            let differ: Vec<&str> = experiments
                 .iter()
                 .filter(|d| {
                     let (b, i) = (
                         d.1.predicted_growth_rate_body,
                         d.1.predicted_growth_rate_infinite,
                     );
-                    b > 2.0 * i || i > 2.0 * b
+                    !d.1.kink && (b > 2.0 * i || i > 2.0 * b)
                 })
                 .map(|d| d.1.remedy.as_str())
                 .fold(Vec::new(), |mut v, r| {
@@ -349,7 +355,7 @@ pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) 
             s += &format!(
                 "\nWhere the body's operator grows, the measured growth is within {:.1}% of it ({} scenes). \
                  The body's and the infinite lattice's growth differ by more than a factor 2 for {}: \
-                 the disc's free surface changes which modes grow.\n",
+                 the free surface (and the plate's clamp) changes which modes grow.\n",
                 100.0 * worst,
                 grow.len(),
                 if differ.is_empty() {
@@ -358,22 +364,75 @@ pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) 
                     differ.join(", ")
                 }
             );
-            let at_rest: Vec<String> = discs
+            let at_rest: Vec<String> = experiments
                 .iter()
-                .filter(|d| d.1.stress == 0.0 && d.1.predicted_growth_rate_body > 0.0)
+                .filter(|d| d.1.steps > 0 && d.1.stress == 0.0 && d.1.predicted_growth_rate_body > 0.0)
                 .map(|d| {
                     format!(
-                        "{} ({:.6} c/Δx)",
-                        d.1.remedy, d.1.predicted_growth_rate_body
+                        "{} (the {}, {:.6} c/Δx)",
+                        d.1.remedy, d.1.experiment, d.1.predicted_growth_rate_body
                     )
                 })
                 .collect();
             if !at_rest.is_empty() {
                 s += &format!(
-                    "\nUnstressed, the disc still grows for {}: no stress drives that growth, the finite \
+                    "\nUnstressed, the body still grows for {}: no stress drives that growth, the finite \
                      body's operator is indefinite at its free surface (the lattice of the same form is stable); \
                      it is neither a tensile nor an hourglass instability.\n",
                     at_rest.join(", ")
+                );
+            }
+        }
+        let kinks: Vec<&str> = experiments
+            .iter()
+            .filter(|d| d.1.kink && d.1.steps > 0)
+            .map(|d| d.0.as_str())
+            .collect();
+        if !kinks.is_empty() {
+            s += &format!(
+                "\nAt zero stress artificial stress sits on a kink of its rate (R ∝ the tensile part of the stress \
+                 switches on with the sign of the perturbation's own stress), so no linear operator predicts its \
+                 growth there ({}): the measured max |v| is reported alone.\n",
+                kinks.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
+            );
+        }
+        let osc: Vec<(&String, &ExperimentReport, &super::experiment::Oscillation)> = experiments
+            .iter()
+            .filter_map(|(f, e)| e.oscillation.as_ref().map(|o| (f, e, o)))
+            .collect();
+        if !osc.is_empty() {
+            s += "\n### The oscillating plate and the breathing disc\n\n";
+            s += "The same plate started in its first bending mode (Gray et al.'s velocity field, the tip at the \
+                  speed given, 0.05 c0 = 0.044 c being the paper's): the period of the tip's deflection against \
+                  Euler–Bernoulli's (plane strain, kL = 1.875) and against the same mode of the exact operator of \
+                  the particle set at rest (its eigenvalue nearest Euler–Bernoulli's). The disc (radius 8Δx, \
+                  unstressed) started in its first radial mode, u_r ∝ J1(kr), the rim at the speed given: the group's \
+                  experiment, a disc with a radial velocity, in which isotropic tension comes and goes; the period of \
+                  the rim's radial displacement against plane-strain elasticity's, (λ + 2G) kR J0(kR) = 2G J1(kR). \
+                  For both, the fraction of the mode's energy lost per period (1 − (A_{n+1}/A_n)² of the positive \
+                  peaks; negative: the peaks grew, energy exchanged with other modes), and when max |v| first exceeded twice the mode's initial speed (something else grew) or \
+                  exceeded c (the run was stopped). No linear operator predicts a growth under a stress that comes \
+                  and goes: these are measurements only.\n\n";
+            s += "| scene | remedy | mode speed (c) | period (Δx/c) | continuum | error | body's operator | error | energy lost per period | first peak (Δx) | \\|v\\| above twice the mode's at | stopped at |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+            let t = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x:.1}"));
+            for (file, e, o) in &osc {
+                s += &format!(
+                    "| `{}` | {} | {} | {} | {:.1} | {} | {} | {} | {} | {:.3} | {} | {} |\n",
+                    file,
+                    e.remedy,
+                    num(o.mode_velocity),
+                    t(o.period),
+                    o.period_theory,
+                    o.period_error
+                        .map_or("—".into(), |x| format!("{:+.2}%", 100.0 * x)),
+                    t(o.period_body),
+                    o.period_error_body
+                        .map_or("—".into(), |x| format!("{:+.2}%", 100.0 * x)),
+                    o.energy_loss_per_period
+                        .map_or("—".into(), |x| format!("{:.3}%", 100.0 * x)),
+                    o.first_peak_displacement,
+                    t(o.departed_at),
+                    t(o.stopped_at),
                 );
             }
         }
@@ -439,18 +498,51 @@ pub fn note_markdown(r: &HourglassReport, discs: &[(String, ExperimentReport)]) 
             }
         };
         s += &line;
-        let rest: Vec<String> = discs
+        let rest: Vec<String> = experiments
             .iter()
             .filter(|d| {
                 d.1.remedy == rem.label && d.1.stress == 0.0 && d.1.predicted_growth_rate_body > 0.0
             })
-            .map(|d| format!("{:.6} c/Δx", d.1.predicted_growth_rate_body))
-            .collect();
+            .map(|d| {
+                format!(
+                    "the {} at {:.6} c/Δx",
+                    d.1.experiment, d.1.predicted_growth_rate_body
+                )
+            })
+            .fold(Vec::new(), |mut v, x| {
+                // (the breathing disc's rest state is the unstressed disc's)
+                if !v.contains(&x) {
+                    v.push(x);
+                }
+                v
+            });
         if !rest.is_empty() {
             s += &format!(
-                " Its unstressed disc grows ({}): an indefinite operator at the free surface.",
+                " Unstressed, its finite bodies grow ({}): an indefinite operator at the free surface.",
                 rest.join(", ")
             );
+        }
+        let osc: Vec<String> = experiments
+            .iter()
+            .filter_map(|d| d.1.oscillation.as_ref().map(|o| (d, o)))
+            .filter(|(d, _)| d.1.remedy == rem.label)
+            .map(|(d, o)| {
+                let what = format!("the {} at {} c", d.1.experiment, num(o.mode_velocity));
+                match (o.departed_at, o.period) {
+                    (Some(t), _) => format!("{what} leaves its mode at t = {t:.1} Δx/c"),
+                    (None, Some(p)) => format!(
+                        "{what} oscillates with period {p:.1} Δx/c ({:+.1}% of the continuum's), losing {:.2}% of the mode's energy per period",
+                        100.0 * o.period_error.unwrap_or(0.0),
+                        100.0 * o.energy_loss_per_period.unwrap_or(0.0)
+                    ),
+                    (None, None) => {
+                        format!("{what} stays in its mode but completes no period in the run")
+                    }
+                }
+            })
+            .collect();
+        if !osc.is_empty() {
+            s += &format!(" In the time domain, {}.", osc.join("; "));
         }
         s += "\n";
     }
