@@ -38,6 +38,25 @@ fn report() -> &'static HourglassReport {
     })
 }
 
+/// The study on the other lattices (analysis/tensile_or_hourglass_hex.json, _3d.json), computed
+/// once: (config file, report).
+fn others() -> &'static [(String, HourglassReport)] {
+    static R: OnceLock<Vec<(String, HourglassReport)>> = OnceLock::new();
+    R.get_or_init(|| {
+        [
+            "analysis/tensile_or_hourglass_hex.json",
+            "analysis/tensile_or_hourglass_3d.json",
+        ]
+        .par_iter()
+        .map(|f| {
+            let text = std::fs::read_to_string(root().join(f)).unwrap();
+            let cfg = parse_config(f, &text).unwrap();
+            (f.to_string(), run(&cfg, ()).unwrap())
+        })
+        .collect()
+    })
+}
+
 /// The disc and plate experiments of analysis/scenes (`disc-*.json`, `plate-*.json`), run
 /// once: (file name, report).
 fn experiments() -> &'static [(String, ExperimentReport)] {
@@ -47,11 +66,9 @@ fn experiments() -> &'static [(String, ExperimentReport)] {
             .unwrap()
             .filter_map(|e| e.ok().map(|e| e.path()))
             .filter(|p| {
-                p.file_name()
-                    .and_then(|n| n.to_str())
-                    .is_some_and(|n| {
-                        (n.starts_with("disc-") || n.starts_with("plate-")) && n.ends_with(".json")
-                    })
+                p.file_name().and_then(|n| n.to_str()).is_some_and(|n| {
+                    (n.starts_with("disc-") || n.starts_with("plate-")) && n.ends_with(".json")
+                })
             })
             .collect();
         files.sort();
@@ -138,7 +155,10 @@ fn the_plate_oscillates_in_its_mode_unless_its_body_grows() {
         let loss = o.energy_loss_per_period.unwrap();
         assert!(err.abs() < 0.005, "{name}: period / body's − 1 = {err}");
         assert!(loss.abs() < 0.005, "{name}: energy lost per period {loss}");
-        assert!(o.departed_at.is_none() && o.max_speed_ratio < 1.2, "{name}: {o:?}");
+        assert!(
+            o.departed_at.is_none() && o.max_speed_ratio < 1.2,
+            "{name}: {o:?}"
+        );
         oscillated += 1;
     }
     assert!(oscillated >= 3, "{oscillated} plates oscillated");
@@ -146,7 +166,7 @@ fn the_plate_oscillates_in_its_mode_unless_its_body_grows() {
 
 #[test]
 fn note_is_the_studys_report() {
-    let note = note_markdown(report(), experiments());
+    let note = note_markdown(report(), experiments(), others());
     let path = root().join(NOTE);
     if std::env::var_os("SPHSTAB_WRITE_NOTE").is_some() {
         std::fs::write(&path, &note).unwrap();

@@ -263,7 +263,10 @@ impl Experiment {
     /// Checks every field (errors name it).
     pub fn validate(&self) -> Result<()> {
         let kind = self.experiment.name();
-        let (needs, refuses): (&[(&str, bool)], &[(&str, bool)]) = match self.experiment {
+        // (field, whether it is missing) that the kind needs, (field, whether it is set) that
+        // it refuses
+        type Fields<'a> = &'a [(&'static str, bool)];
+        let (needs, refuses): (Fields, Fields) = match self.experiment {
             ExperimentKind::Disc => (
                 &[("radius", self.radius.is_none())],
                 &[
@@ -381,7 +384,11 @@ impl Experiment {
             .map(|y| {
                 let s = y[0].hypot(y[1]);
                 let u = bessel_j(1, k * s) / bessel_j(1, kr);
-                if s > 0.0 { y.map(|c| u * c / s) } else { [0.0; 2] }
+                if s > 0.0 {
+                    y.map(|c| u * c / s)
+                } else {
+                    [0.0; 2]
+                }
             })
             .collect();
         // the rim: the particles within Δx of the radius
@@ -444,7 +451,10 @@ impl Experiment {
             .iter()
             .map(|xi| {
                 let s = k * (xi[0] + 0.5).max(0.0);
-                [0.0, (m * (s.cos() - s.cosh()) - n * (s.sin() - s.sinh())) / qq]
+                [
+                    0.0,
+                    (m * (s.cos() - s.cosh()) - n * (s.sin() - s.sinh())) / qq,
+                ]
             })
             .collect();
         let young = shear * (3.0 * lambda + 2.0 * shear) / (lambda + shear);
@@ -481,9 +491,9 @@ impl Experiment {
         };
         let count = body.x.len();
         let steps = (self.t_end / self.dt).ceil();
-        let osc_steps = self
-            .mode_velocity
-            .map_or(0.0, |_| (self.oscillation_t_end.unwrap_or(self.t_end) / self.dt).ceil());
+        let osc_steps = self.mode_velocity.map_or(0.0, |_| {
+            (self.oscillation_t_end.unwrap_or(self.t_end) / self.dt).ceil()
+        });
         if osc_steps == 0.0 && self.mode_velocity.is_some() {
             return Err(Error::Incompatible(
                 field("oscillation_t_end") + ": the oscillation needs a positive end time",
@@ -555,19 +565,22 @@ impl Experiment {
         let omega_theory = 2.0 * std::f64::consts::PI / body.period_theory;
         // (the plate's: the disc's spectrum is dense near its breathing mode, no eigenvalue alone
         // is that mode's)
-        let period_body = spectrum.as_ref().filter(|_| self.experiment == ExperimentKind::Plate).and_then(|ev| {
-            ev.iter()
-                .filter(|w| w.re > 0.0 && w.im.abs() <= 1e-6 * w.re)
-                .map(|w| w.re.sqrt())
-                .filter(|w| (w / omega_theory).ln().abs() < std::f64::consts::LN_2)
-                .min_by(|a, b| {
-                    (a / omega_theory)
-                        .ln()
-                        .abs()
-                        .total_cmp(&(b / omega_theory).ln().abs())
-                })
-                .map(|w| 2.0 * std::f64::consts::PI / w)
-        });
+        let period_body = spectrum
+            .as_ref()
+            .filter(|_| self.experiment == ExperimentKind::Plate)
+            .and_then(|ev| {
+                ev.iter()
+                    .filter(|w| w.re > 0.0 && w.im.abs() <= 1e-6 * w.re)
+                    .map(|w| w.re.sqrt())
+                    .filter(|w| (w / omega_theory).ln().abs() < std::f64::consts::LN_2)
+                    .min_by(|a, b| {
+                        (a / omega_theory)
+                            .ln()
+                            .abs()
+                            .total_cmp(&(b / omega_theory).ln().abs())
+                    })
+                    .map(|w| 2.0 * std::f64::consts::PI / w)
+            });
         let infinite = crate::analysis::query(&q)?.max_growth_rate;
         // seed
         let mut state = self.seed;
@@ -750,7 +763,10 @@ fn periods_and_peaks(t: &[f64], u: &[f64]) -> (Option<f64>, usize, Vec<f64>) {
     let period = (periods > 0).then(|| (up[periods] - up[0]) / periods as f64);
     let mut peaks = Vec::new();
     let mut start = 0;
-    let ends = up.iter().copied().chain((up.is_empty()).then_some(f64::INFINITY));
+    let ends = up
+        .iter()
+        .copied()
+        .chain((up.is_empty()).then_some(f64::INFINITY));
     for tc in ends.take(periods + 1) {
         let end = t.iter().position(|&ti| ti >= tc).unwrap_or(t.len());
         if let Some(&a) = u[start..end].iter().max_by(|a, b| a.total_cmp(b))

@@ -156,9 +156,14 @@ fn onset_cell(o: Option<f64>, max: f64) -> String {
 }
 
 /// The study's findings as Markdown (analysis/tensile_or_hourglass.md): every number is the
-/// report's; the sentences are chosen by the numbers (which remedy has zero-energy modes, grows
-/// from zero stress, grows only beyond an onset).
-pub fn note_markdown(r: &HourglassReport, experiments: &[(String, ExperimentReport)]) -> String {
+/// report's, the experiments' and the other lattices' (`others`: (config file, report), each
+/// shown as its onset table); the sentences are chosen by the numbers (which remedy has
+/// zero-energy modes, grows from zero stress, grows only beyond an onset).
+pub fn note_markdown(
+    r: &HourglassReport,
+    experiments: &[(String, ExperimentReport)],
+    others: &[(String, HourglassReport)],
+) -> String {
     let cfg = &r.config;
     let max = cfg.stress.last().copied().unwrap_or(0.0);
     let g_over_c = |nu: f64| (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu));
@@ -304,6 +309,43 @@ pub fn note_markdown(r: &HourglassReport, experiments: &[(String, ExperimentRepo
         }
         s += "\n";
     }
+    // 4b. other lattices
+    if !others.is_empty() {
+        s += "\n## Other lattices\n\n";
+        s += "The same remedies on the hexagonal lattice and in 3D (simple cubic; artificial stress has no 3D \
+              form here), at ν = 0.3 on coarser grids, as `sphstab hourglass --config FILE` prints them:\n";
+        for (file, o) in others {
+            s += &format!("\n`{file}`:\n\n```text\n{}```\n", table(o));
+            let compression = |rep: &HourglassReport| -> Vec<String> {
+                rep.remedies
+                    .iter()
+                    .filter(|rem| {
+                        rem.states.iter().any(|st| {
+                            matches!(
+                                st.state,
+                                StressState::IsotropicCompression
+                                    | StressState::UniaxialCompression
+                            ) && st.onset_stress == Some(0.0)
+                        })
+                    })
+                    .map(|rem| rem.label.clone())
+                    .collect()
+            };
+            let (here, square) = (compression(o), compression(r));
+            let new: Vec<&String> = here.iter().filter(|l| !square.contains(l)).collect();
+            if !new.is_empty() {
+                s += &format!(
+                    "\nHere the hourglass modes of {} grow in compression too (onset 0), which they do not \
+                     on the square lattice: which zero-energy modes a stress drives, and with which sign, \
+                     depends on the lattice.\n",
+                    new.iter()
+                        .map(|l| l.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                );
+            }
+        }
+    }
     // 5. the time domain
     if !experiments.is_empty() {
         s += "\n## The disc and the plate in the time domain\n\n";
@@ -366,7 +408,9 @@ pub fn note_markdown(r: &HourglassReport, experiments: &[(String, ExperimentRepo
             );
             let at_rest: Vec<String> = experiments
                 .iter()
-                .filter(|d| d.1.steps > 0 && d.1.stress == 0.0 && d.1.predicted_growth_rate_body > 0.0)
+                .filter(|d| {
+                    d.1.steps > 0 && d.1.stress == 0.0 && d.1.predicted_growth_rate_body > 0.0
+                })
                 .map(|d| {
                     format!(
                         "{} (the {}, {:.6} c/Δx)",
@@ -393,7 +437,11 @@ pub fn note_markdown(r: &HourglassReport, experiments: &[(String, ExperimentRepo
                 "\nAt zero stress artificial stress sits on a kink of its rate (R ∝ the tensile part of the stress \
                  switches on with the sign of the perturbation's own stress), so no linear operator predicts its \
                  growth there ({}): the measured max |v| is reported alone.\n",
-                kinks.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
+                kinks
+                    .iter()
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             );
         }
         let osc: Vec<(&String, &ExperimentReport, &super::experiment::Oscillation)> = experiments
