@@ -181,6 +181,7 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
         kappa_at_max: kmax,
         instabilities: inst,
         has_zero_energy_modes: has_zero,
+        art_stress_kink: q.art_stress_kink(),
         critical_dt: cdt,
         critical_cfl: cfl,
         dt: q.dt,

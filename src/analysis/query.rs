@@ -365,6 +365,17 @@ impl<const D: usize> Query<D> {
         })
     }
 
+    /// Whether the pre-stressed rest state sits on a kink of the artificial stress: with
+    /// R = −ε Σ_{λ>0} λ P_λ/ρ², a principal pre-stress of exactly zero (σ̄ = 0; a uniaxial
+    /// state's transverse direction, D ≥ 2) switches R on or off with the sign of the
+    /// perturbation's own stress. The rate is not differentiable there: the linearisation is the
+    /// compression side's (R's derivative 0 in that direction), and a time integration may grow
+    /// where it predicts none.
+    pub fn art_stress_kink(&self) -> bool {
+        self.art_stress.is_some()
+            && (self.stress == 0.0 || (D >= 2 && self.prestress == PrestressKind::Uniaxial))
+    }
+
     /// The pre-stress σ0 = σ̄ C of normalised stress `stress`, physical units.
     pub fn sigma0(&self, stress: f64) -> f64 {
         stress * self.units.modulus

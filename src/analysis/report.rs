@@ -144,6 +144,10 @@ pub struct QueryReport {
     pub instabilities: Vec<Instability>,
     /// Spurious zero-energy (rank-deficiency) modes, beyond the continuum's own zero branches.
     pub has_zero_energy_modes: bool,
+    /// The rest state sits on a kink of the artificial stress ([`crate::analysis::Query::art_stress_kink`]):
+    /// the verdict is one side's linearisation (only written when true).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub art_stress_kink: bool,
     /// Critical Δt of the integrator (Δx/c), null if the semi-discrete system grows.
     pub critical_dt: Option<f64>,
     /// c Δt_crit / h.

@@ -344,6 +344,7 @@ pub(super) fn query<const D: usize>(q: &Query<D>) -> Result<QueryReport> {
         polarisation: pmax,
         instabilities: inst,
         has_zero_energy_modes: !spurious.is_empty(),
+        art_stress_kink: q.art_stress_kink(),
         critical_dt: cdt,
         critical_cfl: cdt.map(|d| d / q.h_over_dx),
         dt: q.dt,

@@ -255,3 +255,20 @@ fn onsets_separate_stable_from_growing_and_zero_energy_flags_hold() {
     }
     assert!(checked > 0, "no finite onset at the reference ν to check");
 }
+
+#[test]
+fn a_zero_principal_prestress_is_flagged_as_the_artificial_stress_kink() {
+    // R = −ε Σ_{λ>0} λ P_λ/ρ² is not differentiable where a principal stress is 0: at σ̄ = 0,
+    // and in a uniaxial state's transverse direction; isotropic tension (both principal stresses
+    // σ̄ > 0) and pure shear (±σ̄) are smooth, and without artificial stress nothing is flagged
+    let kink = |args: &str| {
+        let v = crate::common::json(&args.split(' ').collect::<Vec<_>>());
+        v.get("art_stress_kink").and_then(|k| k.as_bool()) == Some(true)
+    };
+    let q = "query --dim 2 --grid 8 --json --art-eps 0.3";
+    assert!(kink(&format!("{q} --stress 0")));
+    assert!(kink(&format!("{q} --prestress uniaxial --stress 0.05")));
+    assert!(!kink(&format!("{q} --stress 0.05")));
+    assert!(!kink(&format!("{q} --prestress shear --stress 0.05")));
+    assert!(!kink("query --dim 2 --grid 8 --json --stress 0"));
+}

@@ -143,6 +143,11 @@ fn run_in<const D: usize>(mut a: Args, budget: &Budget) -> Result<()> {
             kinds.join(", ")
         ),
     }
+    if r.art_stress_kink {
+        println!(
+            "note: a principal pre-stress is exactly 0, a kink of the artificial stress (R switches with the perturbation's sign): the verdict is the compression side's linearisation; a run may grow where it says none"
+        );
+    }
     if r.instabilities.is_empty() {
         println!("no unstable or marginal branch");
     }

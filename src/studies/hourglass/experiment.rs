@@ -141,9 +141,8 @@ pub struct ExperimentReport {
     /// Fastest growth of the infinite lattice at the same σ̄ (c/Δx).
     pub predicted_growth_rate_infinite: f64,
     /// Whether the rest state sits on a kink of the rate, where no linear operator predicts
-    /// the growth: artificial stress at zero stress (R ∝ the tensile part of the stress
-    /// switches on with the sign of the perturbation's own stress; the body's prediction is
-    /// then the one-sided derivative's).
+    /// the growth: artificial stress at zero stress ([`crate::analysis::Query::art_stress_kink`];
+    /// the body's prediction is then the one-sided derivative's).
     pub kink: bool,
     /// measured / predicted for the body (null unless both grow; null at a kink).
     pub ratio_body: Option<f64>,
@@ -629,7 +628,7 @@ impl Experiment {
         let fit = growth_fit(&t, &y, lo, hi);
         let measured = fit.as_ref().map(|f| f.rate);
         let tol = crate::vonneumann::classify::GROWTH_TOL;
-        let kink = p.art_stress.is_some() && stress == 0.0;
+        let kink = q.art_stress_kink();
         let oscillation = match self.mode_velocity {
             Some(speed) => Some(self.oscillate(
                 oscillation_run,

@@ -309,6 +309,29 @@ pub fn note_markdown(
         }
         s += "\n";
     }
+    // 4a. where the artificial stress is not differentiable
+    let art: Vec<&str> = r
+        .config
+        .remedies
+        .iter()
+        .filter(|rem| rem.query.art_eps.is_some_and(|e| e > 0.0))
+        .map(|rem| rem.label.as_str())
+        .collect();
+    let uniaxial = r.config.states.iter().any(|st| {
+        matches!(
+            st,
+            StressState::UniaxialTension | StressState::UniaxialCompression
+        )
+    });
+    if !art.is_empty() && uniaxial {
+        s += &format!(
+            "\nIn the uniaxial states the transverse principal pre-stress is exactly 0, a kink of the artificial \
+             stress (R = −ε Σ_{{λ>0}} λ P_λ/ρ² switches on with the sign of the perturbation's own stress), so the \
+             rows of {} there are the linearisation of that direction's compression side (`query` flags it: \
+             `art_stress_kink`); a run may grow where they show none.\n",
+            art.join(", ")
+        );
+    }
     // 4b. other lattices
     if !others.is_empty() {
         s += "\n## Other lattices\n\n";
