@@ -363,19 +363,12 @@ impl Experiment {
     fn disc(&self, q: &Query<2>, lambda: f64, shear: f64) -> Body {
         let lat = q.lattice;
         let r = self.radius.unwrap_or(0.0);
-        let n = r.ceil() as i64 + 2;
-        let mut x = Vec::new();
-        for i in -n..=n {
-            for j in -n..=n {
-                let y = [
-                    i as f64 * lat.a[0][0] + j as f64 * lat.a[1][0],
-                    i as f64 * lat.a[0][1] + j as f64 * lat.a[1][1],
-                ];
-                if y[0].hypot(y[1]) <= r + 1e-9 {
-                    x.push(y);
-                }
-            }
-        }
+        // the lattice points within the radius (those on it included)
+        let x: Vec<[f64; 2]> = lat
+            .offsets_within(r + 1e-9)
+            .into_iter()
+            .map(|(_, p)| p)
+            .collect();
         let kr = disc_breathing_root(lambda, shear);
         let k = kr / r;
         let mode = x
